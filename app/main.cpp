@@ -1,0 +1,107 @@
+// The `tsmframe` command: a thin shell over the library (FORMAT.md, "Command line").
+// Exit status: 0 converged to the end; 1 ran but did not reach the end; 2 bad input or usage.
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "tsmframe/io/input_error.hpp"
+#include "tsmframe/io/json_writer.hpp"
+#include "tsmframe/io/model_reader.hpp"
+#include "tsmframe/io/results_writer.hpp"
+#include "tsmframe/solver/analysis.hpp"
+#include "tsmframe/version.hpp"
+
+namespace {
+
+constexpr int exit_converged = 0;
+constexpr int exit_not_converged = 1;
+constexpr int exit_bad_input = 2;
+
+struct RunOptions {
+  std::string model;
+  std::string out = "out";
+  bool quiet = false;
+  bool log_iterations = false;
+};
+
+std::string progress_line(const tsm::solver::StepRecord& step, bool log_iterations) {
+  std::ostringstream os;
+  os << "step " << step.step << "  load factor " << tsm::io::format_number(step.load_factor) << "  iterations "
+     << step.iterations << "  residual "
+     << (step.residual_norms.empty() ? std::string("-") : tsm::io::format_number(step.residual_norms.back()));
+  if (step.converged) os << " (" << step.criterion << ")";
+  else os << "  FAILED: " << step.message;
+  if (step.cutbacks > 0) os << "  after " << step.cutbacks << " cutbacks";
+  if (log_iterations) {
+    os << "\n  residual per iterate:";
+    for (double r : step.residual_norms) os << ' ' << tsm::io::format_number(r);
+  }
+  return os.str();
+}
+
+int run(const RunOptions& options) {
+  tsm::Model model;
+  try {
+    model = tsm::io::read_model_file(options.model);
+  } catch (const tsm::io::InputError& e) {
+    std::cerr << options.model << ": " << e.what() << '\n';
+    return exit_bad_input;
+  }
+  const auto observer = [&](const tsm::solver::StepRecord& step) {
+    if (!options.quiet) std::cerr << progress_line(step, options.log_iterations) << std::endl;
+  };
+  const tsm::solver::RunResult result = tsm::solver::run_analysis(model, observer);
+  try {
+    tsm::io::write_results(options.out, model, result);
+  } catch (const std::exception& e) {
+    std::cerr << "tsmframe: " << e.what() << '\n';
+    return exit_bad_input;
+  }
+  int converged_steps = 0, iterations = 0;
+  for (const auto& step : result.steps) {
+    converged_steps += step.converged ? 1 : 0;
+    iterations += step.iterations;
+  }
+  if (result.status != tsm::solver::Status::converged) {
+    std::cerr << options.model << ": did not converge (" << tsm::solver::status_name(result.status)
+              << "): " << result.message << "; " << converged_steps << " converged steps written to "
+              << options.out << "/results.json\n";
+    return exit_not_converged;
+  }
+  if (!options.quiet)
+    std::cerr << "converged: " << converged_steps << " steps, " << iterations << " iterations; results in "
+              << options.out << "/\n";
+  return exit_converged;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"tsmframe: geometrically nonlinear plane frames by the Tangent Stiffness Method"};
+  app.set_version_flag("--version", std::string("tsmframe ") + tsm::version);
+  app.require_subcommand(1);
+
+  RunOptions options;
+  CLI::App* run_command = app.add_subcommand("run", "Analyse MODEL.json; write results.json and steps.csv");
+  run_command->add_option("model", options.model, "model file (FORMAT.md, tsmframe-model/1)")->required();
+  run_command->add_option("-o,--out", options.out, "output directory (default: out)");
+  run_command->add_flag("-q,--quiet", options.quiet, "no progress lines");
+  run_command->add_flag("--log-iterations", options.log_iterations, "print the residual of every iterate");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    std::cerr << "tsmframe: " << e.what() << " (see tsmframe --help)\n";
+    return exit_bad_input;
+  }
+  try {
+    if (run_command->parsed()) return run(options);
+  } catch (const std::exception& e) {
+    std::cerr << "tsmframe: internal error: " << e.what() << '\n';
+    return exit_not_converged;
+  }
+  return exit_bad_input;
+}

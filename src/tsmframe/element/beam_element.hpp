@@ -1,0 +1,24 @@
+#pragma once
+// The two-node TSM beam element: strict compatibility (deformations from current coordinates),
+// the element force equation, and its tangent K = J k0 Jᵀ + K_G (Eq. 1–2).
+
+#include "tsmframe/element/chord.hpp"
+#include "tsmframe/element/force_law.hpp"
+
+namespace tsm::element {
+
+/// Everything one evaluation of an element yields.
+struct BeamResponse {
+  Chord chord;
+  Vector3 deformations;  ///< (δl, θ_i, θ_j)
+  Vector3 forces;        ///< S = (N, M_i, M_j), chord frame
+  Vector6 nodal_forces;  ///< J S, global frame
+  Matrix6 tangent;       ///< ∂(J S)/∂D
+};
+
+/// Evaluates the element at end displacements d = (u_i, v_i, Θ_i, u_j, v_j, Θ_j).
+/// `previous_rotation` is the chord rotation of the previous iterate (continuous tracking).
+BeamResponse beam_response(const InitialChord& initial, const SectionStiffness& section,
+                           const Vector6& d, double previous_rotation, bool with_tangent = true);
+
+}  // namespace tsm::element

@@ -1,0 +1,51 @@
+#include "tsmframe/element/chord.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace tsm::element {
+
+InitialChord initial_chord(const Vector2& start, const Vector2& end) {
+  const Vector2 delta = end - start;
+  return {start, end, delta.norm(), std::atan2(delta.y(), delta.x())};
+}
+
+double wrap_angle(double angle) { return std::remainder(angle, 2.0 * std::numbers::pi); }
+
+Chord current_chord(const InitialChord& initial, const Vector6& d, double previous_rotation) {
+  const Vector2 delta0 = initial.end - initial.start;
+  const Vector2 relative(d[3] - d[0], d[4] - d[1]);
+  const Vector2 delta = delta0 + relative;
+  Chord chord;
+  chord.length = delta.norm();
+  // l² − l0² = (2Δ0 + Δu)·Δu, so δl keeps its digits when it is tiny against l0.
+  chord.elongation = (2.0 * delta0 + relative).dot(relative) / (chord.length + initial.length);
+  chord.cos = delta.x() / chord.length;
+  chord.sin = delta.y() / chord.length;
+  const double angle = std::atan2(delta.y(), delta.x());
+  chord.rotation = previous_rotation + wrap_angle(angle - initial.angle - previous_rotation);
+  return chord;
+}
+
+EquilibriumMatrix equilibrium_matrix(const Chord& chord) {
+  const double c = chord.cos, s = chord.sin, l = chord.length;
+  EquilibriumMatrix J;
+  J << -c, -s / l, -s / l,  //
+      -s, c / l, c / l,     //
+      0.0, 1.0, 0.0,        //
+      c, s / l, s / l,      //
+      s, -c / l, -c / l,    //
+      0.0, 0.0, 1.0;
+  return J;
+}
+
+Matrix6 geometric_stiffness(const Chord& chord, const Eigen::Vector3d& forces) {
+  const double c = chord.cos, s = chord.sin, l = chord.length;
+  Vector6 z, r;
+  z << s, -c, 0.0, -s, c, 0.0;
+  r << -c, -s, 0.0, c, s, 0.0;
+  const double N = forces[0], moment_sum = forces[1] + forces[2];
+  return (N / l) * z * z.transpose() + (moment_sum / (l * l)) * (r * z.transpose() + z * r.transpose());
+}
+
+}  // namespace tsm::element

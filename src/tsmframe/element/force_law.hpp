@@ -1,0 +1,26 @@
+#pragma once
+// Element force equations of the two-node beam element: S = k0 · d (paper Eq. 3–5).
+// Pure and local: nothing here knows about nodes, coordinates or the global model.
+
+#include <Eigen/Core>
+
+namespace tsm::element {
+
+/// Stiffness data of a cross-section, in the user's consistent units.
+struct SectionStiffness {
+  double EA = 0.0;                 ///< axial rigidity
+  double EI = 0.0;                 ///< bending rigidity
+  double shear_flexibility = 0.0;  ///< Ψ = EI / (G A_s); 0 for Euler–Bernoulli (FORMULATION §1)
+};
+
+/// Element deformations d = (δl, θ_i, θ_j) and forces S = (N, M_i, M_j) in the chord frame.
+using Vector3 = Eigen::Vector3d;
+using Matrix3 = Eigen::Matrix3d;
+
+/// Bending-shear factor q = 12 Ψ / l0² (Eq. 5, with the square the OCR text lacks).
+double shear_factor(const SectionStiffness& section, double l0);
+
+/// k0 of Eq. 4 (Timoshenko); with Ψ = 0 it is exactly Eq. 3 (Euler–Bernoulli).
+Matrix3 basic_stiffness(const SectionStiffness& section, double l0);
+
+}  // namespace tsm::element

@@ -1,0 +1,627 @@
+#include "tsmframe/io/model_reader.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+
+#include "tsmframe/io/input_error.hpp"
+#include "tsmframe/model/mechanism.hpp"
+
+namespace tsm::io {
+namespace {
+
+using nlohmann::json;
+
+constexpr long max_divisions = 10'000'000;        // per member: a typo must not exhaust memory
+constexpr long max_elements = 20'000'000;         // per model
+constexpr long max_steps = 10'000'000;
+constexpr double coordinate_match = 1e-9;         // × model size (FORMAT.md)
+
+std::string quote_text(const std::string& text) { return json(text).dump(); }
+
+/// `parent.key`, or `parent["odd key"]` when the key is not a plain identifier.
+std::string child(const std::string& parent, const std::string& key) {
+  bool plain = !key.empty() && !std::isdigit(static_cast<unsigned char>(key[0]));
+  for (char c : key) plain = plain && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-');
+  if (!plain) return parent + "[" + quote_text(key) + "]";
+  return parent.empty() ? key : parent + "." + key;
+}
+std::string child(const std::string& parent, size_t index) { return parent + "[" + std::to_string(index) + "]"; }
+
+const char* type_name(const json& value) {
+  if (value.is_number()) return "a number";
+  if (value.is_string()) return "a string";
+  if (value.is_boolean()) return "true/false";
+  if (value.is_array()) return "a list";
+  if (value.is_object()) return "an object";
+  return "null";
+}
+
+[[noreturn]] void fail(const std::string& path, const std::string& reason) { throw InputError(path, reason); }
+
+void expect_object(const json& value, const std::string& path) {
+  if (!value.is_object()) fail(path, std::string("expected an object, found ") + type_name(value));
+}
+void expect_array(const json& value, const std::string& path) {
+  if (!value.is_array()) fail(path, std::string("expected a list, found ") + type_name(value));
+}
+
+/// Every key must be one of `allowed` (or "extra", which is ignored).
+void check_keys(const json& object, const std::string& path, std::initializer_list<const char*> allowed) {
+  for (const auto& item : object.items()) {
+    if (item.key() == "extra") continue;
+    bool known = false;
+    for (const char* name : allowed) known = known || item.key() == name;
+    if (known) continue;
+    std::string list;
+    for (const char* name : allowed) list += (list.empty() ? "" : ", ") + std::string(name);
+    fail(child(path, item.key()), "unknown key " + quote_text(item.key()) + " (expected one of: " + list + ")");
+  }
+}
+
+double number(const json& value, const std::string& path) {
+  if (!value.is_number()) fail(path, std::string("expected a number, found ") + type_name(value));
+  const double x = value.get<double>();
+  if (!std::isfinite(x)) fail(path, "the number is not finite");
+  return x;
+}
+
+std::optional<double> optional_number(const json& object, const char* key, const std::string& path) {
+  if (!object.contains(key)) return std::nullopt;
+  return number(object.at(key), child(path, key));
+}
+
+double required_number(const json& object, const char* key, const std::string& path) {
+  if (!object.contains(key)) fail(child(path, key), "missing (required)");
+  return number(object.at(key), child(path, key));
+}
+
+double positive(double value, const std::string& path) {
+  if (!(value > 0.0)) {
+    std::ostringstream os;
+    os << "must be positive, got " << value;
+    fail(path, os.str());
+  }
+  return value;
+}
+
+long integer(const json& value, const std::string& path) {
+  if (value.is_number_integer()) return value.get<long>();
+  if (value.is_number_float()) {
+    const double x = value.get<double>();
+    if (std::floor(x) == x && std::abs(x) < 9e15) return static_cast<long>(x);
+  }
+  fail(path, std::string("expected a whole number, found ") + (value.is_number() ? value.dump() : type_name(value)));
+}
+
+long bounded_integer(const json& value, const std::string& path, long lo, long hi) {
+  const long n = integer(value, path);
+  if (n < lo || n > hi) fail(path, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", got " + std::to_string(n));
+  return n;
+}
+
+std::string string(const json& value, const std::string& path) {
+  if (!value.is_string()) fail(path, std::string("expected a string, found ") + type_name(value));
+  return value.get<std::string>();
+}
+
+bool boolean(const json& value, const std::string& path) {
+  if (!value.is_boolean()) fail(path, std::string("expected true or false, found ") + type_name(value));
+  return value.get<bool>();
+}
+
+Eigen::Vector2d point(const json& value, const std::string& path) {
+  if (!value.is_array() || value.size() != 2) fail(path, "expected a point [x, y]");
+  return {number(value[0], child(path, 0)), number(value[1], child(path, 1))};
+}
+
+int dof_from_name(const std::string& name, const std::string& path) {
+  if (name == "ux") return ux;
+  if (name == "uy") return uy;
+  if (name == "rz") return rz;
+  fail(path, "unknown dof " + quote_text(name) + " (expected ux, uy or rz)");
+}
+
+struct Material {
+  double E = 0.0;
+  std::optional<double> G;
+};
+
+struct Section {
+  double A = 0.0, I = 0.0;
+  std::optional<double> shear_area;
+};
+
+class Reader {
+ public:
+  explicit Reader(const json& document) : doc_(document) {}
+
+  Model read() {
+    expect_object(doc_, "(document)");
+    check_keys(doc_, "", {"format", "title", "units", "materials", "sections", "nodes", "members", "supports",
+                          "loads", "prescribed", "contacts", "analysis"});
+    read_header();
+    read_materials();
+    read_sections();
+    read_nodes();
+    read_members();
+    model_.constrained.assign(model_.dof_count(), false);
+    model_.reference_load = Eigen::VectorXd::Zero(model_.dof_count());
+    model_.reference_prescribed = Eigen::VectorXd::Zero(model_.dof_count());
+    read_supports();
+    read_loads();
+    read_prescribed();
+    fix_free_rotations();
+    read_contacts();
+    read_analysis();
+    if (auto mechanism = find_mechanism(model_)) fail("supports", *mechanism);
+    return std::move(model_);
+  }
+
+ private:
+  void read_header() {
+    if (doc_.contains("format")) {
+      const std::string format = string(doc_["format"], "format");
+      if (format != "tsmframe-model/1") fail("format", "unsupported format " + quote_text(format) + " (expected \"tsmframe-model/1\")");
+    }
+    if (doc_.contains("title")) model_.title = string(doc_["title"], "title");
+    if (doc_.contains("units")) {
+      expect_object(doc_["units"], "units");
+      for (const auto& item : doc_["units"].items())
+        model_.units[item.key()] = string(item.value(), child("units", item.key()));
+    }
+  }
+
+  void read_materials() {
+    if (!doc_.contains("materials")) fail("materials", "missing (required)");
+    expect_object(doc_["materials"], "materials");
+    for (const auto& item : doc_["materials"].items()) {
+      const std::string path = child("materials", item.key());
+      const json& m = item.value();
+      expect_object(m, path);
+      check_keys(m, path, {"E", "G", "nu"});
+      Material material;
+      material.E = positive(required_number(m, "E", path), child(path, "E"));
+      if (m.contains("G") && m.contains("nu")) fail(path, "give G or nu, not both");
+      if (auto G = optional_number(m, "G", path)) material.G = positive(*G, child(path, "G"));
+      if (auto nu = optional_number(m, "nu", path)) {
+        if (!(*nu > -1.0 && *nu < 0.5)) fail(child(path, "nu"), "Poisson's ratio must lie in (-1, 0.5)");
+        material.G = material.E / (2.0 * (1.0 + *nu));
+      }
+      materials_[item.key()] = material;
+    }
+  }
+
+  void read_sections() {
+    if (!doc_.contains("sections")) fail("sections", "missing (required)");
+    expect_object(doc_["sections"], "sections");
+    for (const auto& item : doc_["sections"].items()) {
+      const std::string path = child("sections", item.key());
+      const json& s = item.value();
+      expect_object(s, path);
+      check_keys(s, path, {"A", "I", "shear_area"});
+      Section section;
+      section.A = positive(required_number(s, "A", path), child(path, "A"));
+      section.I = positive(required_number(s, "I", path), child(path, "I"));
+      if (auto shear = optional_number(s, "shear_area", path)) section.shear_area = positive(*shear, child(path, "shear_area"));
+      sections_[item.key()] = section;
+    }
+  }
+
+  void read_nodes() {
+    if (!doc_.contains("nodes")) fail("nodes", "missing (required)");
+    const json& nodes = doc_["nodes"];
+    expect_array(nodes, "nodes");
+    if (nodes.empty()) fail("nodes", "the model has no nodes");
+    for (size_t k = 0; k < nodes.size(); ++k) {
+      const std::string path = child("nodes", k);
+      expect_object(nodes[k], path);
+      check_keys(nodes[k], path, {"id", "x", "y"});
+      if (!nodes[k].contains("id")) fail(child(path, "id"), "missing (required)");
+      const long id = bounded_integer(nodes[k]["id"], child(path, "id"), -2'000'000'000L, 2'000'000'000L);
+      Node node{static_cast<int>(id), {required_number(nodes[k], "x", path), required_number(nodes[k], "y", path)}};
+      if (ids_.count(node.id)) fail(child(path, "id"), "duplicate node id " + std::to_string(node.id));
+      add_node(node);
+    }
+    Eigen::Vector2d lo = model_.nodes[0].position, hi = lo;
+    for (const Node& n : model_.nodes) {
+      lo = lo.cwiseMin(n.position);
+      hi = hi.cwiseMax(n.position);
+    }
+    model_.size = (hi - lo).norm() > 0.0 ? (hi - lo).norm() : 1.0;
+  }
+
+  void add_node(const Node& node) {
+    ids_[node.id] = model_.node_count();
+    model_.nodes.push_back(node);
+  }
+
+  /// A node given by id (`3`) or by coordinates (`[4.5, 0.0]`, matching exactly one node).
+  int node_ref(const json& value, const std::string& path) const {
+    if (value.is_array()) {
+      const Eigen::Vector2d p = point(value, path);
+      const double tolerance = coordinate_match * model_.size;
+      int found = -1, matches = 0;
+      for (int k = 0; k < model_.node_count(); ++k)
+        if ((model_.nodes[k].position - p).norm() <= tolerance) {
+          if (matches++ == 0) found = k;
+        }
+      std::ostringstream os;
+      os << "[" << p.x() << ", " << p.y() << "]";
+      if (matches == 0) fail(path, "no node at " + os.str());
+      if (matches > 1) fail(path, std::to_string(matches) + " nodes at " + os.str() + " (use a node id)");
+      return found;
+    }
+    if (!value.is_number()) fail(path, std::string("expected a node id or [x, y], found ") + type_name(value));
+    const long id = integer(value, path);
+    const auto it = ids_.find(static_cast<int>(id));
+    if (id != static_cast<int>(id) || it == ids_.end()) fail(path, "unknown node " + std::to_string(id));
+    return it->second;
+  }
+
+  int required_node(const json& object, const std::string& path) const {
+    if (!object.contains("node")) fail(child(path, "node"), "missing (required)");
+    return node_ref(object["node"], child(path, "node"));
+  }
+
+  void read_members() {
+    if (!doc_.contains("members")) fail("members", "missing (required)");
+    const json& members = doc_["members"];
+    expect_array(members, "members");
+    int next_id = std::numeric_limits<int>::min();
+    for (const Node& n : model_.nodes) next_id = std::max(next_id, n.id + 1);
+    long element_count = 0;
+    for (size_t k = 0; k < members.size(); ++k) {
+      const std::string path = child("members", k);
+      const json& m = members[k];
+      expect_object(m, path);
+      check_keys(m, path, {"from", "to", "divisions", "element", "material", "section", "arc"});
+      if (!m.contains("from")) fail(child(path, "from"), "missing (required)");
+      if (!m.contains("to")) fail(child(path, "to"), "missing (required)");
+      const int from = node_ref(m["from"], child(path, "from"));
+      const int to = node_ref(m["to"], child(path, "to"));
+      const long divisions = m.contains("divisions") ? bounded_integer(m["divisions"], child(path, "divisions"), 1, max_divisions) : 1;
+      element_count += divisions;
+      if (element_count > max_elements) fail(child(path, "divisions"), "the model would have more than " + std::to_string(max_elements) + " elements");
+
+      BeamTheory theory = BeamTheory::euler_bernoulli;
+      if (m.contains("element")) {
+        const std::string kind = string(m["element"], child(path, "element"));
+        if (kind == "timoshenko") theory = BeamTheory::timoshenko;
+        else if (kind != "euler-bernoulli") fail(child(path, "element"), "unknown element " + quote_text(kind) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
+      }
+      const element::SectionStiffness section = section_stiffness(m, path, theory);
+
+      const Eigen::Vector2d a = model_.nodes[from].position, b = model_.nodes[to].position;
+      std::vector<Eigen::Vector2d> interior;
+      if (m.contains("arc")) {
+        interior = arc_points(m["arc"], child(path, "arc"), a, b, from == to, divisions);
+      } else {
+        if (from == to || (b - a).norm() <= 1e-12 * model_.size) fail(path, "zero-length member (from and to are the same point)");
+        for (long d = 1; d < divisions; ++d) interior.push_back(a + (b - a) * (static_cast<double>(d) / divisions));
+      }
+      int previous = from;
+      for (long d = 1; d <= divisions; ++d) {
+        int current = to;
+        if (d < divisions) {
+          if (next_id == std::numeric_limits<int>::max()) fail(path, "node ids overflow");
+          add_node({next_id++, interior[d - 1]});
+          current = model_.node_count() - 1;
+        }
+        Element e;
+        e.id = static_cast<int>(model_.elements.size()) + 1;
+        e.start = previous;
+        e.end = current;
+        e.member = static_cast<int>(k);
+        e.theory = theory;
+        e.section = section;
+        model_.elements.push_back(e);
+        previous = current;
+      }
+    }
+    model_.member_count = static_cast<int>(members.size());
+  }
+
+  element::SectionStiffness section_stiffness(const json& m, const std::string& path, BeamTheory theory) const {
+    if (!m.contains("material")) fail(child(path, "material"), "missing (required)");
+    if (!m.contains("section")) fail(child(path, "section"), "missing (required)");
+    const std::string material_name = string(m["material"], child(path, "material"));
+    const std::string section_name = string(m["section"], child(path, "section"));
+    const auto material = materials_.find(material_name);
+    if (material == materials_.end()) fail(child(path, "material"), "unknown material " + quote_text(material_name));
+    const auto section = sections_.find(section_name);
+    if (section == sections_.end()) fail(child(path, "section"), "unknown section " + quote_text(section_name));
+    element::SectionStiffness s;
+    s.EA = material->second.E * section->second.A;
+    s.EI = material->second.E * section->second.I;
+    if (theory == BeamTheory::timoshenko) {
+      if (!material->second.G) fail(child(path, "material"), "material " + quote_text(material_name) + " has no G (or nu), which Timoshenko elements need");
+      if (!section->second.shear_area) fail(child(path, "section"), "section " + quote_text(section_name) + " has no shear_area, which Timoshenko elements need");
+      s.shear_flexibility = s.EI / (*material->second.G * *section->second.shear_area);  // Ψ = EI/(G A_s), Eq. 8
+    }
+    return s;
+  }
+
+  std::vector<Eigen::Vector2d> arc_points(const json& arc, const std::string& path, const Eigen::Vector2d& a,
+                                          const Eigen::Vector2d& b, bool closed, long divisions) const {
+    expect_object(arc, path);
+    check_keys(arc, path, {"center", "sweep"});
+    if (!arc.contains("center")) fail(child(path, "center"), "missing (required)");
+    const Eigen::Vector2d centre = point(arc["center"], child(path, "center"));
+    const double sweep = required_number(arc, "sweep", path);
+    const double two_pi = 2.0 * std::numbers::pi;
+    if (sweep == 0.0 || std::abs(sweep) > two_pi * (1 + 1e-12)) fail(child(path, "sweep"), "must be non-zero and at most 2π in size");
+    const double radius = (a - centre).norm();
+    if (radius <= 1e-12 * model_.size) fail(child(path, "center"), "the centre coincides with the start node");
+    if (std::abs((b - centre).norm() - radius) > 1e-6 * radius) fail(child(path, "center"), "the start and end nodes are not on one circle about the centre");
+    const double start = std::atan2(a.y() - centre.y(), a.x() - centre.x());
+    const Eigen::Vector2d reached = centre + radius * Eigen::Vector2d(std::cos(start + sweep), std::sin(start + sweep));
+    if ((reached - b).norm() > 1e-6 * radius) fail(child(path, "sweep"), "the sweep from the start node does not end at the end node");
+    if (closed != (std::abs(std::abs(sweep) - two_pi) < 1e-9)) fail(path, "a full circle must start and end at the same node");
+    std::vector<Eigen::Vector2d> points;
+    for (long d = 1; d < divisions; ++d) {
+      const double angle = start + sweep * static_cast<double>(d) / divisions;
+      points.push_back(centre + radius * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
+    }
+    return points;
+  }
+
+  void read_supports() {
+    if (!doc_.contains("supports")) return;
+    const json& supports = doc_["supports"];
+    expect_array(supports, "supports");
+    for (size_t k = 0; k < supports.size(); ++k) {
+      const std::string path = child("supports", k);
+      const json& s = supports[k];
+      expect_object(s, path);
+      check_keys(s, path, {"node", "fix", "type"});
+      const int node = required_node(s, path);
+      if (!s.contains("fix") && !s.contains("type")) fail(path, "give \"fix\" (a list of ux, uy, rz) or \"type\"");
+      std::set<int> fixed;
+      if (s.contains("fix")) {
+        expect_array(s["fix"], child(path, "fix"));
+        for (size_t d = 0; d < s["fix"].size(); ++d) {
+          const std::string dpath = child(child(path, "fix"), d);
+          fixed.insert(dof_from_name(string(s["fix"][d], dpath), dpath));
+        }
+      }
+      if (s.contains("type")) {
+        const std::string type = string(s["type"], child(path, "type"));
+        if (type == "fixed") fixed.insert({ux, uy, rz});
+        else if (type == "pinned") fixed.insert({ux, uy});
+        else if (type == "roller-x") fixed.insert(uy);
+        else if (type == "roller-y") fixed.insert(ux);
+        else fail(child(path, "type"), "unknown support type " + quote_text(type) + " (expected fixed, pinned, roller-x or roller-y)");
+      }
+      for (int dof : fixed) model_.constrained[dofs_per_node * node + dof] = true;
+    }
+  }
+
+  void read_loads() {
+    if (!doc_.contains("loads")) return;
+    const json& loads = doc_["loads"];
+    expect_array(loads, "loads");
+    for (size_t k = 0; k < loads.size(); ++k) {
+      const std::string path = child("loads", k);
+      const json& l = loads[k];
+      expect_object(l, path);
+      check_keys(l, path, {"node", "fx", "fy", "mz"});
+      const int node = required_node(l, path);
+      const char* keys[3] = {"fx", "fy", "mz"};
+      for (int dof = 0; dof < dofs_per_node; ++dof)
+        if (auto value = optional_number(l, keys[dof], path)) model_.reference_load[dofs_per_node * node + dof] += *value;
+    }
+  }
+
+  void read_prescribed() {
+    if (!doc_.contains("prescribed")) return;
+    const json& prescribed = doc_["prescribed"];
+    expect_array(prescribed, "prescribed");
+    std::set<int> seen;
+    for (size_t k = 0; k < prescribed.size(); ++k) {
+      const std::string path = child("prescribed", k);
+      const json& p = prescribed[k];
+      expect_object(p, path);
+      check_keys(p, path, {"node", "ux", "uy", "rz"});
+      const int node = required_node(p, path);
+      const char* keys[3] = {"ux", "uy", "rz"};
+      bool any = false;
+      for (int dof = 0; dof < dofs_per_node; ++dof) {
+        auto value = optional_number(p, keys[dof], path);
+        if (!value) continue;
+        any = true;
+        const int g = dofs_per_node * node + dof;
+        if (!seen.insert(g).second) fail(child(path, keys[dof]), std::string("this dof is already prescribed by an earlier entry"));
+        model_.constrained[g] = true;
+        model_.reference_prescribed[g] = *value;
+      }
+      if (!any) fail(path, "give at least one of ux, uy, rz");
+    }
+  }
+
+  /// A node that no beam element holds has its rotation fixed (FORMAT.md: a rigid pusher).
+  void fix_free_rotations() {
+    std::vector<bool> held(model_.node_count(), false);
+    for (const Element& e : model_.elements) held[e.start] = held[e.end] = true;
+    for (int k = 0; k < model_.node_count(); ++k)
+      if (!held[k]) model_.constrained[dofs_per_node * k + rz] = true;
+  }
+
+  void read_contacts() {
+    if (!doc_.contains("contacts")) return;
+    const json& contacts = doc_["contacts"];
+    expect_array(contacts, "contacts");
+    for (size_t k = 0; k < contacts.size(); ++k) {
+      const std::string path = child("contacts", k);
+      const json& c = contacts[k];
+      expect_object(c, path);
+      check_keys(c, path, {"node", "members", "element", "frame", "gap"});
+      ContactSpec spec;
+      spec.node = required_node(c, path);
+      if (!c.contains("members")) fail(child(path, "members"), "missing (required)");
+      const json& members = c["members"];
+      const std::string mpath = child(path, "members");
+      std::set<int> holding;
+      for (const Element& e : model_.elements)
+        if (e.start == spec.node || e.end == spec.node) holding.insert(e.member);
+      if (members.is_string()) {
+        if (members.get<std::string>() != "all") fail(mpath, "expected \"all\" or a list of member indices");
+        for (int m = 0; m < model_.member_count; ++m)
+          if (!holding.count(m)) spec.members.push_back(m);
+      } else {
+        expect_array(members, mpath);
+        for (size_t m = 0; m < members.size(); ++m) {
+          const long index = integer(members[m], child(mpath, m));
+          if (index < 0 || index >= model_.member_count) fail(child(mpath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
+          if (holding.count(static_cast<int>(index))) fail(child(mpath, m), "the contact node belongs to member " + std::to_string(index));
+          spec.members.push_back(static_cast<int>(index));
+        }
+      }
+      if (spec.members.empty()) fail(mpath, "no member to touch");
+      if (c.contains("element")) {
+        spec.element = string(c["element"], child(path, "element"));
+        if (spec.element != "euler-bernoulli" && spec.element != "timoshenko") fail(child(path, "element"), "unknown element " + quote_text(spec.element));
+      }
+      if (c.contains("frame")) {
+        spec.frame = string(c["frame"], child(path, "frame"));
+        if (spec.frame != "chord" && spec.frame != "cantilever") fail(child(path, "frame"), "unknown frame " + quote_text(spec.frame) + " (expected \"chord\" or \"cantilever\")");
+      }
+      if (auto gap = optional_number(c, "gap", path)) {
+        if (*gap < 0.0) fail(child(path, "gap"), "must not be negative");
+        spec.gap = *gap;
+      }
+      model_.contacts.push_back(spec);
+    }
+    if (!model_.contacts.empty())
+      fail("contacts", "contact analysis is not available in this version of tsmframe yet (see CHANGELOG.md)");
+  }
+
+  void read_analysis() {
+    AnalysisSettings& a = model_.analysis;
+    if (doc_.contains("analysis")) {
+      const json& an = doc_["analysis"];
+      expect_object(an, "analysis");
+      check_keys(an, "analysis", {"control", "tolerance", "max_iterations", "cutback", "max_cutbacks", "output", "monitor"});
+      if (an.contains("control")) read_control(an["control"], "analysis.control");
+      if (auto tol = optional_number(an, "tolerance", "analysis")) {
+        if (!(*tol > 0.0 && *tol < 1.0)) fail("analysis.tolerance", "must lie between 0 and 1");
+        a.tolerance = *tol;
+      }
+      if (an.contains("max_iterations")) a.max_iterations = static_cast<int>(bounded_integer(an["max_iterations"], "analysis.max_iterations", 1, 100000));
+      if (an.contains("cutback")) a.cutback = boolean(an["cutback"], "analysis.cutback");
+      if (an.contains("max_cutbacks")) a.max_cutbacks = static_cast<int>(bounded_integer(an["max_cutbacks"], "analysis.max_cutbacks", 0, 60));
+      if (an.contains("output")) read_output(an["output"], "analysis.output");
+      if (an.contains("monitor")) {
+        expect_array(an["monitor"], "analysis.monitor");
+        for (size_t k = 0; k < an["monitor"].size(); ++k) a.monitor.push_back(node_ref(an["monitor"][k], child("analysis.monitor", k)));
+      }
+    }
+    if (!doc_.contains("analysis") || !doc_["analysis"].contains("monitor")) {
+      for (int k = 0; k < model_.node_count(); ++k) {
+        bool loaded = false;
+        for (int dof = 0; dof < dofs_per_node; ++dof) {
+          const int g = dofs_per_node * k + dof;
+          loaded = loaded || model_.reference_load[g] != 0.0 || model_.reference_prescribed[g] != 0.0;
+        }
+        if (loaded) a.monitor.push_back(k);
+      }
+    }
+  }
+
+  void read_control(const json& c, const std::string& path) {
+    expect_object(c, path);
+    if (!c.contains("type")) fail(child(path, "type"), "missing (required: \"load\", \"displacement\" or \"arc-length\")");
+    const std::string type = string(c["type"], child(path, "type"));
+    Control& control = model_.analysis.control;
+    if (type == "load") {
+      check_keys(c, path, {"type", "steps"});
+      control.type = ControlType::load;
+    } else if (type == "displacement") {
+      check_keys(c, path, {"type", "steps", "node", "dof", "target"});
+      control.type = ControlType::displacement;
+      control.node = required_node(c, path);
+      if (!c.contains("dof")) fail(child(path, "dof"), "missing (required)");
+      control.dof = dof_from_name(string(c["dof"], child(path, "dof")), child(path, "dof"));
+      control.target = required_number(c, "target", path);
+      if (control.target == 0.0) fail(child(path, "target"), "must not be zero");
+      if (model_.constrained[dofs_per_node * control.node + control.dof])
+        fail(child(path, "dof"), std::string("the controlled dof ") + dof_name(control.dof) + " of node " + std::to_string(model_.nodes[control.node].id) + " is fixed or prescribed");
+    } else if (type == "arc-length") {
+      check_keys(c, path, {"type", "initial_increment", "max_steps", "until", "min_increment", "max_increment"});
+      fail(child(path, "type"), "arc-length control is not available in this version of tsmframe yet (see CHANGELOG.md)");
+    } else {
+      fail(child(path, "type"), "unknown control " + quote_text(type) + " (expected \"load\", \"displacement\" or \"arc-length\")");
+    }
+    if (c.contains("steps")) control.steps = static_cast<int>(bounded_integer(c["steps"], child(path, "steps"), 1, max_steps));
+  }
+
+  void read_output(const json& o, const std::string& path) {
+    OutputSelection& out = model_.analysis.output;
+    if (o.is_string()) {
+      const std::string kind = o.get<std::string>();
+      if (kind == "all") out.kind = OutputSelection::Kind::all;
+      else if (kind == "last") out.kind = OutputSelection::Kind::last;
+      else fail(path, "expected \"all\", \"last\" or a whole number k (every k-th step)");
+      return;
+    }
+    if (!o.is_number()) fail(path, "expected \"all\", \"last\" or a whole number k (every k-th step)");
+    out.kind = OutputSelection::Kind::every;
+    out.every = static_cast<int>(bounded_integer(o, path, 1, max_steps));
+  }
+
+  const json& doc_;
+  Model model_;
+  std::map<std::string, Material> materials_;
+  std::map<std::string, Section> sections_;
+  std::unordered_map<int, int> ids_;
+};
+
+/// Line and column (1-based) of a byte offset.
+std::pair<size_t, size_t> line_column(const std::string& text, size_t offset) {
+  size_t line = 1, column = 1;
+  for (size_t k = 0; k < std::min(offset, text.size()); ++k) {
+    if (text[k] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return {line, column};
+}
+
+}  // namespace
+
+Model read_model(const json& document) { return Reader(document).read(); }
+
+Model read_model_text(const std::string& text) {
+  json document;
+  try {
+    document = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // nlohmann's byte is one past the offending character; report the character itself.
+    const auto [line, column] = line_column(text, e.byte > 0 ? e.byte - 1 : 0);
+    std::string reason = e.what();
+    const auto colon = reason.find("syntax error");
+    if (colon != std::string::npos) reason = reason.substr(colon);
+    fail("", "invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " + reason);
+  }
+  return read_model(document);
+}
+
+Model read_model_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("", "cannot open the file");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) fail("", "cannot read the file");
+  return read_model_text(buffer.str());
+}
+
+}  // namespace tsm::io

@@ -1,0 +1,120 @@
+#include "tsmframe/io/results_writer.hpp"
+
+#include <filesystem>
+
+#include "tsmframe/io/atomic_file.hpp"
+#include "tsmframe/io/json_writer.hpp"
+#include "tsmframe/version.hpp"
+
+namespace tsm::io {
+namespace {
+
+void write_triples(JsonWriter& w, const Model& model, const Eigen::VectorXd& values, const std::vector<bool>* only) {
+  w.begin_object();
+  for (int k = 0; k < model.node_count(); ++k) {
+    if (only && !(*only)[k]) continue;
+    w.newline().key(std::to_string(model.nodes[k].id)).begin_array();
+    for (int dof = 0; dof < dofs_per_node; ++dof) w.value(values[dofs_per_node * k + dof]);
+    w.end_array();
+  }
+  w.end_object();
+}
+
+void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& step, const std::vector<bool>& supported) {
+  w.newline().begin_object();
+  w.key("step").value(step.step);
+  w.key("load_factor").value(step.load_factor);
+  w.key("converged").value(step.converged);
+  w.key("iterations").value(step.iterations);
+  w.key("residual_norms").begin_array();
+  for (double r : step.residual_norms) w.value(r);
+  w.end_array();
+  if (step.converged) w.key("criterion").value(step.criterion);
+  w.key("increment").value(step.increment);
+  w.key("cutbacks").value(step.cutbacks);
+  if (!step.converged) w.key("message").value(step.message);
+  if (step.has_state) {
+    w.key("displacements");
+    write_triples(w, model, step.displacements, nullptr);
+    w.key("element_forces").begin_object();
+    for (size_t e = 0; e < model.elements.size(); ++e) {
+      w.newline().key(std::to_string(model.elements[e].id)).begin_array();
+      for (int f = 0; f < 3; ++f) w.value(step.element_forces[3 * e + f]);
+      w.end_array();
+    }
+    w.end_object();
+    w.key("reactions");
+    write_triples(w, model, step.reactions, &supported);
+    w.key("contacts").begin_array().end_array();
+  }
+  w.end_object();
+}
+
+}  // namespace
+
+void write_results_json(std::ostream& out, const Model& model, const solver::RunResult& result) {
+  std::vector<bool> supported(model.node_count(), false);
+  for (int dof = 0; dof < model.dof_count(); ++dof)
+    if (model.constrained[dof]) supported[dof / dofs_per_node] = true;
+
+  JsonWriter w(out);
+  w.begin_object();
+  w.key("format").value("tsmframe-results/1");
+  w.key("program").value(std::string("tsmframe ") + version);
+  w.key("title").value(model.title);
+  w.key("units").begin_object();
+  for (const auto& [name, unit] : model.units) w.key(name).value(unit);
+  w.end_object();
+  w.key("status").value(solver::status_name(result.status));
+  w.key("message").value(result.message);
+  w.newline().key("nodes").begin_array();
+  for (const Node& n : model.nodes) {
+    w.newline().begin_object();
+    w.key("id").value(n.id).key("x").value(n.position.x()).key("y").value(n.position.y());
+    w.end_object();
+  }
+  w.end_array();
+  w.newline().key("elements").begin_array();
+  for (const Element& e : model.elements) {
+    w.newline().begin_object();
+    w.key("id").value(e.id);
+    w.key("nodes").begin_array().value(model.nodes[e.start].id).value(model.nodes[e.end].id).end_array();
+    w.key("element").value(theory_name(e.theory));
+    w.key("member").value(e.member);
+    w.end_object();
+  }
+  w.end_array();
+  w.newline().key("steps").begin_array();
+  for (const solver::StepRecord& step : result.steps) write_step(w, model, step, supported);
+  w.end_array();
+  w.newline().end_object();
+  out << '\n';
+}
+
+void write_steps_csv(std::ostream& out, const Model& model, const solver::RunResult& result) {
+  out << "step,load_factor,iterations";
+  for (int node : model.analysis.monitor) {
+    const std::string id = std::to_string(model.nodes[node].id);
+    out << ",ux_" << id << ",uy_" << id << ",rz_" << id;
+  }
+  out << '\n';
+  for (const solver::StepRecord& step : result.steps) {
+    if (!step.converged) continue;
+    out << step.step << ',' << format_number(step.load_factor) << ',' << step.iterations;
+    for (Eigen::Index k = 0; k < step.monitored.size(); ++k) out << ',' << format_number(step.monitored[k]);
+    out << '\n';
+  }
+}
+
+void write_results(const std::string& directory, const Model& model, const solver::RunResult& result) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) throw std::runtime_error(directory + ": cannot create the output directory: " + error.message());
+  const std::filesystem::path dir(directory);
+  write_files_atomically({
+      {(dir / "results.json").string(), [&](std::ostream& out) { write_results_json(out, model, result); }},
+      {(dir / "steps.csv").string(), [&](std::ostream& out) { write_steps_csv(out, model, result); }},
+  });
+}
+
+}  // namespace tsm::io

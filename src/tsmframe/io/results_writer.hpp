@@ -1,0 +1,19 @@
+#pragma once
+// results.json and steps.csv (FORMAT.md, "tsmframe-results/1").
+
+#include <ostream>
+#include <string>
+
+#include "tsmframe/model/model.hpp"
+#include "tsmframe/solver/step_record.hpp"
+
+namespace tsm::io {
+
+void write_results_json(std::ostream& out, const Model& model, const solver::RunResult& result);
+void write_steps_csv(std::ostream& out, const Model& model, const solver::RunResult& result);
+
+/// Writes DIR/results.json and DIR/steps.csv atomically, creating DIR if needed.
+/// Throws std::runtime_error with the path on failure.
+void write_results(const std::string& directory, const Model& model, const solver::RunResult& result);
+
+}  // namespace tsm::io

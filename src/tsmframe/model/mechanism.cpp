@@ -1,0 +1,86 @@
+#include "tsmframe/model/mechanism.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+namespace tsm {
+namespace {
+
+int find_root(std::vector<int>& parent, int k) {
+  while (parent[k] != k) k = parent[k] = parent[parent[k]];
+  return k;
+}
+
+std::string part_name(const Model& model, const std::vector<int>& members) {
+  std::ostringstream os;
+  os << "node " << model.nodes[members.front()].id;
+  if (members.size() > 1) os << " and the " << members.size() - 1 << " nodes joined to it";
+  return os.str();
+}
+
+}  // namespace
+
+std::optional<std::string> find_mechanism(const Model& model) {
+  const int n = model.node_count();
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<bool> held(n, false);
+  for (const Element& e : model.elements) {
+    held[e.start] = held[e.end] = true;
+    parent[find_root(parent, e.start)] = find_root(parent, e.end);
+  }
+  for (int k = 0; k < n; ++k) {
+    if (held[k]) continue;
+    for (int dof = 0; dof < dofs_per_node; ++dof)
+      if (!model.constrained[dofs_per_node * k + dof])
+        return "structure is a mechanism: node " + std::to_string(model.nodes[k].id) +
+               " is held by no element and its " + dof_name(dof) + " is not supported";
+  }
+  std::vector<std::vector<int>> parts(n);
+  for (int k = 0; k < n; ++k)
+    if (held[k]) parts[find_root(parent, k)].push_back(k);
+
+  for (const std::vector<int>& part : parts) {
+    if (part.empty()) continue;
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    Eigen::Vector2d lo = model.nodes[part.front()].position, hi = lo;
+    for (int k : part) {
+      const Eigen::Vector2d& p = model.nodes[k].position;
+      centre += p;
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    centre /= static_cast<double>(part.size());
+    const double extent = std::max((hi - lo).norm(), 1e-300);
+    // Each constrained dof is one row of the rigid-body modes (translation x, y; rotation about
+    // the centre, scaled by the part's extent so the columns are commensurate).
+    Eigen::Matrix3d gram = Eigen::Matrix3d::Zero();
+    for (int k : part) {
+      const Eigen::Vector2d p = (model.nodes[k].position - centre) / extent;
+      const Eigen::Vector3d rows[3] = {{1.0, 0.0, -p.y()}, {0.0, 1.0, p.x()}, {0.0, 0.0, 1.0}};
+      for (int dof = 0; dof < dofs_per_node; ++dof)
+        if (model.constrained[dofs_per_node * k + dof]) gram += rows[dof] * rows[dof].transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(gram);
+    if (eig.eigenvalues()[0] > 1e-10 * std::max(1.0, eig.eigenvalues()[2])) continue;
+    const Eigen::Vector3d mode = eig.eigenvectors().col(0);  // (a, b, ω·extent)
+    std::ostringstream os;
+    os << "structure is a mechanism: the part holding " << part_name(model, part) << " is free to ";
+    if (std::abs(mode[2]) < 1e-6) {
+      const double angle = std::atan2(mode[1], mode[0]);
+      if (std::abs(mode[1]) < 1e-9) os << "move along x (no support fixes ux)";
+      else if (std::abs(mode[0]) < 1e-9) os << "move along y (no support fixes uy)";
+      else os << "move in the direction " << angle << " rad from x";
+    } else {
+      const double omega = mode[2] / extent;
+      const Eigen::Vector2d pole = centre + Eigen::Vector2d(-mode[1] / omega, mode[0] / omega);
+      os << "rotate about (" << pole.x() << ", " << pole.y() << ") (add a support that stops it)";
+    }
+    return os.str();
+  }
+  return std::nullopt;
+}
+
+}  // namespace tsm

@@ -1,0 +1,23 @@
+#include "tsmframe/model/model.hpp"
+
+namespace tsm {
+
+const char* dof_name(int dof) {
+  switch (dof) {
+    case ux: return "ux";
+    case uy: return "uy";
+    default: return "rz";
+  }
+}
+
+const char* theory_name(BeamTheory theory) {
+  return theory == BeamTheory::timoshenko ? "timoshenko" : "euler-bernoulli";
+}
+
+int Model::node_index(int id) const {
+  for (int k = 0; k < node_count(); ++k)
+    if (nodes[k].id == id) return k;
+  return -1;
+}
+
+}  // namespace tsm

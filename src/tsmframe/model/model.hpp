@@ -1,0 +1,93 @@
+#pragma once
+// The structure a user describes, after reading and meshing: nodes, elements, supports, loads,
+// prescribed displacements, contacts and analysis settings. Plain, validated data; no mechanics.
+
+#include <Eigen/Core>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tsmframe/element/force_law.hpp"
+
+namespace tsm {
+
+/// Degrees of freedom of a node, in the order they are stored: (u, v, θ).
+enum Dof : int { ux = 0, uy = 1, rz = 2 };
+inline constexpr int dofs_per_node = 3;
+const char* dof_name(int dof);
+
+enum class BeamTheory { euler_bernoulli, timoshenko };
+const char* theory_name(BeamTheory theory);
+
+struct Node {
+  int id = 0;
+  Eigen::Vector2d position;
+};
+
+struct Element {
+  int id = 0;       ///< 1-based, in generation order
+  int start = 0;    ///< index of node i (not its id)
+  int end = 0;      ///< index of node j
+  int member = 0;   ///< index of the member it was generated from
+  BeamTheory theory = BeamTheory::euler_bernoulli;
+  element::SectionStiffness section;
+};
+
+struct ContactSpec {
+  int node = 0;                 ///< contact node index
+  std::vector<int> members;     ///< member indices the node may touch
+  std::string element;          ///< "" (follow the touched element), "euler-bernoulli", "timoshenko"
+  std::string frame = "chord";  ///< "chord" or "cantilever"
+  double gap = 0.0;
+};
+
+enum class ControlType { load, displacement, arc_length };
+
+struct Control {
+  ControlType type = ControlType::load;
+  int steps = 1;
+  // displacement control: node index, dof, target value
+  int node = -1;
+  int dof = uy;
+  double target = 0.0;
+};
+
+struct OutputSelection {
+  enum class Kind { all, last, every } kind = Kind::all;
+  int every = 1;
+};
+
+struct AnalysisSettings {
+  Control control;
+  double tolerance = 1e-8;
+  int max_iterations = 50;
+  bool cutback = true;
+  int max_cutbacks = 10;  ///< halvings in a row before the run gives up (FORMAT.md)
+  OutputSelection output;
+  std::vector<int> monitor;  ///< node indices written to steps.csv
+};
+
+struct Model {
+  std::string title;
+  std::map<std::string, std::string> units;
+  std::vector<Node> nodes;
+  std::vector<Element> elements;
+  int member_count = 0;
+  /// Per dof (3 per node): fixed or prescribed.
+  std::vector<bool> constrained;
+  /// Per dof: reference load, multiplied by the load factor λ.
+  Eigen::VectorXd reference_load;
+  /// Per dof: prescribed displacement reached at λ = 1 (zero where none).
+  Eigen::VectorXd reference_prescribed;
+  std::vector<ContactSpec> contacts;
+  AnalysisSettings analysis;
+  /// Diagonal of the bounding box of the nodes (1 if they all coincide).
+  double size = 1.0;
+
+  int node_count() const { return static_cast<int>(nodes.size()); }
+  int dof_count() const { return dofs_per_node * node_count(); }
+  /// Index of the node with this id, or −1.
+  int node_index(int id) const;
+};
+
+}  // namespace tsm

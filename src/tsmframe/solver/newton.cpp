@@ -1,0 +1,185 @@
+#include "tsmframe/solver/newton.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace tsm::solver {
+namespace {
+
+constexpr double round_off_ratio = 1e-12;  // ‖ΔD‖∞ ≤ 1e-12 · max(size, ‖D‖∞) ends a step (FORMAT.md)
+constexpr double blow_up_ratio = 1e12;     // ‖R‖ > 1e12 · scale is divergence (FORMULATION §4)
+constexpr double runaway_ratio = 1e6;      // |u| > 1e6 · (size + prescribed) is divergence
+
+std::string iterate_text(const char* what, int iteration) {
+  std::ostringstream os;
+  os << what << " at iteration " << iteration;
+  return os.str();
+}
+
+}  // namespace
+
+NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings& settings)
+    : system_(system), settings_(settings) {
+  const assembly::DofMap& dofs = system.dofs();
+  load_free_.resize(dofs.free_count());
+  is_moment_.resize(dofs.free_count());
+  for (int eq = 0; eq < dofs.free_count(); ++eq) {
+    load_free_[eq] = system.model().reference_load[dofs.dof(eq)];
+    is_moment_[eq] = dofs.dof(eq) % dofs_per_node == rz;
+  }
+  solver_.analyze(system.tangent());
+}
+
+void NewtonSolver::evaluate(State& state) {
+  const Model& model = system_.model();
+  for (int dof = 0; dof < model.dof_count(); ++dof)
+    if (model.constrained[dof]) state.displacements[dof] = state.load_factor * model.reference_prescribed[dof];
+  system_.evaluate(state.displacements, state.chord_rotations, true, eval_);
+  state.chord_rotations = eval_.chord_rotations;
+}
+
+void NewtonSolver::reset(State& state) { evaluate(state); }
+
+Eigen::VectorXd NewtonSolver::unbalanced_force(double load_factor) const {
+  const assembly::DofMap& dofs = system_.dofs();
+  Eigen::VectorXd R(dofs.free_count());
+  for (int eq = 0; eq < dofs.free_count(); ++eq)
+    R[eq] = load_factor * load_free_[eq] - eval_.internal_force[dofs.dof(eq)];
+  return R;
+}
+
+Eigen::VectorXd NewtonSolver::reactions(double load_factor) const {
+  const Model& model = system_.model();
+  Eigen::VectorXd reactions = Eigen::VectorXd::Zero(model.dof_count());
+  for (int dof = 0; dof < model.dof_count(); ++dof)
+    if (model.constrained[dof])
+      reactions[dof] = eval_.internal_force[dof] - load_factor * model.reference_load[dof];
+  return reactions;
+}
+
+ResidualScale NewtonSolver::scale(double load_factor) const {
+  // Squared sums per kind: applied loads on free dofs, reactions, internal forces on all dofs.
+  const Model& model = system_.model();
+  double load[2] = {0, 0}, reaction[2] = {0, 0}, internal[2] = {0, 0};
+  for (int dof = 0; dof < model.dof_count(); ++dof) {
+    const int kind = dof % dofs_per_node == rz ? 1 : 0;
+    const double f = eval_.internal_force[dof];
+    internal[kind] += f * f;
+    const double p = load_factor * model.reference_load[dof];
+    if (model.constrained[dof]) reaction[kind] += (f - p) * (f - p);
+    else load[kind] += p * p;
+  }
+  ResidualScale s;
+  s.force = std::sqrt(std::max({load[0], reaction[0], internal[0]}));
+  s.moment = std::sqrt(std::max({load[1], reaction[1], internal[1]}));
+  // A structure loaded only by forces (or only by moments) still has a scale for the other kind.
+  const double force = s.force;
+  s.force = std::max(s.force, s.moment / model.size);
+  s.moment = std::max(s.moment, force * model.size);
+  return s;
+}
+
+double NewtonSolver::relative_norm(const Eigen::VectorXd& v, const ResidualScale& s) const {
+  double sum[2] = {0, 0};
+  for (int eq = 0; eq < v.size(); ++eq) sum[is_moment_[eq] ? 1 : 0] += v[eq] * v[eq];
+  const double force = std::sqrt(sum[0]), moment = std::sqrt(sum[1]);
+  if (s.force == 0.0 && s.moment == 0.0) return force + moment == 0.0 ? 0.0 : INFINITY;
+  return std::max(force / s.force, moment / s.moment);
+}
+
+bool NewtonSolver::at_round_off(const Eigen::VectorXd& correction, const State& state) const {
+  double displacement = 0, rotation = 0, step_displacement = 0, step_rotation = 0;
+  for (int dof = 0; dof < state.displacements.size(); ++dof) {
+    double& total = dof % dofs_per_node == rz ? rotation : displacement;
+    total = std::max(total, std::abs(state.displacements[dof]));
+  }
+  for (int eq = 0; eq < correction.size(); ++eq) {
+    double& step = is_moment_[eq] ? step_rotation : step_displacement;
+    step = std::max(step, std::abs(correction[eq]));
+  }
+  return step_displacement <= round_off_ratio * std::max(system_.model().size, displacement) &&
+         step_rotation <= round_off_ratio * std::max(1.0, rotation);
+}
+
+NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state) {
+  const assembly::DofMap& dofs = system_.dofs();
+  const Model& model = system_.model();
+  const double prescribed_size = model.reference_prescribed.lpNorm<Eigen::Infinity>();
+  NewtonOutcome out;
+  Eigen::VectorXd R = unbalanced_force(state.load_factor);
+  ResidualScale start_scale;
+
+  for (int it = 1; it <= settings_.max_iterations; ++it) {
+    if (!solver_.factorize(system_.tangent())) {
+      out.status = Status::singular;
+      out.message = iterate_text("the tangent stiffness is singular (a limit or bifurcation point)", it);
+      return out;
+    }
+    // dR/dλ = F_ref − K_fp D_p,ref: how the load factor drives the free dofs.
+    const Eigen::VectorXd load_direction = load_free_ - eval_.prescribed_coupling;
+    double dlambda = 0.0;
+    Eigen::VectorXd correction;
+    if (constraint.kind == PathConstraint::Kind::load_increment) {
+      if (it == 1) dlambda = constraint.load_increment;
+      correction = solver_.solve(R + dlambda * load_direction);
+    } else {
+      const Eigen::VectorXd a = solver_.solve(load_direction), b = solver_.solve(R);
+      const int k = constraint.equation;
+      if (!(std::abs(a[k]) > 0.0) || !std::isfinite(a[k])) {
+        out.status = Status::singular;
+        out.message = iterate_text("the controlled dof does not move under the load", it);
+        return out;
+      }
+      dlambda = (constraint.target - state.displacements[dofs.dof(k)] - b[k]) / a[k];
+      correction = b + dlambda * a;
+    }
+    if (it == 1) {  // iterate 0: the out-of-balance force that drives the step
+      start_scale = scale(state.load_factor + dlambda);
+      out.residual_norms.push_back(relative_norm(R + dlambda * load_direction, start_scale));
+    }
+    out.iterations = it;
+    if (!correction.allFinite() || !std::isfinite(dlambda)) {
+      out.status = Status::diverged;
+      out.message = iterate_text("the Newton correction is not finite", it);
+      return out;
+    }
+    for (int eq = 0; eq < dofs.free_count(); ++eq) state.displacements[dofs.dof(eq)] += correction[eq];
+    state.load_factor += dlambda;
+    evaluate(state);
+
+    R = unbalanced_force(state.load_factor);
+    const double relative = relative_norm(R, scale(state.load_factor));
+    out.residual_norms.push_back(std::isfinite(relative) ? relative : INFINITY);
+    if (!std::isfinite(relative) || !eval_.internal_force.allFinite()) {
+      out.status = Status::diverged;
+      out.message = iterate_text("the unbalanced force is not finite", it);
+      return out;
+    }
+    if (relative <= settings_.tolerance) {
+      out.criterion = "force";
+      return out;
+    }
+    if (at_round_off(correction, state)) {
+      out.criterion = "round-off";
+      return out;
+    }
+    const double blow_up = relative_norm(R, start_scale);
+    double largest = 0.0;
+    for (int dof = 0; dof < model.dof_count(); dof += dofs_per_node)
+      largest = std::max({largest, std::abs(state.displacements[dof]), std::abs(state.displacements[dof + 1])});
+    if (blow_up > blow_up_ratio ||
+        largest > runaway_ratio * (model.size + std::abs(state.load_factor) * prescribed_size)) {
+      out.status = Status::diverged;
+      out.message = iterate_text("the unbalanced force blew up", it);
+      return out;
+    }
+  }
+  out.status = Status::max_iterations;
+  std::ostringstream os;
+  os << "no convergence in " << settings_.max_iterations << " iterations (last relative residual "
+     << out.residual_norms.back() << ")";
+  out.message = os.str();
+  return out;
+}
+
+}  // namespace tsm::solver

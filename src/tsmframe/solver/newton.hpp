@@ -1,0 +1,77 @@
+#pragma once
+// Newton–Raphson on the unbalanced force R(D, λ) = λ F_ref − F(D) for one step of a path
+// (FORMULATION §4). The first solve of a step is the tangent predictor, which also carries the
+// prescribed displacements in (D_free += −K_ff⁻¹ K_fp ΔD_p); later solves correct with the
+// exact (strict-compatibility) residual.
+
+#include <string>
+#include <vector>
+
+#include "tsmframe/assembly/global_system.hpp"
+#include "tsmframe/solver/linear_solver.hpp"
+#include "tsmframe/solver/state.hpp"
+#include "tsmframe/solver/status.hpp"
+
+namespace tsm::solver {
+
+/// How the load factor moves within a step.
+struct PathConstraint {
+  enum class Kind {
+    load_increment,       ///< λ += increment in the predictor, then fixed
+    displacement_target,  ///< λ chosen every iterate so that one free dof equals target
+  } kind = Kind::load_increment;
+  double load_increment = 0.0;
+  int equation = -1;  ///< free equation of the controlled dof
+  double target = 0.0;
+};
+
+struct NewtonSettings {
+  double tolerance = 1e-8;
+  int max_iterations = 50;
+};
+
+struct NewtonOutcome {
+  Status status = Status::converged;   ///< converged, or how it failed
+  std::string message;
+  int iterations = 0;
+  std::vector<double> residual_norms;  ///< relative, iterate 0 first
+  std::string criterion;               ///< "force" or "round-off"
+};
+
+/// Force and moment scales of the convergence test (unit-consistent: each kind on its own).
+struct ResidualScale {
+  double force = 0.0;
+  double moment = 0.0;
+};
+
+class NewtonSolver {
+ public:
+  NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings& settings);
+
+  /// Makes `state` the start of the next step: evaluates the structure there (tangent included).
+  void reset(State& state);
+  /// One step from the state given to reset() or left by the last converged step. On failure
+  /// `state` is left at the failed iterate: call reset() with the saved state before retrying.
+  NewtonOutcome step(const PathConstraint& constraint, State& state);
+
+  /// Element forces (N, M_i, M_j) of the last evaluation.
+  const Eigen::VectorXd& element_forces() const { return eval_.element_forces; }
+  /// Support reactions of the last evaluation: F − λ F_ref on constrained dofs, 0 elsewhere.
+  Eigen::VectorXd reactions(double load_factor) const;
+
+ private:
+  void evaluate(State& state);
+  Eigen::VectorXd unbalanced_force(double load_factor) const;  // over the free equations
+  ResidualScale scale(double load_factor) const;
+  double relative_norm(const Eigen::VectorXd& free_vector, const ResidualScale& scale) const;
+  bool at_round_off(const Eigen::VectorXd& correction, const State& state) const;
+
+  assembly::GlobalSystem& system_;
+  NewtonSettings settings_;
+  LinearSolver solver_;
+  assembly::Evaluation eval_;
+  Eigen::VectorXd load_free_;        ///< F_ref over the free equations
+  std::vector<bool> is_moment_;      ///< per free equation: a rotation dof
+};
+
+}  // namespace tsm::solver

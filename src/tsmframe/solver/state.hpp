@@ -1,0 +1,16 @@
+#pragma once
+// A point on the equilibrium path: displacements of every dof, the load factor and the
+// chord rotation of every element (which makes rotations true totals).
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace tsm::solver {
+
+struct State {
+  Eigen::VectorXd displacements;       ///< (u, v, Θ) per node, all dofs
+  double load_factor = 0.0;            ///< λ
+  std::vector<double> chord_rotations; ///< β per element
+};
+
+}  // namespace tsm::solver

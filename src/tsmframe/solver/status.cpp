@@ -1,0 +1,16 @@
+#include "tsmframe/solver/status.hpp"
+
+namespace tsm::solver {
+
+const char* status_name(Status status) {
+  switch (status) {
+    case Status::converged: return "converged";
+    case Status::diverged: return "diverged";
+    case Status::max_iterations: return "max-iterations";
+    case Status::singular: return "singular";
+    case Status::cutback_limit: return "cutback-limit";
+  }
+  return "unknown";
+}
+
+}  // namespace tsm::solver

@@ -1,0 +1,36 @@
+#pragma once
+// What the solver reports: one record per step (converged, or the failed last attempt) and
+// how the run ended.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "tsmframe/solver/status.hpp"
+
+namespace tsm::solver {
+
+struct StepRecord {
+  int step = 0;                        ///< 1-based
+  double load_factor = 0.0;            ///< λ at the end of the step (or of the failed attempt's start)
+  bool converged = false;
+  int iterations = 0;                  ///< Newton solves, the predictor included
+  std::vector<double> residual_norms;  ///< relative ‖R‖ of each iterate, iterate 0 first
+  std::string criterion;               ///< "force" or "round-off" (converged steps)
+  int cutbacks = 0;                    ///< failed attempts halved away before this step
+  double increment = 0.0;              ///< Δλ (load control) or the controlled dof's increment
+  std::string message;                 ///< why a failed step failed
+  Eigen::VectorXd monitored;           ///< (u, v, Θ) of each monitored node (converged steps)
+  bool has_state = false;              ///< the arrays below are filled
+  Eigen::VectorXd displacements;       ///< all dofs
+  Eigen::VectorXd element_forces;      ///< (N, M_i, M_j) per element
+  Eigen::VectorXd reactions;           ///< all dofs; zero where the dof is free
+};
+
+struct RunResult {
+  Status status = Status::converged;
+  std::string message;  ///< a sentence when the run did not reach its end
+  std::vector<StepRecord> steps;
+};
+
+}  // namespace tsm::solver

@@ -1,0 +1,5 @@
+#pragma once
+
+namespace tsm {
+inline constexpr const char* version = "0.1.0";
+}  // namespace tsm

@@ -1,0 +1,71 @@
+#pragma once
+// Model files for the tests, built as JSON so every test also goes through the file contract.
+
+#include <nlohmann/json.hpp>
+
+#include "tsmframe/io/model_reader.hpp"
+#include "tsmframe/solver/analysis.hpp"
+
+namespace tsm::test {
+
+using nlohmann::json;
+
+/// A straight beam of length L along x, from node 1 at (0, 0) to node 2 at (L, 0).
+struct BeamSpec {
+  double L = 1.0;
+  double E = 1.0, G = 0.5;
+  double A = 1e4, I = 1.0, shear_area = 1e3;
+  int divisions = 10;
+  const char* element = "euler-bernoulli";
+};
+
+inline json beam_model(const BeamSpec& b) {
+  return json{
+      {"materials", {{"m", {{"E", b.E}, {"G", b.G}}}}},
+      {"sections", {{"s", {{"A", b.A}, {"I", b.I}, {"shear_area", b.shear_area}}}}},
+      {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", b.L}, {"y", 0.0}}})},
+      {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", b.divisions}, {"element", b.element},
+                                {"material", "m"}, {"section", "s"}}})},
+      {"analysis", {{"control", {{"type", "load"}, {"steps", 1}}}}},
+  };
+}
+
+/// Displacements (u, v, Θ) of a node id in a converged step.
+inline Eigen::Vector3d node_displacement(const Model& model, const solver::StepRecord& step, int id) {
+  return step.displacements.segment<3>(dofs_per_node * model.node_index(id));
+}
+
+/// Current position of a node.
+inline Eigen::Vector2d node_position(const Model& model, const solver::StepRecord& step, int id) {
+  const int k = model.node_index(id);
+  return model.nodes[k].position + step.displacements.segment<2>(dofs_per_node * k);
+}
+
+}  // namespace tsm::test
+
+#include <gtest/gtest.h>
+
+namespace tsm::test {
+
+/// Σ reactions + Σ λ F_ref = 0 for forces and for moments about the origin (current geometry),
+/// relative to the largest force (× size, for moments) present.
+inline void expect_global_equilibrium(const Model& model, const solver::StepRecord& step, double tolerance = 1e-9) {
+  ASSERT_TRUE(step.has_state);
+  Eigen::Vector3d total = Eigen::Vector3d::Zero();
+  double force_scale = 0.0, moment_scale = 0.0;
+  for (int k = 0; k < model.node_count(); ++k) {
+    const Eigen::Vector3d f =
+        step.reactions.segment<3>(3 * k) + step.load_factor * model.reference_load.segment<3>(3 * k);
+    const Eigen::Vector2d x = model.nodes[k].position + step.displacements.segment<2>(3 * k);
+    total += Eigen::Vector3d(f[0], f[1], f[2] + x.x() * f[1] - x.y() * f[0]);
+    force_scale = std::max(force_scale, f.head<2>().norm());
+    moment_scale = std::max({moment_scale, std::abs(f[2]), f.head<2>().norm() * x.norm()});
+  }
+  const double forces = std::max(force_scale, moment_scale / model.size);
+  const double moments = std::max(moment_scale, force_scale * model.size);
+  EXPECT_LE(std::abs(total[0]), tolerance * forces) << "step " << step.step;
+  EXPECT_LE(std::abs(total[1]), tolerance * forces) << "step " << step.step;
+  EXPECT_LE(std::abs(total[2]), tolerance * moments) << "step " << step.step;
+}
+
+}  // namespace tsm::test

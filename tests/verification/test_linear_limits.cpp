@@ -1,0 +1,76 @@
+// Small-load limits with exact answers: the Timoshenko cantilever (exact for any mesh, since
+// Eq. 4 is the exact element of a shear-flexible beam under end forces) and the Euler buckling
+// load approached by a slightly imperfect pinned column under displacement control.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "support/models.hpp"
+
+namespace {
+
+using namespace tsm::test;
+constexpr double pi = std::numbers::pi;
+
+class TimoshenkoCantilever : public ::testing::TestWithParam<int> {};
+
+TEST_P(TimoshenkoCantilever, TipDeflectionIsBendingPlusShear) {
+  BeamSpec b;
+  b.L = 2.0;
+  b.E = 5.0;
+  b.G = 2.0;
+  b.A = 3.0;
+  b.I = 1.0;
+  b.shear_area = 2.5;  // Ψ = EI/(G A_s) = 1: shear is half the bending deflection
+  b.divisions = GetParam();
+  b.element = "timoshenko";
+  const double P = 1e-7 * b.E * b.I / (b.L * b.L);
+  json m = beam_model(b);
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}});
+  m["loads"] = json::array({{{"node", 2}, {"fy", P}}});
+  const tsm::Model model = tsm::io::read_model(m);
+  const auto result = tsm::solver::run_analysis(model);
+  ASSERT_EQ(result.status, tsm::solver::Status::converged) << result.message;
+  const double exact = P * std::pow(b.L, 3) / (3 * b.E * b.I) + P * b.L / (b.G * b.shear_area);
+  EXPECT_NEAR(node_displacement(model, result.steps.back(), 2)[1], exact, 1e-6 * exact);
+  expect_global_equilibrium(model, result.steps.back());
+}
+
+INSTANTIATE_TEST_SUITE_P(AnyMesh, TimoshenkoCantilever, ::testing::Values(1, 2, 7, 30));
+
+class ImperfectColumn : public ::testing::TestWithParam<std::tuple<int, const char*>> {};
+
+TEST_P(ImperfectColumn, LoadApproachesEulerLoad) {
+  const auto [n, element] = GetParam();
+  const double L = 5.0, E = 2e11, I = 1e-5, A = 1e-2, e0 = 1e-5 * L;
+  json m = beam_model({.L = L, .E = E, .G = 8e10, .A = A, .I = I, .shear_area = 1e6 * A, .divisions = 1, .element = element});
+  // Half-sine imperfection of amplitude e0, one member per element through explicit nodes.
+  m["nodes"] = json::array();
+  m["members"] = json::array();
+  for (int k = 0; k <= n; ++k)
+    m["nodes"].push_back({{"id", k + 1}, {"x", L * k / n}, {"y", e0 * std::sin(pi * k / n)}});
+  for (int k = 0; k < n; ++k)
+    m["members"].push_back({{"from", k + 1}, {"to", k + 2}, {"element", element}, {"material", "m"}, {"section", "s"}});
+  const double Pe = pi * pi * E * I / (L * L);
+  m["supports"] = json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", n + 1}, {"type", "roller-x"}}});
+  m["loads"] = json::array({{{"node", n + 1}, {"fx", -Pe}}});
+  const int mid = n / 2 + 1;
+  m["analysis"]["control"] = {{"type", "displacement"}, {"node", mid}, {"dof", "uy"}, {"target", 0.02 * L}, {"steps", 10}};
+  m["analysis"]["tolerance"] = 1e-11;  // Σ(reactions + loads) = Σ R_free: the check below needs R small
+  const tsm::Model model = tsm::io::read_model(m);
+  const auto result = tsm::solver::run_analysis(model);
+  ASSERT_EQ(result.status, tsm::solver::Status::converged) << result.message;
+  ASSERT_EQ(result.steps.size(), 10u);
+  const auto& last = result.steps.back();
+  EXPECT_NEAR(node_displacement(model, last, mid)[1], 0.02 * L, 1e-12 * L);
+  // v = e0/(1 − P/Pe) before buckling; at v = 0.02 L the load is within 0.5 % of Pe.
+  EXPECT_NEAR(last.load_factor, 1.0, 0.005);
+  EXPECT_NEAR(result.steps.front().load_factor, 1.0 - e0 / (0.002 * L + e0), 0.005);
+  for (const auto& step : result.steps) expect_global_equilibrium(model, step);
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshes, ImperfectColumn,
+                         ::testing::Values(std::make_tuple(16, "euler-bernoulli"), std::make_tuple(32, "euler-bernoulli"),
+                                           std::make_tuple(16, "timoshenko")));
+
+}  // namespace
