@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace tsm::assembly {
 namespace {
@@ -59,6 +60,7 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
   out.prescribed_coupling.setZero(dofs_.free_count());
   if (with_tangent) std::fill(tangent_.valuePtr(), tangent_.valuePtr() + tangent_.nonZeros(), 0.0);
   double* values = tangent_.valuePtr();
+  double force_floor = 0.0, moment_floor = 0.0;  // sums of squares
 
   for (int k = 0; k < n_elements; ++k) {
     const Element& e = model_.elements[k];
@@ -70,6 +72,9 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
     out.element_forces.segment<3>(3 * k) = r.forces;
     out.chord_rotations[k] = r.chord.rotation;
     for (int a = 0; a < 6; ++a) out.internal_force[g[a]] += r.nodal_forces[a];
+    const element::RoundOffFloor floor = element::round_off_floor(initial_[k], e.section, d, r);
+    force_floor += 4.0 * floor.force * floor.force;  // two nodes, two translations each
+    moment_floor += 2.0 * floor.moment * floor.moment;
     if (!with_tangent) continue;
     const int* slot = &slots_[36 * static_cast<size_t>(k)];
     for (int b = 0; b < 6; ++b)
@@ -85,6 +90,8 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
       }
     }
   }
+  out.force_floor = std::sqrt(force_floor);
+  out.moment_floor = std::sqrt(moment_floor);
 }
 
 }  // namespace tsm::assembly

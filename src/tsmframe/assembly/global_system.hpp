@@ -22,6 +22,10 @@ struct Evaluation {
   /// K_fp · D_p,ref over the free equations: how the tangent couples free dofs to the
   /// prescribed displacements (for the tangent predictor, FORMULATION §4).
   Eigen::VectorXd prescribed_coupling;
+  /// Estimated rounding error of the assembled internal forces, per kind (2-norm over dofs,
+  /// element errors taken as independent): the floor under any residual at this state.
+  double force_floor = 0.0;
+  double moment_floor = 0.0;
 };
 
 class GlobalSystem {

@@ -21,4 +21,14 @@ struct BeamResponse {
 BeamResponse beam_response(const InitialChord& initial, const SectionStiffness& section,
                            const Vector6& d, double previous_rotation, bool with_tangent = true);
 
+/// How large the element's nodal forces can be in error from rounding alone, at this state:
+/// positions are X + u, so δl and β carry an absolute error ≈ ε(|u_i| + |u_j| + l0), and
+/// rotations θ = Θ − β one of ≈ ε(|Θ| + |β|). The residual cannot fall much below these.
+struct RoundOffFloor {
+  double force = 0.0;   ///< on each translational dof
+  double moment = 0.0;  ///< on each rotational dof
+};
+RoundOffFloor round_off_floor(const InitialChord& initial, const SectionStiffness& section, const Vector6& d,
+                              const BeamResponse& response);
+
 }  // namespace tsm::element

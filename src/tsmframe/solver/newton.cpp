@@ -9,6 +9,8 @@ namespace {
 constexpr double round_off_ratio = 1e-12;  // ‖ΔD‖∞ ≤ 1e-12 · max(size, ‖D‖∞) ends a step (FORMAT.md)
 constexpr double blow_up_ratio = 1e12;     // ‖R‖ > 1e12 · scale is divergence (FORMULATION §4)
 constexpr double runaway_ratio = 1e6;      // |u| > 1e6 · (size + prescribed) is divergence
+constexpr double floor_ratio = 10.0;       // ‖R‖ ≤ 10 × the estimated rounding floor …
+constexpr double stagnation = 0.5;         // … ends a step once Newton no longer halves it
 
 std::string iterate_text(const char* what, int iteration) {
   std::ostringstream os;
@@ -101,6 +103,12 @@ bool NewtonSolver::at_round_off(const Eigen::VectorXd& correction, const State& 
          step_rotation <= round_off_ratio * std::max(1.0, rotation);
 }
 
+bool NewtonSolver::within_floor(const Eigen::VectorXd& R) const {
+  double sum[2] = {0, 0};
+  for (int eq = 0; eq < R.size(); ++eq) sum[is_moment_[eq] ? 1 : 0] += R[eq] * R[eq];
+  return std::sqrt(sum[0]) <= floor_ratio * eval_.force_floor && std::sqrt(sum[1]) <= floor_ratio * eval_.moment_floor;
+}
+
 NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state) {
   const assembly::DofMap& dofs = system_.dofs();
   const Model& model = system_.model();
@@ -159,7 +167,8 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       out.criterion = "force";
       return out;
     }
-    if (at_round_off(correction, state)) {
+    const bool stagnating = relative >= stagnation * out.residual_norms[out.residual_norms.size() - 2];
+    if (at_round_off(correction, state) || (stagnating && within_floor(R))) {
       out.criterion = "round-off";
       return out;
     }

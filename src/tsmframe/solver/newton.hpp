@@ -65,6 +65,8 @@ class NewtonSolver {
   ResidualScale scale(double load_factor) const;
   double relative_norm(const Eigen::VectorXd& free_vector, const ResidualScale& scale) const;
   bool at_round_off(const Eigen::VectorXd& correction, const State& state) const;
+  /// ‖R‖ per kind within a small multiple of the rounding floor of the internal forces.
+  bool within_floor(const Eigen::VectorXd& residual) const;
 
   assembly::GlobalSystem& system_;
   NewtonSettings settings_;

@@ -1,0 +1,77 @@
+// Scaling run (issue 2's benchmark): C independent cantilevers of N elements each (10 m, steel,
+// 100 mm square), every one rolled to a quarter circle by a tip moment in 10 load steps.
+// Prints one row: elements, steps, iterations, ms per iteration, ns per element per iteration,
+// total seconds, peak memory. Run one size per process so the peak memory is that size's own:
+// bench/run_scaling.sh does. (Why chains of 1,000 and not one chain of 10⁶ elements: see
+// bench/README.md — positions X + u carry ~ε|u| of noise, so a single chain of 10 µm elements
+// has an axial-force rounding floor far above its loads, in any double-precision code.)
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+
+#include "tsmframe/model/model.hpp"
+#include "tsmframe/solver/analysis.hpp"
+
+namespace {
+
+tsm::Model quarter_circle_cantilevers(int chains, int per_chain) {
+  tsm::Model m;
+  const double L = 10.0, E = 2.05e11, h = 0.1, A = h * h, I = h * h * h * h / 12.0, G = 7.9e10;
+  const int nodes_per_chain = per_chain + 1;
+  for (int c = 0; c < chains; ++c) {
+    const int first = c * nodes_per_chain;
+    for (int k = 0; k <= per_chain; ++k) m.nodes.push_back({first + k + 1, {L * k / per_chain, 2.0 * L * c}});
+    for (int k = 0; k < per_chain; ++k) {
+      tsm::Element e;
+      e.id = static_cast<int>(m.elements.size()) + 1;
+      e.start = first + k;
+      e.end = first + k + 1;
+      e.member = c;
+      e.theory = tsm::BeamTheory::timoshenko;
+      e.section = {.EA = E * A, .EI = E * I, .shear_flexibility = E * I / (G * 5.0 / 6.0 * A)};
+      m.elements.push_back(e);
+    }
+  }
+  m.member_count = chains;
+  m.constrained.assign(m.dof_count(), false);
+  m.reference_load = Eigen::VectorXd::Zero(m.dof_count());
+  for (int c = 0; c < chains; ++c) {
+    const int root = 3 * c * nodes_per_chain, tip = root + 3 * per_chain;
+    m.constrained[root] = m.constrained[root + 1] = m.constrained[root + 2] = true;
+    m.reference_load[tip + 2] = std::numbers::pi / 2 * E * I / L;
+  }
+  m.reference_prescribed = Eigen::VectorXd::Zero(m.dof_count());
+  m.analysis.control.steps = 10;
+  m.analysis.output.kind = tsm::OutputSelection::Kind::last;
+  m.size = std::hypot(L, 2.0 * L * (chains - 1));
+  return m;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int chains = argc > 1 ? std::atoi(argv[1]) : 1;
+  const int per_chain = argc > 2 ? std::atoi(argv[2]) : 1000;
+  const int elements = chains * per_chain;
+  const auto t0 = std::chrono::steady_clock::now();
+  const tsm::Model model = quarter_circle_cantilevers(chains, per_chain);
+  const auto t1 = std::chrono::steady_clock::now();
+  const tsm::solver::RunResult result = tsm::solver::run_analysis(model);
+  const auto t2 = std::chrono::steady_clock::now();
+  int iterations = 0;
+  for (const auto& s : result.steps) iterations += s.iterations;
+  const double solve = std::chrono::duration<double>(t2 - t1).count();
+  const double total = std::chrono::duration<double>(t2 - t0).count();
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const auto& tip = result.steps.back().displacements;
+  std::printf("%9d %5zu %6d %10.3f %9.1f %8.3f %8.1f  %s tip=(%.6f, %.6f, %.6f)\n", elements, result.steps.size(),
+              iterations, 1e3 * solve / iterations, 1e9 * solve / iterations / elements, total,
+              usage.ru_maxrss / 1024.0, tsm::solver::status_name(result.status), tip[3 * per_chain],
+              tip[3 * per_chain + 1], tip[3 * per_chain + 2]);
+  return result.status == tsm::solver::Status::converged ? 0 : 1;
+}

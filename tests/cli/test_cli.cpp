@@ -1,0 +1,202 @@
+// The command line as a user meets it: exit codes 0 / 1 / 2, one-line errors naming the file,
+// the JSON path and the reason, and nothing written for bad input.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+Outcome run_cli(const std::string& arguments) {
+  const std::string command = std::string(TSMFRAME_CLI) + " " + arguments + " 2>&1";
+  Outcome outcome;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return outcome;
+  std::array<char, 4096> buffer{};
+  while (size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) outcome.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return outcome;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("tsmframe-cli-" + std::to_string(::getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) {
+    const fs::path path = dir_ / name;
+    std::ofstream(path) << text;
+    return path.string();
+  }
+
+  /// A valid cantilever with a tip load: the base every bad-input case mutates.
+  static json cantilever() {
+    return json::parse(R"({
+      "format": "tsmframe-model/1",
+      "materials": {"steel": {"E": 2.0e11, "G": 8.0e10}},
+      "sections": {"box": {"A": 1.0e-2, "I": 1.0e-4, "shear_area": 8.0e-3}},
+      "nodes": [{"id": 1, "x": 0.0, "y": 0.0}, {"id": 2, "x": 4.0, "y": 0.0}],
+      "members": [{"from": 1, "to": 2, "divisions": 4, "element": "timoshenko", "material": "steel", "section": "box"}],
+      "supports": [{"node": 1, "type": "fixed"}],
+      "loads": [{"node": 2, "fy": 1.0e5}],
+      "analysis": {"control": {"type": "load", "steps": 2}}
+    })");
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(Cli, ConvergedRunWritesBothFilesAndExitsZero) {
+  const std::string model = write("ok.json", cantilever().dump());
+  const Outcome o = run_cli("run " + model + " --out " + (dir_ / "out").string());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("step 2"), std::string::npos) << o.output;  // progress lines
+  const json results = json::parse(std::ifstream(dir_ / "out" / "results.json"));
+  EXPECT_EQ(results["format"], "tsmframe-results/1");
+  EXPECT_EQ(results["status"], "converged");
+  ASSERT_EQ(results["steps"].size(), 2u);
+  EXPECT_EQ(results["steps"][1]["load_factor"], 1.0);
+  EXPECT_EQ(results["nodes"].size(), 5u);
+  EXPECT_EQ(results["elements"][0]["nodes"], json::array({1, 3}));  // generated nodes continue the ids
+  EXPECT_EQ(results["steps"][1]["displacements"]["2"].size(), 3u);
+  EXPECT_EQ(results["steps"][1]["reactions"].size(), 1u);  // only the supported node
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "steps.csv"));
+  for (const auto& entry : fs::directory_iterator(dir_ / "out"))
+    EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << "temporary left: " << entry.path();
+}
+
+TEST_F(Cli, QuietRunPrintsNothing) {
+  const std::string model = write("ok.json", cantilever().dump());
+  const Outcome o = run_cli("run " + model + " --quiet --out " + (dir_ / "out").string());
+  EXPECT_EQ(o.exit_code, 0);
+  EXPECT_EQ(o.output, "");
+}
+
+TEST_F(Cli, HelpAndVersion) {
+  EXPECT_EQ(run_cli("--help").exit_code, 0);
+  const Outcome v = run_cli("--version");
+  EXPECT_EQ(v.exit_code, 0);
+  EXPECT_NE(v.output.find("tsmframe"), std::string::npos);
+}
+
+TEST_F(Cli, UsageErrorsExitTwo) {
+  EXPECT_EQ(run_cli("").exit_code, 2);
+  EXPECT_EQ(run_cli("run").exit_code, 2);
+  EXPECT_EQ(run_cli("fly model.json").exit_code, 2);
+  EXPECT_EQ(run_cli("run a.json --no-such-option").exit_code, 2);
+  const Outcome missing = run_cli("run " + (dir_ / "missing.json").string());
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("cannot open"), std::string::npos) << missing.output;
+}
+
+TEST_F(Cli, NonConvergenceExitsOneAndKeepsConvergedSteps) {
+  // A load far beyond what 1 iteration per step can carry, without cutback: step 1 converges
+  // (linear-ish at 1e-6 of the load), step 2 jumps to the full load and fails.
+  json m = cantilever();
+  m["loads"][0]["fy"] = 1e9;
+  m["analysis"] = {{"control", {{"type", "load"}, {"steps", 2}}}, {"max_iterations", 3}, {"cutback", false}};
+  m["loads"] = json::array({{{"node", 2}, {"fy", 1e9}}});
+  const std::string model = write("hard.json", m.dump());
+  const Outcome o = run_cli("run " + model + " --out " + (dir_ / "out").string());
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("did not converge"), std::string::npos) << o.output;
+  const json results = json::parse(std::ifstream(dir_ / "out" / "results.json"));
+  EXPECT_NE(results["status"], "converged");
+  EXPECT_FALSE(results["message"].get<std::string>().empty());
+  const json& last = results["steps"].back();
+  EXPECT_FALSE(last["converged"].get<bool>());
+  EXPECT_FALSE(last.contains("displacements"));
+  EXPECT_EQ(results.dump().find("NaN"), std::string::npos);
+}
+
+struct BadCase {
+  const char* name;
+  std::function<void(json&)> mutate;
+  const char* expected;  // substring of the one-line message (path and reason)
+};
+
+TEST_F(Cli, BadInputNamesFilePathAndReason) {
+  const std::vector<BadCase> cases = {
+      {"unknown key", [](json& m) { m["members"][0]["sectoin"] = "box"; }, "members[0].sectoin: unknown key"},
+      {"missing E", [](json& m) { m["materials"]["steel"].erase("E"); }, "materials.steel.E: missing"},
+      {"zero E", [](json& m) { m["materials"]["steel"]["E"] = 0; }, "materials.steel.E: must be positive"},
+      {"negative A", [](json& m) { m["sections"]["box"]["A"] = -1; }, "sections.box.A: must be positive"},
+      {"missing I", [](json& m) { m["sections"]["box"].erase("I"); }, "sections.box.I: missing"},
+      {"no G for Timoshenko", [](json& m) { m["materials"]["steel"].erase("G"); }, "members[0].material: material \"steel\" has no G"},
+      {"no shear area", [](json& m) { m["sections"]["box"].erase("shear_area"); }, "members[0].section: section \"box\" has no shear_area"},
+      {"unknown material", [](json& m) { m["members"][0]["material"] = "stel"; }, "members[0].material: unknown material \"stel\""},
+      {"unknown section", [](json& m) { m["members"][0]["section"] = "bx"; }, "members[0].section: unknown section \"bx\""},
+      {"unknown node", [](json& m) { m["members"][0]["to"] = 7; }, "members[0].to: unknown node 7"},
+      {"duplicate id", [](json& m) { m["nodes"][1]["id"] = 1; }, "nodes[1].id: duplicate node id 1"},
+      {"zero length", [](json& m) { m["members"][0]["to"] = 1; }, "members[0]: zero-length member"},
+      {"no node at point", [](json& m) { m["loads"][0]["node"] = json::array({4.5, 0.0}); }, "loads[0].node: no node at [4.5, 0]"},
+      {"several nodes at point",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 9}, {"x", 4.0}, {"y", 0.0}});
+         m["loads"][0]["node"] = json::array({4.0, 0.0});
+       },
+       "loads[0].node: 2 nodes at [4, 0]"},
+      {"mechanism", [](json& m) { m["supports"][0]["type"] = "pinned"; }, "supports: structure is a mechanism"},
+      {"free node", [](json& m) { m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", 1.0}}); }, "supports: structure is a mechanism: node 5 is held by no element"},
+      {"load on missing node", [](json& m) { m["loads"][0]["node"] = 42; }, "loads[0].node: unknown node 42"},
+      {"contact on missing node",
+       [](json& m) { m["contacts"] = json::array({{{"node", 42}, {"members", "all"}}}); },
+       "contacts[0].node: unknown node 42"},
+      {"contact on missing member",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});
+         m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
+         m["contacts"] = json::array({{{"node", 5}, {"members", {3}}}});
+       },
+       "contacts[0].members[0]: unknown member 3"},
+      {"bad control", [](json& m) { m["analysis"]["control"]["type"] = "force"; }, "analysis.control.type: unknown control"},
+      {"bad steps", [](json& m) { m["analysis"]["control"]["steps"] = 0; }, "analysis.control.steps: must be between 1"},
+      {"fractional divisions", [](json& m) { m["members"][0]["divisions"] = 2.5; }, "members[0].divisions: expected a whole number"},
+      {"wrong type", [](json& m) { m["nodes"][0]["x"] = "0"; }, "nodes[0].x: expected a number, found a string"},
+      {"bad dof", [](json& m) { m["supports"][0] = {{"node", 1}, {"fix", {"ux", "uz"}}}; }, "supports[0].fix[1]: unknown dof \"uz\""},
+      {"controlled dof fixed",
+       [](json& m) { m["analysis"]["control"] = {{"type", "displacement"}, {"node", 1}, {"dof", "uy"}, {"target", 1.0}}; },
+       "analysis.control.dof: the controlled dof uy of node 1 is fixed"},
+      {"bad format", [](json& m) { m["format"] = "tsmframe-model/2"; }, "format: unsupported format"},
+  };
+  for (const BadCase& c : cases) {
+    json m = cantilever();
+    c.mutate(m);
+    const std::string model = write("bad.json", m.dump(2));
+    const fs::path out = dir_ / "out-bad";
+    const Outcome o = run_cli("run " + model + " --out " + out.string());
+    EXPECT_EQ(o.exit_code, 2) << c.name << ": " << o.output;
+    EXPECT_NE(o.output.find(model + ": " + c.expected), std::string::npos) << c.name << ": " << o.output;
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << c.name << ": " << o.output;
+    EXPECT_FALSE(fs::exists(out)) << c.name << ": output written for bad input";
+  }
+}
+
+TEST_F(Cli, InvalidJsonNamesLineAndColumn) {
+  const std::string model = write("broken.json", "{\n  \"nodes\": [\n    {\"id\": 1,, \"x\": 0}\n  ]\n}\n");
+  const Outcome o = run_cli("run " + model + " --out " + (dir_ / "out").string());
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("invalid JSON at line 3, column 14"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+}  // namespace
