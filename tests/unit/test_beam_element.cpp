@@ -15,7 +15,7 @@ using namespace tsm::element;
 constexpr double pi = std::numbers::pi;
 
 /// Central-difference Jacobian of the nodal forces, tracking β from the same previous rotation.
-Matrix6 finite_difference_tangent(const InitialChord& chord, const SectionStiffness& s, const Vector6& d,
+Matrix6 finite_difference_tangent(const InitialChord& chord, const Matrix3& s, const Vector6& d,
                                   double previous) {
   Matrix6 K;
   for (int b = 0; b < 6; ++b) {
@@ -52,7 +52,7 @@ class BeamTangent : public ::testing::TestWithParam<Case> {};
 TEST_P(BeamTangent, MatchesFiniteDifferences) {
   const Case& p = GetParam();
   const InitialChord chord = initial_chord({0.3, -0.2}, {2.3, 0.8});
-  const SectionStiffness s{.EA = 200.0, .EI = 3.0, .shear_flexibility = p.shear_flexibility};
+  const Matrix3 s = basic_stiffness({.EA = 200.0, .EI = 3.0, .shear_flexibility = p.shear_flexibility}, chord.length);
   const Vector6 d = deformed(chord, p.angle, p.stretch, p.theta_i, p.theta_j);
   const double previous = p.angle + 0.01;  // the previous iterate's β, close to the current one
   const BeamResponse r = beam_response(chord, s, d, previous);
@@ -61,6 +61,11 @@ TEST_P(BeamTangent, MatchesFiniteDifferences) {
   const double error = (r.tangent - fd).cwiseAbs().maxCoeff() / r.tangent.cwiseAbs().maxCoeff();
   EXPECT_LE(error, 1e-6) << "analytic\n" << r.tangent << "\nfinite differences\n" << fd;
   EXPECT_LE((r.tangent - r.tangent.transpose()).cwiseAbs().maxCoeff(), 1e-12 * r.tangent.cwiseAbs().maxCoeff());
+  // The closed form equals the textbook products J k0 Jᵀ + K_G and J S (FORMULATION §1).
+  const EquilibriumMatrix J = equilibrium_matrix(r.chord);
+  const Matrix6 products = J * s * J.transpose() + geometric_stiffness(r.chord, r.forces);
+  EXPECT_LE((r.tangent - products).cwiseAbs().maxCoeff(), 1e-13 * r.tangent.cwiseAbs().maxCoeff());
+  EXPECT_LE((r.nodal_forces - J * r.forces).cwiseAbs().maxCoeff(), 1e-13 * r.nodal_forces.cwiseAbs().maxCoeff());
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -72,7 +77,8 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(BeamElement, RigidMotionGivesNoForce) {
   const InitialChord chord = initial_chord({1.0, 2.0}, {4.0, -2.0});
-  const SectionStiffness s{.EA = 2e11, .EI = 1e5, .shear_flexibility = 1e-6};
+  const SectionStiffness section{.EA = 2e11, .EI = 1e5, .shear_flexibility = 1e-6};
+  const Matrix3 s = basic_stiffness(section, chord.length);
   for (double angle : {0.0, 0.3, 3 * pi, -5.0, 4 * pi + 0.1}) {
     const Eigen::Rotation2Dd R(angle);
     const Vector2 t(-3.0, 7.5);
@@ -83,16 +89,16 @@ TEST(BeamElement, RigidMotionGivesNoForce) {
     const BeamResponse r = beam_response(chord, s, d, angle - 0.2);
     EXPECT_NEAR(r.chord.rotation, angle, 1e-12);
     // Round-off floor: ε · EA/l0 · |x| for N, ε · EI/l0 for M.
-    EXPECT_LE(std::abs(r.forces[0]), 1e-14 * s.EA / chord.length * 10.0) << angle;
-    EXPECT_LE(std::abs(r.forces[1]), 1e-13 * s.EI / chord.length) << angle;
-    EXPECT_LE(std::abs(r.forces[2]), 1e-13 * s.EI / chord.length) << angle;
+    EXPECT_LE(std::abs(r.forces[0]), 1e-14 * section.EA / chord.length * 10.0) << angle;
+    EXPECT_LE(std::abs(r.forces[1]), 1e-13 * section.EI / chord.length) << angle;
+    EXPECT_LE(std::abs(r.forces[2]), 1e-13 * section.EI / chord.length) << angle;
   }
 }
 
 TEST(BeamElement, ChordRotationIsTrackedThroughManyTurns) {
   // Turning the element in steps of 0.5 rad continues β past ±π without wrapping.
   const InitialChord chord = initial_chord({0.0, 0.0}, {1.0, 0.0});
-  const SectionStiffness s{.EA = 1.0, .EI = 1.0, .shear_flexibility = 0.0};
+  const Matrix3 s = basic_stiffness({.EA = 1.0, .EI = 1.0, .shear_flexibility = 0.0}, chord.length);
   double beta = 0.0;
   for (int k = 1; k <= 30; ++k) {
     const double angle = 0.5 * k;
@@ -106,7 +112,7 @@ TEST(BeamElement, ChordRotationIsTrackedThroughManyTurns) {
 TEST(BeamElement, EquilibriumOfNodalForces) {
   // J S is self-equilibrated: Σ F = 0 and Σ M about the origin = 0 in the current geometry.
   const InitialChord chord = initial_chord({0.0, 0.0}, {2.0, 1.0});
-  const SectionStiffness s{.EA = 50.0, .EI = 2.0, .shear_flexibility = 0.1};
+  const Matrix3 s = basic_stiffness({.EA = 50.0, .EI = 2.0, .shear_flexibility = 0.1}, chord.length);
   const Vector6 d = deformed(chord, 2.0, 0.1, 0.7, -0.4);
   const BeamResponse r = beam_response(chord, s, d, 2.0);
   const Vector6& F = r.nodal_forces;

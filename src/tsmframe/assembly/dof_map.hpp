@@ -1,11 +1,20 @@
 #pragma once
-// Numbering of the free (unknown) dofs; constrained dofs (fixed or prescribed) get −1.
+// Numbering of the free (unknown) dofs. Constrained dofs (fixed or prescribed) get −1. Free
+// dofs are numbered node by node in a fill-reducing order (approximate minimum degree on the
+// node graph, computed once), so the factorisation needs no permutation of its own.
 
 #include <vector>
 
 #include "tsmframe/model/model.hpp"
 
 namespace tsm::assembly {
+
+/// Nodes joined to each node by an element, itself included (CSR, sorted, no duplicates).
+struct NodeGraph {
+  std::vector<int> start;      ///< node k's neighbours are neighbours[start[k] .. start[k+1])
+  std::vector<int> neighbours;
+};
+NodeGraph node_graph(const Model& model);
 
 class DofMap {
  public:
@@ -19,9 +28,18 @@ class DofMap {
   int dof(int equation) const { return free_dofs_[equation]; }
   const std::vector<int>& free_dofs() const { return free_dofs_; }
 
+  /// Nodes with at least one free dof are the blocks of the tangent, numbered in the
+  /// fill-reducing order; the equations run block by block in the same order.
+  int block_count() const { return static_cast<int>(block_node_.size()); }
+  /// Block of a node, or −1 if all its dofs are constrained.
+  int block(int node) const { return node_block_[node]; }
+  int block_node(int block) const { return block_node_[block]; }
+
  private:
   std::vector<int> equation_;
   std::vector<int> free_dofs_;
+  std::vector<int> node_block_;
+  std::vector<int> block_node_;
 };
 
 }  // namespace tsm::assembly

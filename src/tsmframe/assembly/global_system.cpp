@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 namespace tsm::assembly {
 namespace {
@@ -17,38 +18,115 @@ std::array<int, 6> element_dofs(const Element& e) {
 GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(model), dofs_(dofs) {
   const int n_elements = static_cast<int>(model.elements.size());
   initial_.reserve(n_elements);
-  for (const Element& e : model.elements)
-    initial_.push_back(element::initial_chord(model.nodes[e.start].position, model.nodes[e.end].position));
-
-  // Pattern: one triplet per coupled pair of free equations, then the slot of each in CSC.
-  std::vector<Eigen::Triplet<double, int>> triplets;
-  triplets.reserve(36 * static_cast<size_t>(n_elements));
+  stiffness_.reserve(n_elements);
   for (const Element& e : model.elements) {
-    const auto g = element_dofs(e);
-    for (int b = 0; b < 6; ++b)
-      for (int a = 0; a < 6; ++a) {
-        const int row = dofs.equation(g[a]), col = dofs.equation(g[b]);
-        if (row >= 0 && col >= 0) triplets.emplace_back(row, col, 0.0);
-      }
+    initial_.push_back(element::initial_chord(model.nodes[e.start].position, model.nodes[e.end].position));
+    stiffness_.push_back(element::basic_stiffness(e.section, initial_.back().length));
   }
-  tangent_.resize(dofs.free_count(), dofs.free_count());
-  tangent_.setFromTriplets(triplets.begin(), triplets.end());
-  tangent_.makeCompressed();
 
-  slots_.assign(36 * static_cast<size_t>(n_elements), -1);
-  const int* outer = tangent_.outerIndexPtr();
-  const int* inner = tangent_.innerIndexPtr();
-  for (int k = 0; k < n_elements; ++k) {
-    const auto g = element_dofs(model.elements[k]);
-    for (int b = 0; b < 6; ++b)
-      for (int a = 0; a < 6; ++a) {
-        const int row = dofs.equation(g[a]), col = dofs.equation(g[b]);
-        if (row < 0 || col < 0) continue;
-        const int* found = std::lower_bound(inner + outer[col], inner + outer[col + 1], row);
-        slots_[36 * static_cast<size_t>(k) + 6 * b + a] = static_cast<int>(found - inner);
-      }
+  // Block pattern, upper triangle: column c holds the blocks ≤ c of the nodes joined to c's node.
+  const NodeGraph graph = node_graph(model);
+  const int n_blocks = dofs.block_count();
+  tangent_.size = n_blocks;
+  tangent_.column.assign(n_blocks + 1, 0);
+  for (int c = 0; c < n_blocks; ++c) {
+    const int node = dofs.block_node(c);
+    int count = 0;
+    for (int p = graph.start[node]; p < graph.start[node + 1]; ++p) {
+      const int r = dofs.block(graph.neighbours[p]);
+      count += r >= 0 && r <= c;
+    }
+    tangent_.column[c + 1] = tangent_.column[c] + count;
   }
+  tangent_.row.resize(tangent_.column[n_blocks]);
+  tangent_.value.assign(tangent_.column[n_blocks], solver::Block::Zero());
+  for (int c = 0; c < n_blocks; ++c) {
+    const int node = dofs.block_node(c);
+    int write = tangent_.column[c];
+    for (int p = graph.start[node]; p < graph.start[node + 1]; ++p) {
+      const int r = dofs.block(graph.neighbours[p]);
+      if (r >= 0 && r <= c) tangent_.row[write++] = r;
+    }
+    std::sort(tangent_.row.begin() + tangent_.column[c], tangent_.row.begin() + tangent_.column[c + 1]);
+  }
+  auto entry = [&](int r, int c) {
+    const auto first = tangent_.row.begin() + tangent_.column[c], last = tangent_.row.begin() + tangent_.column[c + 1];
+    return static_cast<int>(std::lower_bound(first, last, r) - tangent_.row.begin());
+  };
+  slots_.resize(n_elements);
+  for (int k = 0; k < n_elements; ++k) {
+    const int bi = dofs.block(model.elements[k].start), bj = dofs.block(model.elements[k].end);
+    Slots& s = slots_[k];
+    if (bi >= 0) s.ii = entry(bi, bi);
+    if (bj >= 0) s.jj = entry(bj, bj);
+    if (bi >= 0 && bj >= 0 && bi != bj) {
+      s.transposed = bj < bi;
+      s.ij = s.transposed ? entry(bj, bi) : entry(bi, bj);
+    }
+  }
+  block_mask_.assign(n_blocks, 0);
+  for (int b = 0; b < n_blocks; ++b)
+    for (int d = 0; d < dofs_per_node; ++d)
+      if (model.constrained[dofs_per_node * dofs.block_node(b) + d]) block_mask_[b] |= 1u << d;
+
+  // Greedy colouring: an element takes the lowest colour its two nodes have not seen yet.
+  // Colours beyond 63 (a node held by very many elements) all share the last group, run serially.
+  constexpr int serial_colour = 63;
+  std::vector<std::uint64_t> seen(model.node_count(), 0);
+  std::vector<int> colour(n_elements);
+  int colours = 0;
+  for (int k = 0; k < n_elements; ++k) {
+    const Element& e = model.elements[k];
+    const std::uint64_t used = seen[e.start] | seen[e.end];
+    int c = 0;
+    while (c < serial_colour && (used >> c & 1u)) ++c;
+    colour[k] = c;
+    seen[e.start] |= std::uint64_t{1} << c;
+    seen[e.end] |= std::uint64_t{1} << c;
+    colours = std::max(colours, c + 1);
+  }
+  colour_start_.assign(colours + 1, 0);
+  for (int k = 0; k < n_elements; ++k) ++colour_start_[colour[k] + 1];
+  for (int c = 0; c < colours; ++c) colour_start_[c + 1] += colour_start_[c];
+  colour_order_.resize(n_elements);
+  std::vector<int> fill(colour_start_.begin(), colour_start_.end() - 1);
+  for (int k = 0; k < n_elements; ++k) colour_order_[fill[colour[k]]++] = k;
+
+  floor_squares_.resize(2 * static_cast<size_t>(n_elements));
   has_prescribed_ = model.reference_prescribed.size() > 0 && model.reference_prescribed.any();
+}
+
+void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
+                                    const std::vector<double>& previous_rotations, bool with_tangent,
+                                    Evaluation& out) {
+  const Element& e = model_.elements[k];
+  const auto g = element_dofs(e);
+  element::Vector6 d;
+  for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
+  const element::BeamResponse r = element::beam_response(initial_[k], stiffness_[k], d, previous_rotations[k], with_tangent);
+  out.element_forces.segment<3>(3 * k) = r.forces;
+  out.chord_rotations[k] = r.chord.rotation;
+  for (int a = 0; a < 6; ++a) out.internal_force[g[a]] += r.nodal_forces[a];
+  const element::RoundOffFloor floor = element::round_off_floor(initial_[k], stiffness_[k], d, r);
+  floor_squares_[2 * k] = 4.0 * floor.force * floor.force;  // two nodes, two translations each
+  floor_squares_[2 * k + 1] = 2.0 * floor.moment * floor.moment;
+  if (!with_tangent) return;
+  const Slots& slot = slots_[k];
+  if (slot.ii >= 0) tangent_.value[slot.ii] += r.tangent.topLeftCorner<3, 3>();
+  if (slot.jj >= 0) tangent_.value[slot.jj] += r.tangent.bottomRightCorner<3, 3>();
+  if (slot.ij >= 0) {
+    if (slot.transposed) tangent_.value[slot.ij] += r.tangent.bottomLeftCorner<3, 3>();
+    else tangent_.value[slot.ij] += r.tangent.topRightCorner<3, 3>();
+  }
+  if (!has_prescribed_) return;
+  for (int b = 0; b < 6; ++b) {
+    const double dp = model_.reference_prescribed[g[b]];
+    if (dp == 0.0 || dofs_.equation(g[b]) >= 0) continue;
+    for (int a = 0; a < 6; ++a) {
+      const int row = dofs_.equation(g[a]);
+      if (row >= 0) out.prescribed_coupling[row] += r.tangent(a, b) * dp;
+    }
+  }
 }
 
 void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
@@ -57,41 +135,45 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
   out.internal_force.setZero(model_.dof_count());
   out.element_forces.resize(3 * n_elements);
   out.chord_rotations.resize(n_elements);
-  out.prescribed_coupling.setZero(dofs_.free_count());
-  if (with_tangent) std::fill(tangent_.valuePtr(), tangent_.valuePtr() + tangent_.nonZeros(), 0.0);
-  double* values = tangent_.valuePtr();
-  double force_floor = 0.0, moment_floor = 0.0;  // sums of squares
+  if (has_prescribed_ || out.prescribed_coupling.size() != dofs_.free_count())
+    out.prescribed_coupling.setZero(dofs_.free_count());
+  if (with_tangent)
+    for (solver::Block& b : tangent_.value) b.setZero();
 
+  for (size_t c = 0; c + 1 < colour_start_.size(); ++c) {
+    const int begin = colour_start_[c], end = colour_start_[c + 1];
+    const bool serial = c == 63 || end - begin < 4096;
+#pragma omp parallel for schedule(static) if (!serial)
+    for (int idx = begin; idx < end; ++idx)
+      evaluate_element(colour_order_[idx], displacements, previous_rotations, with_tangent, out);
+  }
+  if (with_tangent) mask_constrained_dofs();
+  double force_floor = 0.0, moment_floor = 0.0;
   for (int k = 0; k < n_elements; ++k) {
-    const Element& e = model_.elements[k];
-    const auto g = element_dofs(e);
-    element::Vector6 d;
-    for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
-    const element::BeamResponse r =
-        element::beam_response(initial_[k], e.section, d, previous_rotations[k], with_tangent);
-    out.element_forces.segment<3>(3 * k) = r.forces;
-    out.chord_rotations[k] = r.chord.rotation;
-    for (int a = 0; a < 6; ++a) out.internal_force[g[a]] += r.nodal_forces[a];
-    const element::RoundOffFloor floor = element::round_off_floor(initial_[k], e.section, d, r);
-    force_floor += 4.0 * floor.force * floor.force;  // two nodes, two translations each
-    moment_floor += 2.0 * floor.moment * floor.moment;
-    if (!with_tangent) continue;
-    const int* slot = &slots_[36 * static_cast<size_t>(k)];
-    for (int b = 0; b < 6; ++b)
-      for (int a = 0; a < 6; ++a)
-        if (slot[6 * b + a] >= 0) values[slot[6 * b + a]] += r.tangent(a, b);
-    if (!has_prescribed_) continue;
-    for (int b = 0; b < 6; ++b) {
-      const double dp = model_.reference_prescribed[g[b]];
-      if (dp == 0.0 || dofs_.equation(g[b]) >= 0) continue;
-      for (int a = 0; a < 6; ++a) {
-        const int row = dofs_.equation(g[a]);
-        if (row >= 0) out.prescribed_coupling[row] += r.tangent(a, b) * dp;
-      }
-    }
+    force_floor += floor_squares_[2 * k];
+    moment_floor += floor_squares_[2 * k + 1];
   }
   out.force_floor = std::sqrt(force_floor);
   out.moment_floor = std::sqrt(moment_floor);
+}
+
+void GlobalSystem::mask_constrained_dofs() {
+  for (int c = 0; c < tangent_.size; ++c) {
+    const unsigned column_mask = block_mask_[c];
+    for (int p = tangent_.column[c]; p < tangent_.column[c + 1]; ++p) {
+      const int r = tangent_.row[p];
+      const unsigned row_mask = block_mask_[r];
+      if ((row_mask | column_mask) == 0) continue;
+      solver::Block& b = tangent_.value[p];
+      for (int d = 0; d < dofs_per_node; ++d) {
+        if (row_mask >> d & 1u) b.row(d).setZero();
+        if (column_mask >> d & 1u) b.col(d).setZero();
+      }
+      if (r == c)
+        for (int d = 0; d < dofs_per_node; ++d)
+          if (row_mask >> d & 1u) b(d, d) = 1.0;
+    }
+  }
 }
 
 }  // namespace tsm::assembly

@@ -1,18 +1,22 @@
 #pragma once
 // Global internal force vector and tangent of the whole structure at a given displacement
-// state. The sparsity pattern of K_ff is built once; every evaluation only writes values.
+// state. The tangent is kept as 3×3 node blocks (upper triangle, blocks in the DofMap's
+// fill-reducing order) whose pattern is built once; every evaluation only writes values.
+// Elements are evaluated in colour groups (no two elements of a group share a node), each group
+// in parallel: every sum is formed in the same order whatever the number of threads, so
+// results are bit-identical with 1 or many threads.
 
 #include <Eigen/Core>
-#include <Eigen/SparseCore>
 #include <vector>
 
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/element/beam_element.hpp"
 #include "tsmframe/model/model.hpp"
+#include "tsmframe/solver/block_ldlt.hpp"
 
 namespace tsm::assembly {
 
-using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+using solver::BlockMatrix;
 
 /// What one evaluation of the structure yields.
 struct Evaluation {
@@ -36,21 +40,38 @@ class GlobalSystem {
   const DofMap& dofs() const { return dofs_; }
 
   /// Evaluates every element at `displacements` (all dofs), continuing each chord rotation from
-  /// `previous_rotations`. With `with_tangent`, K_ff (see tangent()) is overwritten.
+  /// `previous_rotations`. With `with_tangent`, the tangent (see tangent()) is overwritten.
   void evaluate(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                 bool with_tangent, Evaluation& out);
 
-  /// The tangent over the free equations, K_ff, from the last evaluation with tangent.
-  const SparseMatrix& tangent() const { return tangent_; }
+  /// K_ff from the last evaluation with tangent, as node blocks; the rows and columns of a
+  /// block's constrained dofs are zero with 1 on the diagonal (they carry no equation).
+  const BlockMatrix& tangent() const { return tangent_; }
+
+  /// Number of element colour groups (for tests and benchmarks).
+  int colour_count() const { return static_cast<int>(colour_start_.size()) - 1; }
 
  private:
+  void evaluate_element(int k, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
+                        bool with_tangent, Evaluation& out);
+  void mask_constrained_dofs();
+
   const Model& model_;
   const DofMap& dofs_;
   std::vector<element::InitialChord> initial_;
-  SparseMatrix tangent_;
-  /// For element e, entry (a, b) of its 6×6 tangent goes to tangent_.valuePtr()[slots_[36e + 6b + a]]
-  /// (−1 where a or b is constrained).
-  std::vector<int> slots_;
+  std::vector<element::Matrix3> stiffness_;  ///< k0 of each element (Eq. 3 / 4), fixed
+  BlockMatrix tangent_;
+  /// Per element: entry of its (i,i), (j,j) and (i,j) blocks in tangent_ (−1: node not a block).
+  /// The (i,j) entry is stored as K_ji = K_ijᵀ when j's block comes first.
+  struct Slots {
+    int ii = -1, jj = -1, ij = -1;
+    bool transposed = false;
+  };
+  std::vector<Slots> slots_;
+  std::vector<unsigned char> block_mask_;  ///< per block: bit d set if dof d of its node is constrained
+  std::vector<int> colour_order_;          ///< element indices, grouped by colour
+  std::vector<int> colour_start_;          ///< group c: colour_order_[colour_start_[c] .. colour_start_[c+1])
+  std::vector<double> floor_squares_;      ///< per element: force², moment² of its rounding floor
   bool has_prescribed_ = false;
 };
 

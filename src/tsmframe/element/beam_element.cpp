@@ -5,25 +5,42 @@
 
 namespace tsm::element {
 
-BeamResponse beam_response(const InitialChord& initial, const SectionStiffness& section,
-                           const Vector6& d, double previous_rotation, bool with_tangent) {
+BeamResponse beam_response(const InitialChord& initial, const Matrix3& k0, const Vector6& d,
+                           double previous_rotation, bool with_tangent) {
   BeamResponse r;
   r.chord = current_chord(initial, d, previous_rotation);
+  const double c = r.chord.cos, s = r.chord.sin, l = r.chord.length;
   // Strict compatibility: θ = Θ − β at both ends (FORMULATION §1).
   r.deformations = {r.chord.elongation, d[2] - r.chord.rotation, d[5] - r.chord.rotation};
-  const Matrix3 k0 = basic_stiffness(section, initial.length);
   r.forces = k0 * r.deformations;  // Eq. 3 / Eq. 4
-  const EquilibriumMatrix J = equilibrium_matrix(r.chord);
-  r.nodal_forces = J * r.forces;  // Eq. 1
-  if (with_tangent) r.tangent = J * k0 * J.transpose() + geometric_stiffness(r.chord, r.forces);  // Eq. 2
+  const double N = r.forces[0], Mi = r.forces[1], Mj = r.forces[2];
+  // J S (Eq. 1): along the chord u = (c, s) and across it n = (−s, c).
+  const double shear = (Mi + Mj) / l;
+  const double fx = -N * c - shear * s, fy = -N * s + shear * c;
+  r.nodal_forces << fx, fy, Mi, -fx, -fy, Mj;
+  if (!with_tangent) return r;
+  // J k0 Jᵀ + K_G (Eq. 2): translations couple through P = EA/l0 u uᵀ + (Σk/l² + N/l) n nᵀ
+  // + (M_i + M_j)/l² (u nᵀ + n uᵀ), rotations through (k_ii + k_ij)/l n and (k_ij + k_jj)/l n.
+  const double axial = k0(0, 0), transverse = (k0(1, 1) + 2.0 * k0(1, 2) + k0(2, 2)) / (l * l) + N / l;
+  const double mixed = (Mi + Mj) / (l * l);
+  const double pxx = axial * c * c + transverse * s * s - 2.0 * mixed * c * s;
+  const double pyy = axial * s * s + transverse * c * c + 2.0 * mixed * c * s;
+  const double pxy = (axial - transverse) * c * s + mixed * (c * c - s * s);
+  const double qi = (k0(1, 1) + k0(1, 2)) / l, qj = (k0(1, 2) + k0(2, 2)) / l;
+  Matrix6& K = r.tangent;
+  K << pxx, pxy, -qi * s, -pxx, -pxy, -qj * s,  //
+      pxy, pyy, qi * c, -pxy, -pyy, qj * c,     //
+      -qi * s, qi * c, k0(1, 1), qi * s, -qi * c, k0(1, 2),  //
+      -pxx, -pxy, qi * s, pxx, pxy, qj * s,     //
+      -pxy, -pyy, -qi * c, pxy, pyy, -qj * c,   //
+      -qj * s, qj * c, k0(2, 1), qj * s, -qj * c, k0(2, 2);
   return r;
 }
 
-RoundOffFloor round_off_floor(const InitialChord& initial, const SectionStiffness& section, const Vector6& d,
+RoundOffFloor round_off_floor(const InitialChord& initial, const Matrix3& k0, const Vector6& d,
                               const BeamResponse& response) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
   const double l0 = initial.length, l = response.chord.length;
-  const Matrix3 k0 = basic_stiffness(section, l0);
   // δl and β come from Δ0 + (u_j − u_i): an absolute error of about ε(|u_i| + |u_j| + l0).
   const double length_error = eps * (std::abs(d[0]) + std::abs(d[1]) + std::abs(d[3]) + std::abs(d[4]) + l0);
   const double chord_angle_error = length_error / l + eps * std::abs(response.chord.rotation);

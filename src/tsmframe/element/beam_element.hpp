@@ -16,10 +16,12 @@ struct BeamResponse {
   Matrix6 tangent;       ///< ∂(J S)/∂D
 };
 
-/// Evaluates the element at end displacements d = (u_i, v_i, Θ_i, u_j, v_j, Θ_j).
-/// `previous_rotation` is the chord rotation of the previous iterate (continuous tracking).
-BeamResponse beam_response(const InitialChord& initial, const SectionStiffness& section,
-                           const Vector6& d, double previous_rotation, bool with_tangent = true);
+/// Evaluates the element with force law `k0` (basic_stiffness) at end displacements
+/// d = (u_i, v_i, Θ_i, u_j, v_j, Θ_j). `previous_rotation` is the chord rotation of the previous
+/// iterate (continuous tracking). The tangent is J k0 Jᵀ + K_G written out in closed form
+/// (the same matrix as equilibrium_matrix and geometric_stiffness give, without the products).
+BeamResponse beam_response(const InitialChord& initial, const Matrix3& k0, const Vector6& d,
+                           double previous_rotation, bool with_tangent = true);
 
 /// How large the element's nodal forces can be in error from rounding alone, at this state:
 /// positions are X + u, so δl and β carry an absolute error ≈ ε(|u_i| + |u_j| + l0), and
@@ -28,7 +30,7 @@ struct RoundOffFloor {
   double force = 0.0;   ///< on each translational dof
   double moment = 0.0;  ///< on each rotational dof
 };
-RoundOffFloor round_off_floor(const InitialChord& initial, const SectionStiffness& section, const Vector6& d,
+RoundOffFloor round_off_floor(const InitialChord& initial, const Matrix3& k0, const Vector6& d,
                               const BeamResponse& response);
 
 }  // namespace tsm::element

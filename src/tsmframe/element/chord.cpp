@@ -10,7 +10,10 @@ InitialChord initial_chord(const Vector2& start, const Vector2& end) {
   return {start, end, delta.norm(), std::atan2(delta.y(), delta.x())};
 }
 
-double wrap_angle(double angle) { return std::remainder(angle, 2.0 * std::numbers::pi); }
+double wrap_angle(double angle) {
+  constexpr double two_pi = 2.0 * std::numbers::pi;
+  return angle - two_pi * std::nearbyint(angle / two_pi);
+}
 
 Chord current_chord(const InitialChord& initial, const Vector6& d, double previous_rotation) {
   const Vector2 delta0 = initial.end - initial.start;

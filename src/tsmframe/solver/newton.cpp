@@ -29,7 +29,7 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
     load_free_[eq] = system.model().reference_load[dofs.dof(eq)];
     is_moment_[eq] = dofs.dof(eq) % dofs_per_node == rz;
   }
-  solver_.analyze(system.tangent());
+  solver_.analyze(system.dofs(), system.tangent());
 }
 
 void NewtonSolver::evaluate(State& state) {

@@ -1,0 +1,111 @@
+#include "tsmframe/solver/block_ldlt.hpp"
+
+#include <Eigen/LU>
+
+namespace tsm::solver {
+namespace {
+
+/// Blocks k < j on the path from each nonzero A(i, j) up the elimination tree (the pattern of
+/// row j of L), written to stack[top .. size) in a topological order; returns top (cs_ereach).
+int reach(const BlockMatrix& a, int j, const std::vector<int>& parent, std::vector<int>& flag,
+          std::vector<int>& stack) {
+  const int n = a.size;
+  int top = n;
+  flag[j] = j;
+  for (int p = a.column[j]; p < a.column[j + 1]; ++p) {
+    int i = a.row[p];
+    if (i >= j) continue;
+    int len = 0;
+    for (; flag[i] != j; i = parent[i]) {
+      stack[len++] = i;  // the path goes to the front of stack (its tail is not yet used)
+      flag[i] = j;
+    }
+    while (len > 0) stack[--top] = stack[--len];
+  }
+  return top;
+}
+
+}  // namespace
+
+void BlockLDLT::analyze(const BlockMatrix& a) {
+  const int n = size_ = a.size;
+  // Elimination tree (Liu's algorithm with path compression, cs_etree on the upper triangle).
+  parent_.assign(n, -1);
+  std::vector<int> ancestor(n, -1);
+  for (int k = 0; k < n; ++k) {
+    for (int p = a.column[k]; p < a.column[k + 1]; ++p) {
+      for (int i = a.row[p]; i != -1 && i < k;) {
+        const int next = ancestor[i];
+        ancestor[i] = k;
+        if (next == -1) {
+          parent_[i] = k;
+          break;
+        }
+        i = next;
+      }
+    }
+  }
+  // Column counts of L: row k of L is the reach of column k.
+  flag_.assign(n, -1);
+  stack_.assign(n, 0);
+  std::vector<int> count(n, 0);
+  for (int k = 0; k < n; ++k) {
+    const int top = reach(a, k, parent_, flag_, stack_);
+    for (int t = top; t < n; ++t) ++count[stack_[t]];
+  }
+  l_column_.assign(n + 1, 0);
+  for (int i = 0; i < n; ++i) l_column_[i + 1] = l_column_[i] + count[i];
+  l_row_.assign(l_column_[n], 0);
+  l_value_.resize(l_column_[n]);
+  d_inverse_.resize(n);
+  fill_.resize(n);
+  work_.assign(n, Block::Zero());
+}
+
+bool BlockLDLT::factorize(const BlockMatrix& a) {
+  const int n = size_;
+  std::fill(flag_.begin(), flag_.end(), -1);
+  std::copy(l_column_.begin(), l_column_.end() - 1, fill_.begin());
+  for (int k = 0; k < n; ++k) {
+    const int top = reach(a, k, parent_, flag_, stack_);
+    // Scatter the upper column k of A into the workspace.
+    Block diagonal = Block::Zero();
+    for (int p = a.column[k]; p < a.column[k + 1]; ++p) {
+      if (a.row[p] == k) diagonal = a.value[p];
+      else work_[a.row[p]] = a.value[p];
+    }
+    for (int t = top; t < n; ++t) {
+      const int i = stack_[t];
+      const Block y = work_[i];  // = D_i L(k, i)ᵀ once the earlier columns are subtracted
+      work_[i].setZero();
+      const Block lki = y.transpose() * d_inverse_[i];  // L(k, i) = yᵀ D_i⁻¹
+      diagonal.noalias() -= lki * y;
+      for (int p = l_column_[i]; p < fill_[i]; ++p) work_[l_row_[p]].noalias() -= l_value_[p] * y;
+      l_row_[fill_[i]] = k;
+      l_value_[fill_[i]++] = lki;
+    }
+    // D_k is symmetric; symmetrise away rounding before inverting it.
+    diagonal = 0.5 * (diagonal + diagonal.transpose()).eval();
+    const double det = diagonal.determinant();
+    if (!(det != 0.0) || !std::isfinite(det)) return false;
+    d_inverse_[k] = diagonal.inverse();
+    if (!d_inverse_[k].allFinite()) return false;
+  }
+  return true;
+}
+
+void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
+  const int n = size_;
+  for (int i = 0; i < n; ++i) {  // L y = b
+    const Eigen::Vector3d bi = b.segment<3>(3 * i);
+    for (int p = l_column_[i]; p < l_column_[i + 1]; ++p) b.segment<3>(3 * l_row_[p]).noalias() -= l_value_[p] * bi;
+  }
+  for (int i = 0; i < n; ++i) b.segment<3>(3 * i) = d_inverse_[i] * b.segment<3>(3 * i).eval();  // D z = y
+  for (int i = n - 1; i >= 0; --i) {  // Lᵀ x = z
+    Eigen::Vector3d bi = b.segment<3>(3 * i);
+    for (int p = l_column_[i]; p < l_column_[i + 1]; ++p) bi.noalias() -= l_value_[p].transpose() * b.segment<3>(3 * l_row_[p]);
+    b.segment<3>(3 * i) = bi;
+  }
+}
+
+}  // namespace tsm::solver
