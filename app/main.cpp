@@ -1,6 +1,8 @@
 // The `tsmframe` command: a thin shell over the library (FORMAT.md, "Command line").
 // Exit status: 0 converged to the end; 1 ran but did not reach the end; 2 bad input or usage.
 
+#include <omp.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
@@ -24,6 +26,7 @@ struct RunOptions {
   std::string out = "out";
   bool quiet = false;
   bool log_iterations = false;
+  int threads = 0;  // 0: all cores
 };
 
 std::string progress_line(const tsm::solver::StepRecord& step, bool log_iterations) {
@@ -42,6 +45,7 @@ std::string progress_line(const tsm::solver::StepRecord& step, bool log_iteratio
 }
 
 int run(const RunOptions& options) {
+  if (options.threads > 0) omp_set_num_threads(options.threads);
   tsm::Model model;
   try {
     model = tsm::io::read_model_file(options.model);
@@ -89,6 +93,8 @@ int main(int argc, char** argv) {
   run_command->add_option("-o,--out", options.out, "output directory (default: out)");
   run_command->add_flag("-q,--quiet", options.quiet, "no progress lines");
   run_command->add_flag("--log-iterations", options.log_iterations, "print the residual of every iterate");
+  run_command->add_option("-j,--threads", options.threads, "threads for the element loop (default: all cores; results are identical)")
+      ->check(CLI::Range(1, 1024));
 
   try {
     app.parse(argc, argv);

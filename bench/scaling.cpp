@@ -1,5 +1,6 @@
 // Scaling run (issue 2's benchmark): C independent cantilevers of N elements each (10 m, steel,
 // 100 mm square), every one rolled to a quarter circle by a tip moment in 10 load steps.
+// Usage: tsmframe_scaling [C=1] [N=1000] [turns=0.25] [steps=10] (max 200 iterations per step).
 // Prints one row: elements, steps, iterations, ms per iteration, ns per element per iteration,
 // total seconds, peak memory. Run one size per process so the peak memory is that size's own:
 // bench/run_scaling.sh does. (Why chains of 1,000 and not one chain of 10⁶ elements: see
@@ -18,7 +19,7 @@
 
 namespace {
 
-tsm::Model quarter_circle_cantilevers(int chains, int per_chain) {
+tsm::Model rolled_cantilevers(int chains, int per_chain, double turns, int steps) {
   tsm::Model m;
   const double L = 10.0, E = 2.05e11, h = 0.1, A = h * h, I = h * h * h * h / 12.0, G = 7.9e10;
   const int nodes_per_chain = per_chain + 1;
@@ -42,10 +43,11 @@ tsm::Model quarter_circle_cantilevers(int chains, int per_chain) {
   for (int c = 0; c < chains; ++c) {
     const int root = 3 * c * nodes_per_chain, tip = root + 3 * per_chain;
     m.constrained[root] = m.constrained[root + 1] = m.constrained[root + 2] = true;
-    m.reference_load[tip + 2] = std::numbers::pi / 2 * E * I / L;
+    m.reference_load[tip + 2] = turns * 2.0 * std::numbers::pi * E * I / L;
   }
   m.reference_prescribed = Eigen::VectorXd::Zero(m.dof_count());
-  m.analysis.control.steps = 10;
+  m.analysis.control.steps = steps;
+  m.analysis.max_iterations = 200;
   m.analysis.output.kind = tsm::OutputSelection::Kind::last;
   m.size = std::hypot(L, 2.0 * L * (chains - 1));
   return m;
@@ -56,9 +58,11 @@ tsm::Model quarter_circle_cantilevers(int chains, int per_chain) {
 int main(int argc, char** argv) {
   const int chains = argc > 1 ? std::atoi(argv[1]) : 1;
   const int per_chain = argc > 2 ? std::atoi(argv[2]) : 1000;
+  const double turns = argc > 3 ? std::atof(argv[3]) : 0.25;  // 0.25: quarter circle
+  const int steps = argc > 4 ? std::atoi(argv[4]) : 10;
   const int elements = chains * per_chain;
   const auto t0 = std::chrono::steady_clock::now();
-  const tsm::Model model = quarter_circle_cantilevers(chains, per_chain);
+  const tsm::Model model = rolled_cantilevers(chains, per_chain, turns, steps);
   const auto t1 = std::chrono::steady_clock::now();
   const tsm::solver::RunResult result = tsm::solver::run_analysis(model);
   const auto t2 = std::chrono::steady_clock::now();

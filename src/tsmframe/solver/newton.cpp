@@ -1,5 +1,6 @@
 #include "tsmframe/solver/newton.hpp"
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -27,15 +28,20 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
   is_moment_.resize(dofs.free_count());
   for (int eq = 0; eq < dofs.free_count(); ++eq) {
     load_free_[eq] = system.model().reference_load[dofs.dof(eq)];
-    is_moment_[eq] = dofs.dof(eq) % dofs_per_node == rz;
+    is_moment_[eq] = dofs.dof(eq) % dofs_per_node == rz ? 1 : 0;
+  }
+  const Model& model = system.model();
+  constrained_.resize(model.dof_count());
+  for (int dof = 0; dof < model.dof_count(); ++dof) {
+    constrained_[dof] = model.constrained[dof] ? 1 : 0;
+    if (constrained_[dof]) constrained_dofs_.push_back(dof);
   }
   solver_.analyze(system.dofs(), system.tangent());
 }
 
 void NewtonSolver::evaluate(State& state) {
   const Model& model = system_.model();
-  for (int dof = 0; dof < model.dof_count(); ++dof)
-    if (model.constrained[dof]) state.displacements[dof] = state.load_factor * model.reference_prescribed[dof];
+  for (int dof : constrained_dofs_) state.displacements[dof] = state.load_factor * model.reference_prescribed[dof];
   system_.evaluate(state.displacements, state.chord_rotations, true, eval_);
   state.chord_rotations = eval_.chord_rotations;
 }
@@ -53,23 +59,24 @@ Eigen::VectorXd NewtonSolver::unbalanced_force(double load_factor) const {
 Eigen::VectorXd NewtonSolver::reactions(double load_factor) const {
   const Model& model = system_.model();
   Eigen::VectorXd reactions = Eigen::VectorXd::Zero(model.dof_count());
-  for (int dof = 0; dof < model.dof_count(); ++dof)
-    if (model.constrained[dof])
-      reactions[dof] = eval_.internal_force[dof] - load_factor * model.reference_load[dof];
+  for (int dof : constrained_dofs_) reactions[dof] = eval_.internal_force[dof] - load_factor * model.reference_load[dof];
   return reactions;
 }
 
 ResidualScale NewtonSolver::scale(double load_factor) const {
   // Squared sums per kind: applied loads on free dofs, reactions, internal forces on all dofs.
   const Model& model = system_.model();
+  const double* F = eval_.internal_force.data();
+  const double* P = model.reference_load.data();
   double load[2] = {0, 0}, reaction[2] = {0, 0}, internal[2] = {0, 0};
-  for (int dof = 0; dof < model.dof_count(); ++dof) {
-    const int kind = dof % dofs_per_node == rz ? 1 : 0;
-    const double f = eval_.internal_force[dof];
-    internal[kind] += f * f;
-    const double p = load_factor * model.reference_load[dof];
-    if (model.constrained[dof]) reaction[kind] += (f - p) * (f - p);
-    else load[kind] += p * p;
+  for (int node = 0; node < model.node_count(); ++node) {
+    for (int d = 0; d < dofs_per_node; ++d) {
+      const int dof = dofs_per_node * node + d, kind = d == rz ? 1 : 0;
+      const double f = F[dof], p = load_factor * P[dof];
+      internal[kind] += f * f;
+      if (constrained_[dof]) reaction[kind] += (f - p) * (f - p);
+      else load[kind] += p * p;
+    }
   }
   ResidualScale s;
   s.force = std::sqrt(std::max({load[0], reaction[0], internal[0]}));
@@ -81,32 +88,34 @@ ResidualScale NewtonSolver::scale(double load_factor) const {
   return s;
 }
 
-double NewtonSolver::relative_norm(const Eigen::VectorXd& v, const ResidualScale& s) const {
+std::array<double, 2> NewtonSolver::kind_norms(const Eigen::VectorXd& v) const {
   double sum[2] = {0, 0};
-  for (int eq = 0; eq < v.size(); ++eq) sum[is_moment_[eq] ? 1 : 0] += v[eq] * v[eq];
-  const double force = std::sqrt(sum[0]), moment = std::sqrt(sum[1]);
+  for (Eigen::Index eq = 0; eq < v.size(); ++eq) sum[is_moment_[eq]] += v[eq] * v[eq];
+  return {std::sqrt(sum[0]), std::sqrt(sum[1])};
+}
+
+double NewtonSolver::relative_norm(const Eigen::VectorXd& v, const ResidualScale& s) const {
+  const auto [force, moment] = kind_norms(v);
   if (s.force == 0.0 && s.moment == 0.0) return force + moment == 0.0 ? 0.0 : INFINITY;
   return std::max(force / s.force, moment / s.moment);
 }
 
 bool NewtonSolver::at_round_off(const Eigen::VectorXd& correction, const State& state) const {
-  double displacement = 0, rotation = 0, step_displacement = 0, step_rotation = 0;
-  for (int dof = 0; dof < state.displacements.size(); ++dof) {
-    double& total = dof % dofs_per_node == rz ? rotation : displacement;
-    total = std::max(total, std::abs(state.displacements[dof]));
+  double largest[2] = {0, 0}, step[2] = {0, 0};
+  const double* D = state.displacements.data();
+  for (Eigen::Index node = 0; node < state.displacements.size() / dofs_per_node; ++node) {
+    largest[0] = std::max({largest[0], std::abs(D[3 * node]), std::abs(D[3 * node + 1])});
+    largest[1] = std::max(largest[1], std::abs(D[3 * node + 2]));
   }
-  for (int eq = 0; eq < correction.size(); ++eq) {
-    double& step = is_moment_[eq] ? step_rotation : step_displacement;
-    step = std::max(step, std::abs(correction[eq]));
-  }
-  return step_displacement <= round_off_ratio * std::max(system_.model().size, displacement) &&
-         step_rotation <= round_off_ratio * std::max(1.0, rotation);
+  for (Eigen::Index eq = 0; eq < correction.size(); ++eq)
+    step[is_moment_[eq]] = std::max(step[is_moment_[eq]], std::abs(correction[eq]));
+  return step[0] <= round_off_ratio * std::max(system_.model().size, largest[0]) &&
+         step[1] <= round_off_ratio * std::max(1.0, largest[1]);
 }
 
 bool NewtonSolver::within_floor(const Eigen::VectorXd& R) const {
-  double sum[2] = {0, 0};
-  for (int eq = 0; eq < R.size(); ++eq) sum[is_moment_[eq] ? 1 : 0] += R[eq] * R[eq];
-  return std::sqrt(sum[0]) <= floor_ratio * eval_.force_floor && std::sqrt(sum[1]) <= floor_ratio * eval_.moment_floor;
+  const auto [force, moment] = kind_norms(R);
+  return force <= floor_ratio * eval_.force_floor && moment <= floor_ratio * eval_.moment_floor;
 }
 
 NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state) {

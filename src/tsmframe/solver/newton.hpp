@@ -4,6 +4,7 @@
 // prescribed displacements in (D_free += −K_ff⁻¹ K_fp ΔD_p); later solves correct with the
 // exact (strict-compatibility) residual.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,7 @@ class NewtonSolver {
   Eigen::VectorXd unbalanced_force(double load_factor) const;  // over the free equations
   ResidualScale scale(double load_factor) const;
   double relative_norm(const Eigen::VectorXd& free_vector, const ResidualScale& scale) const;
+  std::array<double, 2> kind_norms(const Eigen::VectorXd& free_vector) const;  // 2-norms: forces, moments
   bool at_round_off(const Eigen::VectorXd& correction, const State& state) const;
   /// ‖R‖ per kind within a small multiple of the rounding floor of the internal forces.
   bool within_floor(const Eigen::VectorXd& residual) const;
@@ -73,7 +75,9 @@ class NewtonSolver {
   LinearSolver solver_;
   assembly::Evaluation eval_;
   Eigen::VectorXd load_free_;        ///< F_ref over the free equations
-  std::vector<bool> is_moment_;      ///< per free equation: a rotation dof
+  std::vector<unsigned char> is_moment_;    ///< per free equation: 1 for a rotation dof
+  std::vector<unsigned char> constrained_;  ///< per dof: fixed or prescribed
+  std::vector<int> constrained_dofs_;
 };
 
 }  // namespace tsm::solver

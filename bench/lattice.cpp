@@ -1,0 +1,88 @@
+// Lattice frame benchmark (issue 5): a rectangular grid of B × B bays (1 m), every member
+// divided into D Timoshenko elements (steel, 100 mm square), the bottom row clamped, each top
+// node pushed sideways and down by F in 10 load steps until the frame sways far. Prints the same
+// row as tsmframe_scaling. Usage: tsmframe_lattice [B=70] [D=10] [F=2e4].
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+#include "tsmframe/model/model.hpp"
+#include "tsmframe/solver/analysis.hpp"
+
+namespace {
+
+tsm::Model lattice(int bays, int divisions, double force) {
+  tsm::Model m;
+  const double E = 2.05e11, h = 0.1, A = h * h, I = h * h * h * h / 12.0, G = 7.9e10;
+  const tsm::element::SectionStiffness section{.EA = E * A, .EI = E * I, .shear_flexibility = E * I / (G * 5.0 / 6.0 * A)};
+  const int n = bays + 1;
+  auto joint = [n](int x, int y) { return y * n + x; };
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) m.nodes.push_back({joint(x, y) + 1, {double(x), double(y)}});
+  auto member = [&](int a, int b) {
+    int previous = a;
+    for (int d = 1; d <= divisions; ++d) {
+      int current = b;
+      if (d < divisions) {
+        const Eigen::Vector2d p = m.nodes[a].position + (m.nodes[b].position - m.nodes[a].position) * (double(d) / divisions);
+        m.nodes.push_back({static_cast<int>(m.nodes.size()) + 1, p});
+        current = static_cast<int>(m.nodes.size()) - 1;
+      }
+      tsm::Element e;
+      e.id = static_cast<int>(m.elements.size()) + 1;
+      e.start = previous;
+      e.end = current;
+      e.member = m.member_count;
+      e.theory = tsm::BeamTheory::timoshenko;
+      e.section = section;
+      m.elements.push_back(e);
+      previous = current;
+    }
+    ++m.member_count;
+  };
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x + 1 < n; ++x) member(joint(x, y), joint(x + 1, y));
+  for (int y = 0; y + 1 < n; ++y)
+    for (int x = 0; x < n; ++x) member(joint(x, y), joint(x, y + 1));
+  m.constrained.assign(m.dof_count(), false);
+  m.reference_load = Eigen::VectorXd::Zero(m.dof_count());
+  m.reference_prescribed = Eigen::VectorXd::Zero(m.dof_count());
+  for (int x = 0; x < n; ++x) {
+    for (int d = 0; d < 3; ++d) m.constrained[3 * joint(x, 0) + d] = true;
+    m.reference_load[3 * joint(x, bays)] = force;
+    m.reference_load[3 * joint(x, bays) + 1] = -force;
+  }
+  m.analysis.control.steps = 10;
+  m.analysis.output.kind = tsm::OutputSelection::Kind::last;
+  m.size = std::sqrt(2.0) * bays;
+  return m;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int bays = argc > 1 ? std::atoi(argv[1]) : 70;
+  const int divisions = argc > 2 ? std::atoi(argv[2]) : 10;
+  const double force = argc > 3 ? std::atof(argv[3]) : 2e4;
+  const auto t0 = std::chrono::steady_clock::now();
+  const tsm::Model model = lattice(bays, divisions, force);
+  const auto t1 = std::chrono::steady_clock::now();
+  const tsm::solver::RunResult result = tsm::solver::run_analysis(model);
+  const auto t2 = std::chrono::steady_clock::now();
+  int iterations = 0;
+  for (const auto& s : result.steps) iterations += s.iterations;
+  const double solve = std::chrono::duration<double>(t2 - t1).count();
+  const double total = std::chrono::duration<double>(t2 - t0).count();
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const int elements = static_cast<int>(model.elements.size());
+  const int top_corner = 3 * (bays * (bays + 1) + bays);
+  const auto& last = result.steps.back();
+  std::printf("%9d %5zu %6d %10.3f %9.1f %8.3f %8.1f  %s sway=%.4f drop=%.4f\n", elements, result.steps.size(), iterations,
+              1e3 * solve / iterations, 1e9 * solve / iterations / elements, total, usage.ru_maxrss / 1024.0,
+              tsm::solver::status_name(result.status), last.has_state ? last.displacements[top_corner] : 0.0,
+              last.has_state ? last.displacements[top_corner + 1] : 0.0);
+  return result.status == tsm::solver::Status::converged ? 0 : 1;
+}
