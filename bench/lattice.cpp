@@ -2,14 +2,10 @@
 // divided into D Timoshenko elements (steel, 100 mm square), the bottom row clamped, each top
 // node pushed sideways and down by F in 10 load steps until the frame sways far. Prints the same
 // row as tsmframe_scaling. Usage: tsmframe_lattice [B=70] [D=10] [F=2e4].
-#include <sys/resource.h>
-
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 
-#include "tsmframe/model/model.hpp"
-#include "tsmframe/solver/analysis.hpp"
+#include "measure.hpp"
 
 namespace {
 
@@ -66,23 +62,14 @@ int main(int argc, char** argv) {
   const int bays = argc > 1 ? std::atoi(argv[1]) : 70;
   const int divisions = argc > 2 ? std::atoi(argv[2]) : 10;
   const double force = argc > 3 ? std::atof(argv[3]) : 2e4;
-  const auto t0 = std::chrono::steady_clock::now();
-  const tsm::Model model = lattice(bays, divisions, force);
-  const auto t1 = std::chrono::steady_clock::now();
-  const tsm::solver::RunResult result = tsm::solver::run_analysis(model);
-  const auto t2 = std::chrono::steady_clock::now();
-  int iterations = 0;
-  for (const auto& s : result.steps) iterations += s.iterations;
-  const double solve = std::chrono::duration<double>(t2 - t1).count();
-  const double total = std::chrono::duration<double>(t2 - t0).count();
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  const int elements = static_cast<int>(model.elements.size());
-  const int top_corner = 3 * (bays * (bays + 1) + bays);
-  const auto& last = result.steps.back();
-  std::printf("%9d %5zu %6d %10.3f %9.1f %8.3f %8.1f  %s sway=%.4f drop=%.4f\n", elements, result.steps.size(), iterations,
-              1e3 * solve / iterations, 1e9 * solve / iterations / elements, total, usage.ru_maxrss / 1024.0,
-              tsm::solver::status_name(result.status), last.has_state ? last.displacements[top_corner] : 0.0,
-              last.has_state ? last.displacements[top_corner + 1] : 0.0);
-  return result.status == tsm::solver::Status::converged ? 0 : 1;
+  return tsm::bench::measure([&] { return lattice(bays, divisions, force); },
+                             [&](const tsm::Model&, const tsm::solver::RunResult& result) {
+                               const auto& last = result.steps.back();
+                               if (!last.has_state) return std::string("(no state)");
+                               const int corner = 3 * (bays * (bays + 1) + bays);
+                               char text[96];
+                               std::snprintf(text, sizeof text, "sway=%.4f drop=%.4f", last.displacements[corner],
+                                             last.displacements[corner + 1]);
+                               return std::string(text);
+                             });
 }

@@ -6,16 +6,12 @@
 // bench/run_scaling.sh does. (Why chains of 1,000 and not one chain of 10⁶ elements: see
 // bench/README.md — positions X + u carry ~ε|u| of noise, so a single chain of 10 µm elements
 // has an axial-force rounding floor far above its loads, in any double-precision code.)
-#include <sys/resource.h>
-
-#include <chrono>
 #include <cstdio>
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
 
-#include "tsmframe/model/model.hpp"
-#include "tsmframe/solver/analysis.hpp"
+#include "measure.hpp"
 
 namespace {
 
@@ -60,22 +56,13 @@ int main(int argc, char** argv) {
   const int per_chain = argc > 2 ? std::atoi(argv[2]) : 1000;
   const double turns = argc > 3 ? std::atof(argv[3]) : 0.25;  // 0.25: quarter circle
   const int steps = argc > 4 ? std::atoi(argv[4]) : 10;
-  const int elements = chains * per_chain;
-  const auto t0 = std::chrono::steady_clock::now();
-  const tsm::Model model = rolled_cantilevers(chains, per_chain, turns, steps);
-  const auto t1 = std::chrono::steady_clock::now();
-  const tsm::solver::RunResult result = tsm::solver::run_analysis(model);
-  const auto t2 = std::chrono::steady_clock::now();
-  int iterations = 0;
-  for (const auto& s : result.steps) iterations += s.iterations;
-  const double solve = std::chrono::duration<double>(t2 - t1).count();
-  const double total = std::chrono::duration<double>(t2 - t0).count();
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  const auto& tip = result.steps.back().displacements;
-  std::printf("%9d %5zu %6d %10.3f %9.1f %8.3f %8.1f  %s tip=(%.6f, %.6f, %.6f)\n", elements, result.steps.size(),
-              iterations, 1e3 * solve / iterations, 1e9 * solve / iterations / elements, total,
-              usage.ru_maxrss / 1024.0, tsm::solver::status_name(result.status), tip[3 * per_chain],
-              tip[3 * per_chain + 1], tip[3 * per_chain + 2]);
-  return result.status == tsm::solver::Status::converged ? 0 : 1;
+  return tsm::bench::measure([&] { return rolled_cantilevers(chains, per_chain, turns, steps); },
+                             [&](const tsm::Model&, const tsm::solver::RunResult& result) {
+                               const auto& tip = result.steps.back().displacements;
+                               if (tip.size() == 0) return std::string("(no state)");
+                               char text[96];
+                               std::snprintf(text, sizeof text, "tip=(%.6f, %.6f, %.6f)", tip[3 * per_chain],
+                                             tip[3 * per_chain + 1], tip[3 * per_chain + 2]);
+                               return std::string(text);
+                             });
 }
