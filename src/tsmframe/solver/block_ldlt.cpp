@@ -45,14 +45,19 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
       }
     }
   }
-  // Column counts of L: row k of L is the reach of column k.
-  flag_.assign(n, -1);
-  stack_.assign(n, 0);
-  std::vector<int> count(n, 0);
+  // Row k of L is the reach of column k: kept, in topological order, for every factorisation.
+  std::vector<int> flag(n, -1), stack(n, 0), count(n, 0);
+  row_start_.assign(1, 0);
+  row_pattern_.clear();
   for (int k = 0; k < n; ++k) {
-    const int top = reach(a, k, parent_, flag_, stack_);
-    for (int t = top; t < n; ++t) ++count[stack_[t]];
+    const int top = reach(a, k, parent_, flag, stack);
+    for (int t = top; t < n; ++t) {
+      ++count[stack[t]];
+      row_pattern_.push_back(stack[t]);
+    }
+    row_start_.push_back(static_cast<int>(row_pattern_.size()));
   }
+  row_pattern_.shrink_to_fit();
   l_column_.assign(n + 1, 0);
   for (int i = 0; i < n; ++i) l_column_[i + 1] = l_column_[i] + count[i];
   l_row_.assign(l_column_[n], 0);
@@ -64,18 +69,16 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
 
 bool BlockLDLT::factorize(const BlockMatrix& a) {
   const int n = size_;
-  std::fill(flag_.begin(), flag_.end(), -1);
   std::copy(l_column_.begin(), l_column_.end() - 1, fill_.begin());
   for (int k = 0; k < n; ++k) {
-    const int top = reach(a, k, parent_, flag_, stack_);
     // Scatter the upper column k of A into the workspace.
     Block diagonal = Block::Zero();
     for (int p = a.column[k]; p < a.column[k + 1]; ++p) {
       if (a.row[p] == k) diagonal = a.value[p];
       else work_[a.row[p]] = a.value[p];
     }
-    for (int t = top; t < n; ++t) {
-      const int i = stack_[t];
+    for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) {
+      const int i = row_pattern_[t];
       const Block y = work_[i];  // = D_i L(k, i)ᵀ once the earlier columns are subtracted
       work_[i].setZero();
       const Block lki = y.transpose() * d_inverse_[i];  // L(k, i) = yᵀ D_i⁻¹

@@ -44,8 +44,10 @@ class BlockLDLT {
   std::vector<int> l_row_;
   std::vector<Block> l_value_;
   std::vector<Block> d_inverse_;   ///< D_i⁻¹
+  std::vector<int> row_start_;     ///< row k of L: row_pattern_[row_start_[k] .. row_start_[k+1])
+  std::vector<int> row_pattern_;   ///< its columns, in a topological order of the elimination tree
   // Workspace for factorize (kept to avoid allocation per iteration).
-  std::vector<int> fill_, flag_, stack_;
+  std::vector<int> fill_;
   std::vector<Block> work_;
 };
 
