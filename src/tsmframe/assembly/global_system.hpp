@@ -48,9 +48,6 @@ class GlobalSystem {
   /// block's constrained dofs are zero with 1 on the diagonal (they carry no equation).
   const BlockMatrix& tangent() const { return tangent_; }
 
-  /// Number of element colour groups (for tests and benchmarks).
-  int colour_count() const { return static_cast<int>(colour_start_.size()) - 1; }
-
  private:
   void evaluate_element(int k, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                         bool with_tangent, Evaluation& out);

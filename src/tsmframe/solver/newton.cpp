@@ -94,8 +94,8 @@ std::array<double, 2> NewtonSolver::kind_norms(const Eigen::VectorXd& v) const {
   return {std::sqrt(sum[0]), std::sqrt(sum[1])};
 }
 
-double NewtonSolver::relative_norm(const Eigen::VectorXd& v, const ResidualScale& s) const {
-  const auto [force, moment] = kind_norms(v);
+double NewtonSolver::relative_norm(const std::array<double, 2>& norms, const ResidualScale& s) const {
+  const auto [force, moment] = norms;
   if (s.force == 0.0 && s.moment == 0.0) return force + moment == 0.0 ? 0.0 : INFINITY;
   return std::max(force / s.force, moment / s.moment);
 }
@@ -113,8 +113,8 @@ bool NewtonSolver::at_round_off(const Eigen::VectorXd& correction, const State& 
          step[1] <= round_off_ratio * std::max(1.0, largest[1]);
 }
 
-bool NewtonSolver::within_floor(const Eigen::VectorXd& R) const {
-  const auto [force, moment] = kind_norms(R);
+bool NewtonSolver::within_floor(const std::array<double, 2>& norms) const {
+  const auto [force, moment] = norms;
   return force <= floor_ratio * eval_.force_floor && moment <= floor_ratio * eval_.moment_floor;
 }
 
@@ -152,7 +152,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     }
     if (it == 1) {  // iterate 0: the out-of-balance force that drives the step
       start_scale = scale(state.load_factor + dlambda);
-      out.residual_norms.push_back(relative_norm(R + dlambda * load_direction, start_scale));
+      out.residual_norms.push_back(relative_norm(kind_norms(R + dlambda * load_direction), start_scale));
     }
     out.iterations = it;
     if (!correction.allFinite() || !std::isfinite(dlambda)) {
@@ -165,7 +165,8 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     evaluate(state);
 
     R = unbalanced_force(state.load_factor);
-    const double relative = relative_norm(R, scale(state.load_factor));
+    const std::array<double, 2> norms = kind_norms(R);
+    const double relative = relative_norm(norms, scale(state.load_factor));
     out.residual_norms.push_back(std::isfinite(relative) ? relative : INFINITY);
     if (!std::isfinite(relative) || !eval_.internal_force.allFinite()) {
       out.status = Status::diverged;
@@ -177,11 +178,11 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       return out;
     }
     const bool stagnating = relative >= stagnation * out.residual_norms[out.residual_norms.size() - 2];
-    if (at_round_off(correction, state) || (stagnating && within_floor(R))) {
+    if (at_round_off(correction, state) || (stagnating && within_floor(norms))) {
       out.criterion = "round-off";
       return out;
     }
-    const double blow_up = relative_norm(R, start_scale);
+    const double blow_up = relative_norm(norms, start_scale);
     double largest = 0.0;
     for (int dof = 0; dof < model.dof_count(); dof += dofs_per_node)
       largest = std::max({largest, std::abs(state.displacements[dof]), std::abs(state.displacements[dof + 1])});

@@ -64,11 +64,11 @@ class NewtonSolver {
   void evaluate(State& state);
   Eigen::VectorXd unbalanced_force(double load_factor) const;  // over the free equations
   ResidualScale scale(double load_factor) const;
-  double relative_norm(const Eigen::VectorXd& free_vector, const ResidualScale& scale) const;
   std::array<double, 2> kind_norms(const Eigen::VectorXd& free_vector) const;  // 2-norms: forces, moments
+  double relative_norm(const std::array<double, 2>& norms, const ResidualScale& scale) const;
   bool at_round_off(const Eigen::VectorXd& correction, const State& state) const;
   /// ‖R‖ per kind within a small multiple of the rounding floor of the internal forces.
-  bool within_floor(const Eigen::VectorXd& residual) const;
+  bool within_floor(const std::array<double, 2>& residual_norms) const;
 
   assembly::GlobalSystem& system_;
   NewtonSettings settings_;
