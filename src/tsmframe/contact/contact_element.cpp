@@ -1,0 +1,94 @@
+#include "tsmframe/contact/contact_element.hpp"
+
+namespace tsm::contact {
+namespace {
+
+using element::Vector6;
+
+/// Translational part of a 9-vector (rows u, v of nodes i, j, c) from three plane vectors.
+Vector9 spread(const Eigen::Vector2d& at_i, const Eigen::Vector2d& at_j, const Eigen::Vector2d& at_c) {
+  Vector9 v = Vector9::Zero();
+  v.segment<2>(0) = at_i;
+  v.segment<2>(3) = at_j;
+  v.segment<2>(6) = at_c;
+  return v;
+}
+
+}  // namespace
+
+ContactEquilibriumMatrix contact_equilibrium_matrix(const element::Chord& chord, double alpha) {
+  ContactEquilibriumMatrix J = ContactEquilibriumMatrix::Zero();
+  J.topLeftCorner<6, 3>() = element::equilibrium_matrix(chord);
+  const Eigen::Vector2d n(-chord.sin, chord.cos);
+  J.col(3) = spread(-(1.0 - alpha) * n, -alpha * n, n);
+  return J;
+}
+
+ContactResponse contact_response(const ContactElementData& data, const Vector9& d, double previous_rotation,
+                                 bool with_tangent) {
+  ContactResponse r;
+  const Vector6 beam = d.head<6>();
+  r.chord = element::current_chord(data.initial, beam, previous_rotation);
+  const double l = r.chord.length, l0 = data.initial.length;
+  const Eigen::Vector2d e(r.chord.cos, r.chord.sin), n(-r.chord.sin, r.chord.cos);
+  // r = x_c − x_i formed as (X_c − X_i) + (u_c − u_i): no large coordinates cancel.
+  const Eigen::Vector2d rel = (data.contact_start - data.initial.start) + Eigen::Vector2d(d[6] - d[0], d[7] - d[1]);
+  r.alpha = rel.dot(e) / l;
+  r.normal = rel.dot(n);
+  const double theta_i = d[2] - r.chord.rotation, theta_j = d[5] - r.chord.rotation;
+  r.deformations << r.chord.elongation, theta_i, theta_j, r.normal - data.offset;
+
+  const PointLoadLaw law = point_load_law(data.section, l0, r.alpha, data.edge);  // Eq. 6–9, split
+  const Eigen::Vector2d h(law.h_i, law.h_j), theta(theta_i, theta_j);
+  const Eigen::Matrix2d k_plain = data.k0.bottomRightCorner<2, 2>();
+  const double Y = (r.deformations[3] + h.dot(theta)) / law.compliance;
+  const Eigen::Vector2d moments = k_plain * theta + h * Y;
+  r.forces << data.k0(0, 0) * r.chord.elongation, moments, Y;
+
+  const ContactEquilibriumMatrix J = contact_equilibrium_matrix(r.chord, r.alpha);
+  r.nodal_forces = J * r.forces;
+  if (!with_tangent) return r;
+
+  // ∂S/∂d: the plain element's k0 plus the point load's rank-one part (h, 1)(h, 1)ᵀ / c.
+  Eigen::Matrix4d D = Eigen::Matrix4d::Zero();
+  D(0, 0) = data.k0(0, 0);
+  Eigen::Vector4d point(0.0, law.h_i, law.h_j, 1.0);
+  D += point * point.transpose() / law.compliance;
+  D.block<2, 2>(1, 1) += k_plain;
+  r.tangent = J * D * J.transpose();
+
+  // K_G: N ∂²l + (M_i + M_j) ∂²(−β) on i, j, and Y ∂²δy_c on the translations of i, j, c.
+  r.tangent.topLeftCorner<6, 6>() += element::geometric_stiffness(r.chord, r.forces.head<3>());
+  const double rho = r.normal;
+  const Vector9 a1 = spread(-n, n, Eigen::Vector2d::Zero());  // n · dΔ
+  const Vector9 a2 = spread(-e, Eigen::Vector2d::Zero(), e);  // e · dr
+  const Vector9 a3 = spread(-e, e, Eigen::Vector2d::Zero());  // e · dΔ
+  const Matrix9 hessian = (-(a1 * a2.transpose() + a2 * a1.transpose()) - (rho / l) * a1 * a1.transpose() +
+                           r.alpha * (a1 * a3.transpose() + a3 * a1.transpose())) / l;
+  r.tangent += Y * hessian;
+
+  if (data.sliding_term) {
+    // a, b follow the geometry: J (∂S/∂α)(∂α/∂x)ᵀ (FORMULATION §2).
+    const double dY = (law.dh_i * theta_i + law.dh_j * theta_j) / law.compliance - Y * law.dcompliance / law.compliance;
+    const Vector4 dS(0.0, law.dh_i * Y + law.h_i * dY, law.dh_j * Y + law.h_j * dY, dY);
+    const Vector9 dalpha = spread(((r.alpha - 1.0) / l) * e - (rho / (l * l)) * n,
+                                  (rho / (l * l)) * n - (r.alpha / l) * e, e / l);
+    r.tangent += (J * dS) * dalpha.transpose();
+  }
+  return r;
+}
+
+NodeOnElement node_on_element(const element::InitialChord& initial, const element::SectionStiffness& section,
+                              const element::Vector6& d, double chord_rotation, const Eigen::Vector2d& node_position) {
+  const element::Chord chord = element::current_chord(initial, d, chord_rotation);
+  const Eigen::Vector2d e(chord.cos, chord.sin), n(-chord.sin, chord.cos);
+  const Eigen::Vector2d rel = node_position - (initial.start + d.head<2>());
+  NodeOnElement out;
+  out.alpha = rel.dot(e) / chord.length;
+  const PointLoadLaw law = point_load_law(section, initial.length, out.alpha, 0.25);
+  const double w = -(law.h_i * (d[2] - chord.rotation) + law.h_j * (d[5] - chord.rotation));
+  out.gap = rel.dot(n) - w;
+  return out;
+}
+
+}  // namespace tsm::contact

@@ -1,0 +1,61 @@
+#pragma once
+// The three-node contact element (FORMULATION §2): beam element i–j with contact node c.
+// Strict compatibility from current coordinates, like the two-node element:
+//     α = (r·e)/l,  δy_c = r·n − offset,  r = x_c − x_i,
+// forces S = (N, M_i, M_j, Y) from contact_force_law at the current α, nodal forces J S
+// (9×4 equilibrium matrix; the force on c is Y n) and the consistent tangent
+//     K = J (∂S/∂d) Jᵀ + K_G + J (∂S/∂α)(∂α/∂x)ᵀ,
+// the last (sliding) term non-symmetric; it can be left out (a quasi-Newton tangent).
+
+#include <Eigen/Core>
+
+#include "tsmframe/contact/contact_force_law.hpp"
+#include "tsmframe/element/chord.hpp"
+
+namespace tsm::contact {
+
+using Vector4 = Eigen::Matrix<double, 4, 1>;
+using Vector9 = Eigen::Matrix<double, 9, 1>;
+using Matrix9 = Eigen::Matrix<double, 9, 9>;
+using ContactEquilibriumMatrix = Eigen::Matrix<double, 9, 4>;  // rows i, j, c × (u, v, θ)
+
+/// What does not change while a contact sits on one element.
+struct ContactElementData {
+  element::InitialChord initial;      ///< the beam element's chord as drawn
+  element::SectionStiffness section;  ///< EA, EI and Ψ (Ψ = 0: Euler–Bernoulli, Eq. 6)
+  element::Matrix3 k0;                ///< the plain element's k0 (Eq. 3 / 4) with this section
+  Eigen::Vector2d contact_start;      ///< X_c, the contact node as drawn
+  double offset = 0.0;                ///< δy_c at which Y = 0 on a straight beam (side · gap)
+  double edge = 1e-2;                 ///< compliance clamp, see point_load_law
+  bool sliding_term = true;           ///< include J (∂S/∂α)(∂α/∂x)ᵀ in the tangent
+};
+
+struct ContactResponse {
+  element::Chord chord;
+  double alpha = 0.0;     ///< α = l_ic / l on the current chord (may leave [0, 1]: hand over)
+  double normal = 0.0;    ///< r·n, the contact node's distance from the chord
+  Vector4 deformations;   ///< (δl, θ_i, θ_j, δy_c)
+  Vector4 forces;         ///< S = (N, M_i, M_j, Y)
+  Vector9 nodal_forces;   ///< J S
+  Matrix9 tangent;        ///< ∂(J S)/∂D (when asked for)
+};
+
+/// d = (u_i, v_i, Θ_i, u_j, v_j, Θ_j, u_c, v_c, Θ_c); Θ_c plays no part.
+ContactResponse contact_response(const ContactElementData& data, const Vector9& d, double previous_rotation,
+                                 bool with_tangent = true);
+
+/// J (9×4): columns N, M_i, M_j as for the two-node element, Y: i −(1−α) n, j −α n, c +n.
+ContactEquilibriumMatrix contact_equilibrium_matrix(const element::Chord& chord, double alpha);
+
+/// Where a node sits relative to a beam element that carries no contact, from the element's
+/// own state: α along the chord and the signed distance from the element's deflected centre
+/// line there, gap = r·n − w(α) (w: the deflection at which a contact force would be zero).
+struct NodeOnElement {
+  double alpha = 0.0;
+  double gap = 0.0;
+};
+NodeOnElement node_on_element(const element::InitialChord& initial, const element::SectionStiffness& section,
+                              const element::Vector6& element_displacements, double chord_rotation,
+                              const Eigen::Vector2d& node_position);
+
+}  // namespace tsm::contact

@@ -1,0 +1,37 @@
+#pragma once
+// Force equation of the three-node contact element (paper Eq. 6–9, corrected in FORMULATION §2):
+// a simply supported beam in its chord frame with end moments and a transverse point force Y at
+// a = α l0 from node i. Pure and local, like element/force_law.
+//
+// The solver uses the law split as "the plain element plus a point load":
+//     Y = (δy_c + h_i θ_i + h_j θ_j) / c,     (M_i, M_j) = k_plain (θ_i, θ_j) + (h_i, h_j) Y,
+// with h = k_θY / k_YY (the fixed-end moments of a unit point load, up to sign) and c = 1/k_YY
+// (the point's compliance with both ends held). It is the same matrix as Eq. 6/7 — an exact
+// rearrangement, unit-tested against it — but it shows where the ill-conditioning near an
+// element end lives: only in c, which vanishes like b³ (Euler–Bernoulli) or b (Timoshenko).
+// h and the beam's free shape −h·θ are smooth and vanish at both ends.
+
+#include "tsmframe/element/force_law.hpp"
+
+namespace tsm::contact {
+
+/// The bending block (θ_i, θ_j, δy_c) → (M_i, M_j, Y) of Eq. 6 (Ψ = 0) or Eq. 7, as written in
+/// FORMULATION §2 — the reference form; needs 0 < α < 1.
+element::Matrix3 contact_bending_stiffness(const element::SectionStiffness& section, double l0, double alpha);
+
+/// The point-load split of the law at contact position α, with α-derivatives.
+struct PointLoadLaw {
+  double h_i = 0.0, h_j = 0.0;  ///< M_i, M_j per unit Y with the end rotations held
+  double compliance = 0.0;      ///< c = 1 / k_YY
+  double dh_i = 0.0, dh_j = 0.0, dcompliance = 0.0;  ///< d/dα of the above (0 where clamped)
+};
+
+/// The law at α. h uses α clamped to [0, 1]; the compliance uses α clamped to
+/// [edge, 1 − edge], so it never vanishes: within edge·l0 of a beam node the point is given the
+/// compliance it has at edge·l0 (FORMULATION §3's explicit rule for the contact at a node).
+PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0, double alpha, double edge);
+
+/// Default edge zone per beam theory (README "Contact through element ends").
+double default_edge(bool timoshenko);
+
+}  // namespace tsm::contact
