@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace tsm::assembly {
 namespace {
@@ -93,12 +94,14 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
   for (int k = 0; k < n_elements; ++k) colour_order_[fill[colour[k]]++] = k;
 
   floor_squares_.resize(2 * static_cast<size_t>(n_elements));
+  replaced_.assign(n_elements, 0);
   has_prescribed_ = model.reference_prescribed.size() > 0 && model.reference_prescribed.any();
 }
 
 void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
                                     const std::vector<double>& previous_rotations, bool with_tangent,
                                     Evaluation& out) {
+  if (replaced_[k]) return;  // a contact element stands in for it
   const Element& e = model_.elements[k];
   const auto g = element_dofs(e);
   element::Vector6 d;
@@ -129,8 +132,53 @@ void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
   }
 }
 
+void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen::VectorXd& displacements,
+                                    const std::vector<double>& previous_rotations, bool with_tangent, Evaluation& out) {
+  const Element& e = model_.elements[a.element];
+  std::array<int, 9> g;
+  for (int d = 0; d < dofs_per_node; ++d) {
+    g[d] = dofs_per_node * e.start + d;
+    g[3 + d] = dofs_per_node * e.end + d;
+    g[6 + d] = dofs_per_node * a.node + d;
+  }
+  contact::Vector9 d;
+  for (int k = 0; k < 9; ++k) d[k] = displacements[g[k]];
+  const contact::ContactResponse r = contact::contact_response(a.data, d, previous_rotations[a.element], with_tangent);
+  out.element_forces.segment<3>(3 * a.element) = r.forces.head<3>();
+  out.chord_rotations[a.element] = r.chord.rotation;
+  out.contacts.push_back({r.alpha, r.forces[3]});
+  for (int k = 0; k < 9; ++k) out.internal_force[g[k]] += r.nodal_forces[k];
+  // Rounding floor: the beam part as for the plain element, plus Y's, which is the error of
+  // δy_c − w (about ε times the coordinates involved) divided by the compliance.
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const element::BeamResponse plain = element::beam_response(a.data.initial, a.data.k0, d.head<6>(), previous_rotations[a.element], false);
+  const element::RoundOffFloor floor = element::round_off_floor(a.data.initial, a.data.k0, d.head<6>(), plain);
+  const contact::PointLoadLaw law = contact::point_load_law(a.data.section, a.data.initial.length, r.alpha, a.data.edge);
+  const double coordinates = d.head<2>().cwiseAbs().sum() + d.segment<2>(3).cwiseAbs().sum() + d.segment<2>(6).cwiseAbs().sum() +
+                             (a.data.contact_start - a.data.initial.start).norm() + a.data.initial.length;
+  const double y_floor = eps * coordinates / law.compliance + eps * std::abs(r.forces[3]);
+  const double m_floor = floor.moment + std::max(std::abs(law.h_i), std::abs(law.h_j)) * y_floor;
+  floor_squares_[2 * a.element] = 4.0 * floor.force * floor.force + 6.0 * y_floor * y_floor;
+  floor_squares_[2 * a.element + 1] = 2.0 * m_floor * m_floor;
+  if (!with_tangent) return;
+  solver::DenseTerm term;
+  for (int k = 0; k < 9; ++k) term.equation[k] = dofs_.equation(g[k]);
+  term.value = r.tangent;
+  contact_tangents_.push_back(term);
+  if (!has_prescribed_) return;
+  for (int b = 0; b < 9; ++b) {
+    const double dp = model_.reference_prescribed[g[b]];
+    if (dp == 0.0 || term.equation[b] >= 0) continue;
+    for (int k = 0; k < 9; ++k)
+      if (term.equation[k] >= 0) out.prescribed_coupling[term.equation[k]] += r.tangent(k, b) * dp;
+  }
+}
+
 void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
-                            bool with_tangent, Evaluation& out) {
+                            bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts) {
+  for (const contact::ActiveContact& a : contacts) replaced_[a.element] = 1;
+  out.contacts.clear();
+  if (with_tangent) contact_tangents_.clear();
   const int n_elements = static_cast<int>(model_.elements.size());
   out.internal_force.setZero(model_.dof_count());
   out.element_forces.resize(3 * n_elements);
@@ -146,6 +194,10 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
 #pragma omp parallel for schedule(static) if (!serial)
     for (int idx = begin; idx < end; ++idx)
       evaluate_element(colour_order_[idx], displacements, previous_rotations, with_tangent, out);
+  }
+  for (const contact::ActiveContact& a : contacts) {
+    evaluate_contact(a, displacements, previous_rotations, with_tangent, out);
+    replaced_[a.element] = 0;
   }
   if (with_tangent) mask_constrained_dofs();
   double force_floor = 0.0, moment_floor = 0.0;

@@ -10,9 +10,11 @@
 #include <vector>
 
 #include "tsmframe/assembly/dof_map.hpp"
+#include "tsmframe/contact/contact_tracker.hpp"
 #include "tsmframe/element/beam_element.hpp"
 #include "tsmframe/model/model.hpp"
 #include "tsmframe/solver/block_ldlt.hpp"
+#include "tsmframe/solver/linear_solver.hpp"
 
 namespace tsm::assembly {
 
@@ -30,6 +32,8 @@ struct Evaluation {
   /// element errors taken as independent): the floor under any residual at this state.
   double force_floor = 0.0;
   double moment_floor = 0.0;
+  /// One entry per active contact, in the order they were given.
+  std::vector<contact::ContactEvaluation> contacts;
 };
 
 class GlobalSystem {
@@ -41,17 +45,22 @@ class GlobalSystem {
 
   /// Evaluates every element at `displacements` (all dofs), continuing each chord rotation from
   /// `previous_rotations`. With `with_tangent`, the tangent (see tangent()) is overwritten.
+  /// Each active contact replaces its beam element by the three-node contact element.
   void evaluate(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
-                bool with_tangent, Evaluation& out);
+                bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts = {});
 
   /// K_ff from the last evaluation with tangent, as node blocks; the rows and columns of a
   /// block's constrained dofs are zero with 1 on the diagonal (they carry no equation).
   const BlockMatrix& tangent() const { return tangent_; }
+  /// The contact elements' tangents from the same evaluation (not in tangent(); non-symmetric).
+  const std::vector<solver::DenseTerm>& contact_tangents() const { return contact_tangents_; }
 
  private:
   void evaluate_element(int k, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                         bool with_tangent, Evaluation& out);
   void mask_constrained_dofs();
+  void evaluate_contact(const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
+                        const std::vector<double>& previous_rotations, bool with_tangent, Evaluation& out);
 
   const Model& model_;
   const DofMap& dofs_;
@@ -70,6 +79,8 @@ class GlobalSystem {
   std::vector<int> colour_start_;          ///< group c: colour_order_[colour_start_[c] .. colour_start_[c+1])
   std::vector<double> floor_squares_;      ///< per element: force², moment² of its rounding floor
   bool has_prescribed_ = false;
+  std::vector<char> replaced_;             ///< per element: carries a contact in this evaluation
+  std::vector<solver::DenseTerm> contact_tangents_;
 };
 
 }  // namespace tsm::assembly

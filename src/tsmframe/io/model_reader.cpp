@@ -461,7 +461,7 @@ class Reader {
       const std::string path = child("contacts", k);
       const json& c = contacts[k];
       expect_object(c, path);
-      check_keys(c, path, {"node", "members", "element", "frame", "gap"});
+      check_keys(c, path, {"node", "members", "element", "frame", "gap", "edge", "sliding_tangent"});
       ContactSpec spec;
       spec.node = required_node(c, path);
       if (!c.contains("members")) fail(child(path, "members"), "missing (required)");
@@ -486,20 +486,36 @@ class Reader {
       if (spec.members.empty()) fail(mpath, "no member to touch");
       if (c.contains("element")) {
         spec.element = string(c["element"], child(path, "element"));
-        if (spec.element != "euler-bernoulli" && spec.element != "timoshenko") fail(child(path, "element"), "unknown element " + quote_text(spec.element));
+        if (spec.element != "euler-bernoulli" && spec.element != "timoshenko") fail(child(path, "element"), "unknown element " + quote_text(spec.element) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
+        if (spec.element == "timoshenko") {
+          spec.member_shear_flexibility.assign(model_.member_count, 0.0);
+          for (int m : spec.members) {
+            try {
+              spec.member_shear_flexibility[m] = section_stiffness(doc_["members"][m], child("members", m), BeamTheory::timoshenko).shear_flexibility;
+            } catch (const InputError& e) {
+              fail(child(path, "element"), "a Timoshenko contact on member " + std::to_string(m) + " needs its shear data: " + e.reason());
+            }
+          }
+        }
       }
       if (c.contains("frame")) {
         spec.frame = string(c["frame"], child(path, "frame"));
         if (spec.frame != "chord" && spec.frame != "cantilever") fail(child(path, "frame"), "unknown frame " + quote_text(spec.frame) + " (expected \"chord\" or \"cantilever\")");
+        if (spec.frame == "cantilever") fail(child(path, "frame"), "the \"cantilever\" contact frame is not available in this version of tsmframe yet (see CHANGELOG.md); use \"chord\"");
       }
+      if (auto edge = optional_number(c, "edge", path)) {
+        if (!(*edge >= 1e-12 && *edge <= 0.25)) fail(child(path, "edge"), "must lie between 1e-12 and 0.25 (a fraction of the element length)");
+        spec.edge = *edge;
+      }
+      if (c.contains("sliding_tangent")) spec.sliding_tangent = boolean(c["sliding_tangent"], child(path, "sliding_tangent"));
       if (auto gap = optional_number(c, "gap", path)) {
         if (*gap < 0.0) fail(child(path, "gap"), "must not be negative");
         spec.gap = *gap;
       }
+      for (const ContactSpec& other : model_.contacts)
+        if (other.node == spec.node) fail(child(path, "node"), "this node already has a contact entry: list all its members in one entry");
       model_.contacts.push_back(spec);
     }
-    if (!model_.contacts.empty())
-      fail("contacts", "contact analysis is not available in this version of tsmframe yet (see CHANGELOG.md)");
   }
 
   void read_analysis() {

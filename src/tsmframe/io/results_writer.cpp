@@ -36,16 +36,35 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
   if (step.has_state) {
     w.key("displacements");
     write_triples(w, model, step.displacements, nullptr);
+    // A contact element adds Y to its element's (N, M_i, M_j).
+    std::vector<const solver::ContactPoint*> contact_on(model.elements.size(), nullptr);
+    for (const solver::ContactPoint& c : step.contacts)
+      if (c.element >= 0) contact_on[c.element] = &c;
     w.key("element_forces").begin_object();
     for (size_t e = 0; e < model.elements.size(); ++e) {
       w.newline().key(std::to_string(model.elements[e].id)).begin_array();
       for (int f = 0; f < 3; ++f) w.value(step.element_forces[3 * e + f]);
+      if (contact_on[e]) w.value(contact_on[e]->Y);
       w.end_array();
     }
     w.end_object();
     w.key("reactions");
     write_triples(w, model, step.reactions, &supported);
-    w.key("contacts").begin_array().end_array();
+  }
+  if (step.converged) {
+    // Every active contact, on every converged step (also those without full state).
+    w.key("contacts").begin_array();
+    for (size_t k = 0; k < step.contacts.size(); ++k) {
+      const solver::ContactPoint& c = step.contacts[k];
+      if (c.element < 0) continue;
+      w.newline().begin_object();
+      w.key("node").value(model.nodes[model.contacts[k].node].id);
+      w.key("element").value(model.elements[c.element].id);
+      w.key("xi").value(c.alpha);
+      w.key("force").value(c.force);
+      w.end_object();
+    }
+    w.end_array();
   }
   w.end_object();
 }
@@ -97,11 +116,22 @@ void write_steps_csv(std::ostream& out, const Model& model, const solver::RunRes
     const std::string id = std::to_string(model.nodes[node].id);
     out << ",ux_" << id << ",uy_" << id << ",rz_" << id;
   }
+  for (const ContactSpec& c : model.contacts) {
+    const std::string id = std::to_string(model.nodes[c.node].id);
+    out << ",contact_element_" << id << ",contact_xi_" << id << ",contact_force_" << id;
+  }
   out << '\n';
   for (const solver::StepRecord& step : result.steps) {
     if (!step.converged) continue;
     out << step.step << ',' << format_number(step.load_factor) << ',' << step.iterations;
     for (Eigen::Index k = 0; k < step.monitored.size(); ++k) out << ',' << format_number(step.monitored[k]);
+    // Not in contact: element and xi left empty, force 0.
+    for (const solver::ContactPoint& c : step.contacts) {
+      if (c.element >= 0)
+        out << ',' << model.elements[c.element].id << ',' << format_number(c.alpha) << ',' << format_number(c.force);
+      else
+        out << ",,,0";
+    }
     out << '\n';
   }
 }

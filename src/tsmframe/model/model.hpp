@@ -38,7 +38,11 @@ struct ContactSpec {
   std::vector<int> members;     ///< member indices the node may touch
   std::string element;          ///< "" (follow the touched element), "euler-bernoulli", "timoshenko"
   std::string frame = "chord";  ///< "chord" or "cantilever"
-  double gap = 0.0;
+  double gap = 0.0;             ///< distance from the centre line at which contact starts
+  double edge = -1.0;           ///< compliance clamp zone (contact_force_law); < 0: default per theory
+  bool sliding_tangent = true;  ///< consistent tangent (false: leave the sliding term out)
+  /// Per member: Ψ for a "timoshenko" override (members drawn as Euler–Bernoulli included).
+  std::vector<double> member_shear_flexibility;
 };
 
 enum class ControlType { load, displacement, arc_length };

@@ -35,10 +35,11 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   const Control& control = settings.control;
   assembly::DofMap dofs(model);
   assembly::GlobalSystem system(model, dofs);
-  NewtonSolver newton(system, {settings.tolerance, settings.max_iterations});
+  const contact::ContactTracker contacts(model);
+  NewtonSolver newton(system, {settings.tolerance, settings.max_iterations}, &contacts);
 
   State state{Eigen::VectorXd::Zero(model.dof_count()), 0.0,
-              std::vector<double>(model.elements.size(), 0.0)};
+              std::vector<double>(model.elements.size(), 0.0), contacts.initial_states()};
   newton.reset(state);
 
   const bool by_displacement = control.type == ControlType::displacement;
@@ -73,6 +74,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     record.residual_norms = outcome.residual_norms;
     record.cutbacks = halvings;
     record.increment = by_displacement ? dt * control.target : dt;
+    record.contact_iterates = outcome.contact_iterates;
 
     if (outcome.status == Status::converged) {
       t = t_end;
@@ -89,6 +91,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
       record.displacements = state.displacements;
       record.element_forces = newton.element_forces();
       record.reactions = newton.reactions(state.load_factor);
+      record.contacts = newton.contact_points(state);
       // Only the newest step keeps its state unless the output selection wants it.
       if (last_with_state >= 0 && !keeps_state(settings.output, result.steps[last_with_state].step)) {
         StepRecord& previous = result.steps[last_with_state];
@@ -102,7 +105,10 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     }
 
     state = saved;
-    if (settings.cutback && halvings < settings.max_cutbacks) {
+    // The smallest increment cutback may try: max_cutbacks halvings of the nominal step. Without
+    // it, steps that keep converging ever closer to a barrier would never end.
+    const double smallest = std::ldexp(nominal, -settings.max_cutbacks);
+    if (settings.cutback && halvings < settings.max_cutbacks && dt / 2.0 >= smallest * (1.0 - 1e-12)) {
       ++halvings;
       increment = dt / 2.0;
       newton.reset(state);

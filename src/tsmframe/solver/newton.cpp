@@ -21,8 +21,9 @@ std::string iterate_text(const char* what, int iteration) {
 
 }  // namespace
 
-NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings& settings)
-    : system_(system), settings_(settings) {
+NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings& settings,
+                           const contact::ContactTracker* contacts)
+    : system_(system), settings_(settings), contacts_(contacts && contacts->contact_count() > 0 ? contacts : nullptr) {
   const assembly::DofMap& dofs = system.dofs();
   load_free_.resize(dofs.free_count());
   is_moment_.resize(dofs.free_count());
@@ -39,14 +40,56 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
   solver_.analyze(system.dofs(), system.tangent());
 }
 
-void NewtonSolver::evaluate(State& state) {
+bool NewtonSolver::evaluate(State& state) {
   const Model& model = system_.model();
   for (int dof : constrained_dofs_) state.displacements[dof] = state.load_factor * model.reference_prescribed[dof];
-  system_.evaluate(state.displacements, state.chord_rotations, true, eval_);
-  state.chord_rotations = eval_.chord_rotations;
+  constexpr int max_passes = 4;  // contact changes settled per iterate before Newton goes on
+  bool changed = false;
+  for (int pass = 0;; ++pass) {
+    const std::vector<contact::ActiveContact> active =
+        contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
+    system_.evaluate(state.displacements, state.chord_rotations, true, eval_, active);
+    state.chord_rotations = eval_.chord_rotations;
+    if (!contacts_) return false;
+    if (pass == max_passes) break;
+    const contact::ContactChanges changes =
+        contacts_->update(state.displacements, state.chord_rotations, eval_.contacts, state.contacts, false);
+    if (!changes.any()) break;
+    changed = true;
+    switches_ += changes.activated + changes.released;
+  }
+  // α and force of the evaluation that stands (update() has set them unless the passes ran out).
+  size_t next = 0;
+  for (contact::ContactState& c : state.contacts) {
+    if (!c.active || next >= eval_.contacts.size()) continue;
+    c.alpha = eval_.contacts[next].alpha;
+    c.Y = eval_.contacts[next++].Y;
+    c.force = -c.side * c.Y;
+  }
+  return changed;
+}
+
+bool NewtonSolver::release_pulling_contacts(State& state) {
+  if (!contacts_) return false;
+  const contact::ContactChanges changes =
+      contacts_->update(state.displacements, state.chord_rotations, eval_.contacts, state.contacts, true);
+  if (!changes.any()) return false;
+  switches_ += changes.activated + changes.released;
+  evaluate(state);
+  return true;
 }
 
 void NewtonSolver::reset(State& state) { evaluate(state); }
+
+std::vector<ContactPoint> NewtonSolver::contact_points(const State& state) const {
+  std::vector<ContactPoint> points;
+  for (const contact::ContactState& c : state.contacts) {
+    ContactPoint p;
+    if (c.active) p = {c.element, c.alpha, c.force, c.Y};
+    points.push_back(p);
+  }
+  return points;
+}
 
 Eigen::VectorXd NewtonSolver::unbalanced_force(double load_factor) const {
   const assembly::DofMap& dofs = system_.dofs();
@@ -125,9 +168,12 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
   NewtonOutcome out;
   Eigen::VectorXd R = unbalanced_force(state.load_factor);
   ResidualScale start_scale;
+  switches_ = 0;
+  const int max_switches = 4 + 4 * static_cast<int>(state.contacts.size());
+  if (contacts_) out.contact_iterates.push_back(contact_points(state));
 
   for (int it = 1; it <= settings_.max_iterations; ++it) {
-    if (!solver_.factorize(system_.tangent())) {
+    if (!solver_.factorize(system_.tangent(), system_.contact_tangents())) {
       out.status = Status::singular;
       out.message = iterate_text("the tangent stiffness is singular (a limit or bifurcation point)", it);
       return out;
@@ -162,7 +208,13 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     }
     for (int eq = 0; eq < dofs.free_count(); ++eq) state.displacements[dofs.dof(eq)] += correction[eq];
     state.load_factor += dlambda;
-    evaluate(state);
+    const bool contacts_changed = evaluate(state);
+    if (contacts_) out.contact_iterates.push_back(contact_points(state));
+    if (switches_ > max_switches) {
+      out.status = Status::contact_chatter;
+      out.message = iterate_text("contacts keep switching on and off", it);
+      return out;
+    }
 
     R = unbalanced_force(state.load_factor);
     const std::array<double, 2> norms = kind_norms(R);
@@ -173,14 +225,30 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       out.message = iterate_text("the unbalanced force is not finite", it);
       return out;
     }
-    if (relative <= settings_.tolerance) {
-      out.criterion = "force";
+    const bool stagnating = relative >= stagnation * out.residual_norms[out.residual_norms.size() - 2];
+    const char* criterion = relative <= settings_.tolerance ? "force"
+                            : !contacts_changed && (at_round_off(correction, state) || (stagnating && within_floor(norms)))
+                                ? "round-off"
+                                : nullptr;
+    if (criterion) {
+      if (release_pulling_contacts(state)) {  // converged with a contact pulling: iterate on without it
+        R = unbalanced_force(state.load_factor);
+        out.contact_iterates.back() = contact_points(state);
+        if (switches_ > max_switches) {
+          out.status = Status::contact_chatter;
+          out.message = iterate_text("contacts keep switching on and off", it);
+          return out;
+        }
+        continue;
+      }
+      out.criterion = criterion;
+      if (contacts_) contacts_->accept(state.displacements, state.chord_rotations, state.contacts);
       return out;
     }
-    const bool stagnating = relative >= stagnation * out.residual_norms[out.residual_norms.size() - 2];
-    if (at_round_off(correction, state) || (stagnating && within_floor(norms))) {
-      out.criterion = "round-off";
-      return out;
+    if (contacts_changed) {  // a new contact brings its own force level into the step
+      const ResidualScale now = scale(state.load_factor);
+      start_scale.force = std::max(start_scale.force, now.force);
+      start_scale.moment = std::max(start_scale.moment, now.moment);
     }
     const double blow_up = relative_norm(norms, start_scale);
     double largest = 0.0;

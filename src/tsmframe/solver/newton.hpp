@@ -12,6 +12,7 @@
 #include "tsmframe/solver/linear_solver.hpp"
 #include "tsmframe/solver/state.hpp"
 #include "tsmframe/solver/status.hpp"
+#include "tsmframe/solver/step_record.hpp"
 
 namespace tsm::solver {
 
@@ -37,6 +38,7 @@ struct NewtonOutcome {
   int iterations = 0;
   std::vector<double> residual_norms;  ///< relative, iterate 0 first
   std::string criterion;               ///< "force" or "round-off"
+  std::vector<std::vector<ContactPoint>> contact_iterates;  ///< per iterate, iterate 0 first
 };
 
 /// Force and moment scales of the convergence test (unit-consistent: each kind on its own).
@@ -47,7 +49,9 @@ struct ResidualScale {
 
 class NewtonSolver {
  public:
-  NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings& settings);
+  /// `contacts` (may be null: no contacts) runs the contact life cycle after every evaluation.
+  NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings& settings,
+               const contact::ContactTracker* contacts = nullptr);
 
   /// Makes `state` the start of the next step: evaluates the structure there (tangent included).
   void reset(State& state);
@@ -55,13 +59,19 @@ class NewtonSolver {
   /// `state` is left at the failed iterate: call reset() with the saved state before retrying.
   NewtonOutcome step(const PathConstraint& constraint, State& state);
 
+  /// The contacts of `state` as reported (element, α, force).
+  std::vector<ContactPoint> contact_points(const State& state) const;
   /// Element forces (N, M_i, M_j) of the last evaluation.
   const Eigen::VectorXd& element_forces() const { return eval_.element_forces; }
   /// Support reactions of the last evaluation: F − λ F_ref on constrained dofs, 0 elsewhere.
   Eigen::VectorXd reactions(double load_factor) const;
 
  private:
-  void evaluate(State& state);
+  /// Evaluates at `state` and settles its contacts (detect, release, hand over; re-evaluating
+  /// after each change). Returns whether the contact set changed.
+  bool evaluate(State& state);
+  /// At a converged iterate: releases contacts that pull and re-evaluates. Returns whether any was.
+  bool release_pulling_contacts(State& state);
   Eigen::VectorXd unbalanced_force(double load_factor) const;  // over the free equations
   ResidualScale scale(double load_factor) const;
   std::array<double, 2> kind_norms(const Eigen::VectorXd& free_vector) const;  // 2-norms: forces, moments
@@ -72,6 +82,8 @@ class NewtonSolver {
 
   assembly::GlobalSystem& system_;
   NewtonSettings settings_;
+  const contact::ContactTracker* contacts_ = nullptr;
+  int switches_ = 0;  ///< contact activations + releases in the current step
   LinearSolver solver_;
   assembly::Evaluation eval_;
   Eigen::VectorXd load_free_;        ///< F_ref over the free equations

@@ -9,6 +9,7 @@ const char* status_name(Status status) {
     case Status::max_iterations: return "max-iterations";
     case Status::singular: return "singular";
     case Status::cutback_limit: return "cutback-limit";
+    case Status::contact_chatter: return "contact-chatter";
   }
   return "unknown";
 }

@@ -9,6 +9,7 @@ enum class Status {
   max_iterations,  ///< Newton did not converge within max_iterations
   singular,        ///< the tangent could not be factorised (a limit or bifurcation point)
   cutback_limit,   ///< a step still failed after the allowed number of halvings
+  contact_chatter, ///< contacts kept switching on and off within one step
 };
 
 /// The spelling used in results.json ("max-iterations", ...).

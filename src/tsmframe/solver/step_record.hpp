@@ -10,6 +10,14 @@
 
 namespace tsm::solver {
 
+/// A contact node at one point of the path.
+struct ContactPoint {
+  int element = -1;    ///< element index carrying it, −1 when not in contact
+  double alpha = 0.0;  ///< α = l_ic / l
+  double force = 0.0;  ///< compression (≥ 0 at convergence)
+  double Y = 0.0;      ///< Y of the contact element (chord frame)
+};
+
 struct StepRecord {
   int step = 0;                        ///< 1-based
   double load_factor = 0.0;            ///< λ at the end of the step (or of the failed attempt's start)
@@ -25,6 +33,9 @@ struct StepRecord {
   Eigen::VectorXd displacements;       ///< all dofs
   Eigen::VectorXd element_forces;      ///< (N, M_i, M_j) per element
   Eigen::VectorXd reactions;           ///< all dofs; zero where the dof is free
+  std::vector<ContactPoint> contacts;  ///< one per contact of the model (converged steps)
+  /// Per iterate (iterate 0 = the step's start), one entry per contact: how α moved.
+  std::vector<std::vector<ContactPoint>> contact_iterates;
 };
 
 struct RunResult {

@@ -1,0 +1,28 @@
+#pragma once
+// Where each contact of the model stands at one point of the path (part of solver::State, so a
+// failed step restores it with everything else).
+
+#include <vector>
+
+namespace tsm::contact {
+
+inline constexpr signed char no_side = 2;
+
+struct ContactState {
+  bool active = false;
+  int element = -1;   ///< element carrying the contact (index), −1 when inactive
+  int side = 0;       ///< side of that element's chord the node is on: +1 along n, −1 against
+  double alpha = 0.0; ///< α = l_ic / l at the last evaluation
+  double force = 0.0; ///< compression −side·Y (≥ 0 when converged)
+  double Y = 0.0;     ///< the element force Y (chord frame, Eq. 6–9)
+  /// Per candidate element (ContactTracker order): the side the node was on at the last
+  /// converged state (+1, −1), 0 while it lies on the element's centre line, or no_side when it
+  /// was beyond the element's reach then (see ContactTracker). Contact starts when it reaches
+  /// the other side.
+  std::vector<signed char> reference_side;
+  /// Released during the current step: it stays released until the step has converged (the
+  /// iterates after a release may sweep the beam through the node).
+  bool released_in_step = false;
+};
+
+}  // namespace tsm::contact

@@ -1,0 +1,261 @@
+#include "tsmframe/contact/contact_tracker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tsm::contact {
+namespace {
+
+constexpr double alpha_tolerance = 1e-12;  // a node on a beam node counts for both elements
+// A side is recorded only while the node lies within this reach along the element (α from
+// −reach to 1 + reach): a node far beyond an element's ends has no meaningful side of it, and
+// its side flipping there (a beam swinging around) must not start a contact later.
+constexpr double side_reach = 1.0;
+
+int sign(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
+
+element::Vector6 element_displacements(const Element& e, const Eigen::VectorXd& D) {
+  element::Vector6 d;
+  d << D.segment<3>(dofs_per_node * e.start), D.segment<3>(dofs_per_node * e.end);
+  return d;
+}
+
+/// Unit normal n of an element's current chord.
+Eigen::Vector2d chord_normal(const element::InitialChord& initial, const element::Vector6& d, double rotation) {
+  const element::Chord chord = element::current_chord(initial, d, rotation);
+  return {-chord.sin, chord.cos};
+}
+
+}  // namespace
+
+ContactTracker::ContactTracker(const Model& model) : model_(model) {
+  const int n_elements = static_cast<int>(model.elements.size());
+  initial_.reserve(n_elements);
+  for (const Element& e : model.elements)
+    initial_.push_back(element::initial_chord(model.nodes[e.start].position, model.nodes[e.end].position));
+  node_start_.assign(model.node_count() + 1, 0);
+  for (const Element& e : model.elements) {
+    ++node_start_[e.start + 1];
+    ++node_start_[e.end + 1];
+  }
+  for (int k = 0; k < model.node_count(); ++k) node_start_[k + 1] += node_start_[k];
+  node_elements_.resize(node_start_.back());
+  std::vector<int> fill(node_start_.begin(), node_start_.end() - 1);
+  for (int k = 0; k < n_elements; ++k) {
+    node_elements_[fill[model.elements[k].start]++] = k;
+    node_elements_[fill[model.elements[k].end]++] = k;
+  }
+  touch_tolerance_ = 1e-10 * model.size;
+
+  for (const ContactSpec& c : model.contacts) {
+    Spec s;
+    s.node = c.node;
+    s.candidate_index.assign(n_elements, -1);
+    std::vector<bool> in_set(model.member_count, false);
+    for (int m : c.members) in_set[m] = true;
+    s.timoshenko_override = c.element == "timoshenko";
+    s.euler_bernoulli_override = c.element == "euler-bernoulli";
+    for (int k = 0; k < n_elements; ++k) {
+      const Element& e = model.elements[k];
+      if (!in_set[e.member]) continue;
+      s.candidate_index[k] = static_cast<int>(s.candidates.size());
+      s.candidates.push_back(k);
+      double psi = e.section.shear_flexibility;
+      if (s.euler_bernoulli_override) psi = 0.0;
+      if (s.timoshenko_override) psi = c.member_shear_flexibility[e.member];
+      s.shear_flexibility.push_back(psi);
+    }
+    s.gap = c.gap;
+    s.edge = c.edge;
+    s.sliding_term = c.sliding_tangent;
+    specs_.push_back(std::move(s));
+  }
+}
+
+bool ContactTracker::timoshenko(const Spec& spec, int element) const {
+  if (spec.timoshenko_override) return true;
+  if (spec.euler_bernoulli_override) return false;
+  return model_.elements[element].theory == BeamTheory::timoshenko;
+}
+
+element::SectionStiffness ContactTracker::contact_section(const Spec& spec, int element) const {
+  element::SectionStiffness s = model_.elements[element].section;
+  s.shear_flexibility = spec.shear_flexibility[spec.candidate_index[element]];
+  return s;
+}
+
+NodeOnElement ContactTracker::locate(const Spec& spec, int element, const Eigen::VectorXd& D,
+                                     const std::vector<double>& chord_rotations) const {
+  const Element& e = model_.elements[element];
+  const Eigen::Vector2d position = model_.nodes[spec.node].position + D.segment<2>(dofs_per_node * spec.node);
+  return node_on_element(initial_[element], contact_section(spec, element), element_displacements(e, D),
+                         chord_rotations[element], position);
+}
+
+std::vector<ContactState> ContactTracker::initial_states() const {
+  const Eigen::VectorXd D = Eigen::VectorXd::Zero(model_.dof_count());
+  const std::vector<double> rotations(model_.elements.size(), 0.0);
+  std::vector<ContactState> states(specs_.size());
+  for (size_t k = 0; k < specs_.size(); ++k) {
+    states[k].reference_side.assign(specs_[k].candidates.size(), 0);
+    reset_sides(specs_[k], D, rotations, 0, states[k]);
+  }
+  return states;
+}
+
+void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                 int fallback, ContactState& state) const {
+  // fallback: the side on state.element's frame, used where the node lies on the centre line.
+  Eigen::Vector2d released_normal = Eigen::Vector2d::Zero();
+  if (fallback != 0 && state.element >= 0) {
+    const Element& e = model_.elements[state.element];
+    released_normal = chord_normal(initial_[state.element], element_displacements(e, D), rotations[state.element]);
+  }
+  for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
+    const int f = spec.candidates[ci];
+    const NodeOnElement where = locate(spec, f, D, rotations);
+    if (where.alpha < -side_reach || where.alpha > 1.0 + side_reach) {
+      state.reference_side[ci] = no_side;
+    } else if (std::abs(where.gap) > touch_tolerance_) {
+      state.reference_side[ci] = static_cast<signed char>(sign(where.gap));
+    } else if (fallback != 0 || state.reference_side[ci] == no_side) {
+      const Eigen::Vector2d n = chord_normal(initial_[f], element_displacements(model_.elements[f], D), rotations[f]);
+      state.reference_side[ci] = fallback == 0 ? 0 : static_cast<signed char>(n.dot(released_normal) >= 0.0 ? fallback : -fallback);
+    }
+  }
+}
+
+std::vector<ActiveContact> ContactTracker::active_contacts(const std::vector<ContactState>& states) const {
+  std::vector<ActiveContact> active;
+  for (size_t k = 0; k < specs_.size(); ++k) {
+    if (!states[k].active) continue;
+    const Spec& spec = specs_[k];
+    ActiveContact a;
+    a.node = spec.node;
+    a.element = states[k].element;
+    a.data.initial = initial_[a.element];
+    a.data.section = contact_section(spec, a.element);
+    a.data.k0 = element::basic_stiffness(a.data.section, a.data.initial.length);
+    a.data.contact_start = model_.nodes[spec.node].position;
+    a.data.offset = states[k].side * spec.gap;
+    a.data.edge = spec.edge >= 0.0 ? spec.edge : default_edge(timoshenko(spec, a.element));
+    a.data.sliding_term = spec.sliding_term;
+    active.push_back(a);
+  }
+  return active;
+}
+
+void ContactTracker::release(const Spec& spec, const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                             ContactState& state) const {
+  reset_sides(spec, D, rotations, state.side, state);
+  state.active = false;
+  state.released_in_step = true;
+  state.element = -1;
+  state.side = 0;
+  state.force = state.Y = 0.0;
+}
+
+ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                      const std::vector<ContactEvaluation>& evaluated,
+                                      std::vector<ContactState>& states, bool release_pulling) const {
+  ContactChanges changes;
+  std::vector<char> occupied(model_.elements.size(), 0);
+  for (const ContactState& s : states)
+    if (s.active) occupied[s.element] = 1;
+  size_t next = 0;
+  for (size_t k = 0; k < specs_.size(); ++k) {
+    const Spec& spec = specs_[k];
+    ContactState& state = states[k];
+    if (state.active) {
+      const ContactEvaluation& ev = evaluated[next++];
+      state.alpha = ev.alpha;
+      state.Y = ev.Y;
+      state.force = -state.side * ev.Y;
+      if (release_pulling && state.force < 0.0) {  // compression only
+        occupied[state.element] = 0;
+        release(spec, D, rotations, state);
+        ++changes.released;
+        continue;
+      }
+      if (state.alpha >= 0.0 && state.alpha <= 1.0) continue;
+      // The point has left its element: hand it to the neighbour at that end (one per iterate).
+      const Element& from = model_.elements[state.element];
+      const int end = state.alpha > 1.0 ? from.end : from.start;
+      int best = -1;
+      double best_outside = INFINITY, best_gap = INFINITY, best_alpha = 0.0;
+      for (int p = node_start_[end]; p < node_start_[end + 1]; ++p) {
+        const int f = node_elements_[p];
+        if (f == state.element || spec.candidate_index[f] < 0 || occupied[f]) continue;
+        const NodeOnElement where = locate(spec, f, D, rotations);
+        const double outside = std::max({0.0, -where.alpha, where.alpha - 1.0});
+        if (outside < best_outside || (outside == best_outside && std::abs(where.gap) < best_gap)) {
+          best = f;
+          best_outside = outside;
+          best_gap = std::abs(where.gap);
+          best_alpha = where.alpha;
+        }
+      }
+      if (best < 0) {  // no element beyond: the point has left the beam's free end
+        occupied[state.element] = 0;
+        release(spec, D, rotations, state);
+        ++changes.released;
+        continue;
+      }
+      const Eigen::Vector2d n_from = chord_normal(initial_[state.element], element_displacements(from, D), rotations[state.element]);
+      const Eigen::Vector2d n_to = chord_normal(initial_[best], element_displacements(model_.elements[best], D), rotations[best]);
+      occupied[state.element] = 0;
+      occupied[best] = 1;
+      state.side = n_from.dot(n_to) >= 0.0 ? state.side : -state.side;
+      state.element = best;
+      state.alpha = best_alpha;
+      ++changes.handed_over;
+      continue;
+    }
+    // Detection: the node has reached or crossed an element's deflected centre line.
+    if (state.released_in_step) continue;
+    int best = -1, best_side = 0;
+    double best_gap = INFINITY, best_alpha = 0.0;
+    for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
+      const int f = spec.candidates[ci];
+      if (occupied[f]) continue;
+      const NodeOnElement where = locate(spec, f, D, rotations);
+      if (where.alpha < -alpha_tolerance || where.alpha > 1.0 + alpha_tolerance) continue;
+      const int reference = state.reference_side[ci];
+      int side = 0;
+      if (reference == no_side) {
+        continue;
+      } else if (reference != 0) {
+        if (reference * where.gap <= spec.gap) side = reference;
+      } else if (std::abs(where.gap) > touch_tolerance_) {
+        side = -sign(where.gap);  // it left the centre line: it pushes the way it moves
+      }
+      if (side != 0 && std::abs(where.gap) < best_gap) {
+        best = f;
+        best_side = side;
+        best_gap = std::abs(where.gap);
+        best_alpha = where.alpha;
+      }
+    }
+    if (best >= 0) {
+      state.active = true;
+      state.element = best;
+      state.side = best_side;
+      state.alpha = best_alpha;
+      state.force = state.Y = 0.0;
+      occupied[best] = 1;
+      ++changes.activated;
+    }
+  }
+  return changes;
+}
+
+void ContactTracker::accept(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                            std::vector<ContactState>& states) const {
+  for (size_t k = 0; k < specs_.size(); ++k) {
+    states[k].released_in_step = false;
+    if (!states[k].active) reset_sides(specs_[k], D, rotations, 0, states[k]);
+  }
+}
+
+}  // namespace tsm::contact

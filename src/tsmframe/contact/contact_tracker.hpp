@@ -1,0 +1,94 @@
+#pragma once
+// The contact life cycle (FORMULATION §3): detection, release and sliding across element ends.
+//
+// After every evaluation of the structure the Newton loop calls update():
+//  - an active contact whose force would pull at a converged iterate is released (compression only);
+//  - an active contact whose point has left its element (α < 0 or α > 1) is handed to the
+//    neighbouring element of its member set at that end (along a member, or across a joint to
+//    another member in the set) — at most one element per iterate; if there is none, the point
+//    has left the beam's free end and the contact is released;
+//  - an inactive contact node that has reached or crossed an element's deflected centre line
+//    (0 ≤ α ≤ 1, the side flipped since the last converged state) becomes a contact element there.
+// Contact is measured from the element's own deflected shape (the line where the contact force
+// is exactly zero), so a contact starts with Y = 0 and no jump.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "tsmframe/contact/contact_element.hpp"
+#include "tsmframe/contact/contact_state.hpp"
+#include "tsmframe/model/model.hpp"
+
+namespace tsm::contact {
+
+/// A contact element to evaluate: node c on element `element`.
+struct ActiveContact {
+  int node = 0;
+  int element = 0;
+  ContactElementData data;
+};
+
+/// What an evaluation of an active contact element found.
+struct ContactEvaluation {
+  double alpha = 0.0;
+  double Y = 0.0;
+};
+
+/// Changes made by one update().
+struct ContactChanges {
+  int activated = 0;
+  int released = 0;
+  int handed_over = 0;
+  bool any() const { return activated + released + handed_over > 0; }
+};
+
+class ContactTracker {
+ public:
+  explicit ContactTracker(const Model& model);
+
+  int contact_count() const { return static_cast<int>(specs_.size()); }
+  /// States at the undeformed model (sides of every contact node against its candidates).
+  std::vector<ContactState> initial_states() const;
+  /// The contact elements of the active contacts.
+  std::vector<ActiveContact> active_contacts(const std::vector<ContactState>& states) const;
+  /// Life-cycle changes after an evaluation at `displacements` (chord rotations of that
+  /// evaluation); `evaluated` holds one entry per active contact, in active_contacts() order.
+  /// Tension releases a contact only with `release_pulling` — the Newton loop asks for it once
+  /// the residual has converged: an unconverged iterate's Y is no evidence of pulling (a stiff
+  /// contact's Y swings through zero while the beam catches up with the node).
+  ContactChanges update(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
+                        const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states,
+                        bool release_pulling) const;
+  /// At a converged state: inactive contacts take their current sides as reference.
+  void accept(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
+              std::vector<ContactState>& states) const;
+
+ private:
+  struct Spec {
+    int node = 0;
+    std::vector<int> candidates;        ///< element indices the node may touch
+    std::vector<int> candidate_index;   ///< per element: its place in candidates, −1 if not one
+    std::vector<double> shear_flexibility;  ///< per element: Ψ of the contact law
+    bool timoshenko_override = false, euler_bernoulli_override = false;
+    double gap = 0.0;
+    double edge = -1.0;
+    bool sliding_term = true;
+  };
+  NodeOnElement locate(const Spec& spec, int element, const Eigen::VectorXd& displacements,
+                       const std::vector<double>& chord_rotations) const;
+  element::SectionStiffness contact_section(const Spec& spec, int element) const;
+  bool timoshenko(const Spec& spec, int element) const;
+  void release(const Spec& spec, const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
+               ContactState& state) const;
+  void reset_sides(const Spec& spec, const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
+                   int fallback, ContactState& state) const;
+
+  const Model& model_;
+  std::vector<Spec> specs_;
+  std::vector<element::InitialChord> initial_;
+  std::vector<int> node_start_, node_elements_;  ///< elements at each node (CSR)
+  double touch_tolerance_ = 0.0;                 ///< |gap| below this: on the centre line
+};
+
+}  // namespace tsm::contact
