@@ -168,6 +168,28 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
          m["contacts"] = json::array({{{"node", 5}, {"members", {3}}}});
        },
        "contacts[0].members[0]: unknown member 3"},
+      {"cantilever contact frame (issue 8)",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});
+         m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
+         m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"frame", "cantilever"}}});
+       },
+       "contacts[0].frame: the \"cantilever\" contact frame is not available"},
+      {"contact edge out of range",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});
+         m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
+         m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"edge", 0.5}}});
+       },
+       "contacts[0].edge: must lie between 1e-12 and 0.25"},
+      {"contact node twice",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});
+         m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
+         m["contacts"] = json::array({{{"node", 5}, {"members", "all"}}, {{"node", 5}, {"members", {0}}}});
+       },
+       "contacts[1].node: this node already has a contact entry"},
+      {"load path standing still", [](json& m) { m["analysis"]["control"]["path"] = {1.0, 1.0}; }, "analysis.control.path[1]: repeats the load factor"},
       {"bad control", [](json& m) { m["analysis"]["control"]["type"] = "force"; }, "analysis.control.type: unknown control"},
       {"bad steps", [](json& m) { m["analysis"]["control"]["steps"] = 0; }, "analysis.control.steps: must be between 1"},
       {"fractional divisions", [](json& m) { m["members"][0]["divisions"] = 2.5; }, "members[0].divisions: expected a whole number"},
@@ -189,6 +211,40 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
     EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << c.name << ": " << o.output;
     EXPECT_FALSE(fs::exists(out)) << c.name << ": output written for bad input";
   }
+}
+
+TEST_F(Cli, ContactResultsInJsonAndCsv) {
+  // The cantilever pushed up at x = 1.1 by a rigid node starting 15 mm below it.
+  json m = cantilever();
+  m["loads"] = json::array();
+  m["nodes"].push_back({{"id", 100}, {"x", 1.1}, {"y", -0.015}});
+  m["supports"].push_back({{"node", 100}, {"fix", {"ux"}}});
+  m["prescribed"] = json::array({{{"node", 100}, {"uy", 0.05}}});
+  m["contacts"] = json::array({{{"node", 100}, {"members", "all"}}});
+  m["analysis"] = {{"control", {{"type", "load"}, {"steps", 5}}}};
+  const std::string model = write("push.json", m.dump(2));
+  const fs::path out = dir_ / "out";
+  const Outcome o = run_cli("run " + model + " --out " + out.string() + " --log-iterations");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("contact 1 element:alpha per iterate: 2:"), std::string::npos) << o.output;
+  std::ifstream in(out / "results.json");
+  const json r = json::parse(in);
+  const json& last = r["steps"].back();
+  ASSERT_EQ(last["contacts"].size(), 1u);
+  const json& c = last["contacts"][0];
+  EXPECT_EQ(c["node"], 100);
+  EXPECT_EQ(c["element"], 2);  // x = 1.1 lies in element 2 (1 … 2)
+  EXPECT_GT(c["xi"].get<double>(), 0.0);
+  EXPECT_LT(c["xi"].get<double>(), 1.0);
+  EXPECT_GT(c["force"].get<double>(), 0.0);
+  ASSERT_EQ(last["element_forces"]["2"].size(), 4u);  // N, M_i, M_j, Y
+  EXPECT_NEAR(last["element_forces"]["2"][3].get<double>(), c["force"].get<double>(), 1e-9 * c["force"].get<double>());
+  EXPECT_EQ(last["element_forces"]["1"].size(), 3u);
+  EXPECT_EQ(r["steps"][0]["contacts"].size(), 0u);  // the first 10 mm do not close the 15 mm gap
+  std::ifstream csv(out / "steps.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",contact_element_100,contact_xi_100,contact_force_100"), std::string::npos) << header;
 }
 
 TEST_F(Cli, InvalidJsonNamesLineAndColumn) {

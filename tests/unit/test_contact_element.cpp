@@ -84,14 +84,23 @@ TEST(ContactForceLaw, FreeShapeAndMomentsVanishAtTheEnds) {
     }
 }
 
-TEST(ContactForceLaw, ComplianceClampHoldsWithinTheEdgeZone) {
-  const SectionStiffness s{.EA = 1.0, .EI = 1.0, .shear_flexibility = 0.0};
-  const PointLoadLaw at_edge = point_load_law(s, 0.5, 0.99, 0.01), inside = point_load_law(s, 0.5, 0.995, 0.01);
-  EXPECT_EQ(at_edge.compliance, inside.compliance);
-  EXPECT_EQ(inside.dcompliance, 0.0);
-  // EB: c = a³b³/(3 EI l0³).
-  const double a = 0.99 * 0.5, b = 0.01 * 0.5;
-  EXPECT_NEAR(at_edge.compliance, a * a * a * b * b * b / (3.0 * 0.125), 1e-20);
+TEST(ContactForceLaw, ComplianceFloorHoldsWithinTheEdgeZone) {
+  // Euler–Bernoulli: clamped within δ l0 of a node to c_min = (δ(1−δ) l0)³ / 3EI.
+  const SectionStiffness eb{.EA = 1.0, .EI = 2.0, .shear_flexibility = 0.0};
+  const double c_min = std::pow(0.01 * 0.99 * 0.5, 3) / (3.0 * 2.0);
+  for (double alpha : {0.0, 0.004, 0.995, 1.0}) {
+    const PointLoadLaw law = point_load_law(eb, 0.5, alpha, 0.01);
+    EXPECT_EQ(law.compliance, c_min) << alpha;
+    EXPECT_EQ(law.dcompliance, 0.0) << alpha;
+  }
+  EXPECT_GT(point_load_law(eb, 0.5, 0.98, 0.01).compliance, c_min);
+  // Timoshenko with real shear flexibility: c ≈ b Ψ/EI stays above c_min to within 1e-4 of the node…
+  const SectionStiffness shear{.EA = 1.0, .EI = 2.0, .shear_flexibility = 0.01};
+  EXPECT_GT(point_load_law(shear, 0.5, 0.9999, 0.01).compliance, c_min);
+  EXPECT_NE(point_load_law(shear, 0.5, 0.9999, 0.01).dcompliance, 0.0);
+  // … but a negligible Ψ behaves like Euler–Bernoulli.
+  const SectionStiffness stiff{.EA = 1.0, .EI = 2.0, .shear_flexibility = 1e-12};
+  EXPECT_EQ(point_load_law(stiff, 0.5, 0.999, 0.01).compliance, c_min);
 }
 
 // ---- The element ----

@@ -1,6 +1,7 @@
 #include "tsmframe/contact/contact_force_law.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace tsm::contact {
 
@@ -31,15 +32,20 @@ PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0,
       law.dh_j = l0 * (p + (a * l0 + 6.0 * psi) * (1.0 - 2.0 * s)) / span;
     }
   }
-  const double s = std::clamp(alpha, edge, 1.0 - edge), p = s * (1.0 - s) * l0 * l0;
+  const double s = std::clamp(alpha, 0.0, 1.0), p = s * (1.0 - s) * l0 * l0;
   const double omega = p * p + 3.0 * psi * (l0 * l0 + p) + 36.0 * psi * psi;  // Eq. 9
   const double scale = 3.0 * section.EI * l0 * span;
   law.compliance = p * omega / scale;
-  if (alpha > edge && alpha < 1.0 - edge)
+  // The floor: an Euler–Bernoulli point at edge·l0 from a beam node, c = δ³(1−δ)³ l0³ / 3EI.
+  const double floor = std::pow(edge * (1.0 - edge) * l0, 3) / (3.0 * section.EI);
+  if (law.compliance <= floor) {
+    law.compliance = floor;
+  } else if (alpha >= 0.0 && alpha <= 1.0) {
     law.dcompliance = (1.0 - 2.0 * s) * l0 * l0 * (omega + p * (2.0 * p + 3.0 * psi)) / scale;
+  }
   return law;
 }
 
-double default_edge(bool timoshenko) { return timoshenko ? 1e-6 : 1e-2; }
+double default_edge() { return 1e-2; }
 
 }  // namespace tsm::contact

@@ -26,12 +26,14 @@ struct PointLoadLaw {
   double dh_i = 0.0, dh_j = 0.0, dcompliance = 0.0;  ///< d/dα of the above (0 where clamped)
 };
 
-/// The law at α. h uses α clamped to [0, 1]; the compliance uses α clamped to
-/// [edge, 1 − edge], so it never vanishes: within edge·l0 of a beam node the point is given the
-/// compliance it has at edge·l0 (FORMULATION §3's explicit rule for the contact at a node).
+/// The law at α (h and c use α clamped to [0, 1]). The compliance never falls below that of
+/// an Euler–Bernoulli point `edge`·l0 from a beam node, c_min = (δ(1−δ) l0)³ / 3EI, δ = edge —
+/// FORMULATION §3's explicit rule for a contact at or next to a node. Euler–Bernoulli reaches
+/// c_min at α = δ or 1 − δ; Timoshenko, whose c falls only like b/(G A_s), much closer to the
+/// node (at b ≈ δ³ l0³/(3Ψ)), unless its shear flexibility Ψ is negligible.
 PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0, double alpha, double edge);
 
-/// Default edge zone per beam theory (README "Contact through element ends").
-double default_edge(bool timoshenko);
+/// Default edge δ (README "Contact through element ends").
+double default_edge();
 
 }  // namespace tsm::contact

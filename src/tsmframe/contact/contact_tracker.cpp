@@ -139,7 +139,7 @@ std::vector<ActiveContact> ContactTracker::active_contacts(const std::vector<Con
     a.data.k0 = element::basic_stiffness(a.data.section, a.data.initial.length);
     a.data.contact_start = model_.nodes[spec.node].position;
     a.data.offset = states[k].side * spec.gap;
-    a.data.edge = spec.edge >= 0.0 ? spec.edge : default_edge(timoshenko(spec, a.element));
+    a.data.edge = spec.edge >= 0.0 ? spec.edge : default_edge();
     a.data.sliding_term = spec.sliding_term;
     active.push_back(a);
   }

@@ -556,8 +556,19 @@ class Reader {
     const std::string type = string(c["type"], child(path, "type"));
     Control& control = model_.analysis.control;
     if (type == "load") {
-      check_keys(c, path, {"type", "steps"});
+      check_keys(c, path, {"type", "steps", "path"});
       control.type = ControlType::load;
+      if (c.contains("path")) {
+        const std::string ppath = child(path, "path");
+        expect_array(c["path"], ppath);
+        if (c["path"].empty() || c["path"].size() > 1000) fail(ppath, "give 1 to 1000 load factors to visit in turn");
+        double previous = 0.0;
+        for (size_t k = 0; k < c["path"].size(); ++k) {
+          const double v = number(c["path"][k], child(ppath, k));
+          if (v == previous) fail(child(ppath, k), "repeats the load factor before it (a leg must move)");
+          control.path.push_back(previous = v);
+        }
+      }
     } else if (type == "displacement") {
       check_keys(c, path, {"type", "steps", "node", "dof", "target"});
       control.type = ControlType::displacement;

@@ -49,7 +49,9 @@ enum class ControlType { load, displacement, arc_length };
 
 struct Control {
   ControlType type = ControlType::load;
-  int steps = 1;
+  int steps = 1;         ///< steps per leg of the path
+  /// Load control: λ visits these values in turn from 0 (empty: just 1), `steps` per leg.
+  std::vector<double> path;
   // displacement control: node index, dof, target value
   int node = -1;
   int dof = uy;

@@ -48,23 +48,33 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     constraint.kind = PathConstraint::Kind::displacement_target;
     constraint.equation = dofs.equation(dofs_per_node * control.node + control.dof);
   }
-  // The path parameter t runs from 0 to 1: λ under load control, the fraction of the target
-  // under displacement control. Steps end on the grid k/N; cutback halves within a grid cell.
-  const int grid_steps = control.steps;
-  const double nominal = 1.0 / grid_steps;
+  // The path parameter t runs from 0 to the number of legs (1 unless a load path is given): λ
+  // under load control, the fraction of the target under displacement control, piecewise
+  // linear between the path's points. Steps end on the grid k/N of each leg; cutback halves
+  // within a grid cell.
+  std::vector<double> points{0.0};
+  if (control.path.empty()) points.push_back(1.0);
+  else points.insert(points.end(), control.path.begin(), control.path.end());
+  const int legs = static_cast<int>(points.size()) - 1;
+  const auto value = [&](double t) {
+    const int leg = std::min(static_cast<int>(t), legs - 1);
+    return points[leg] + (t - leg) * (points[leg + 1] - points[leg]);
+  };
+  const int grid_steps = control.steps * legs;
+  const double nominal = 1.0 / control.steps;
   double t = 0.0, increment = nominal;
   int halvings = 0, grid_index = 0;
   RunResult result;
   int last_with_state = -1;
 
   while (grid_index < grid_steps) {
-    const double next_grid = static_cast<double>(grid_index + 1) / grid_steps;
+    const double next_grid = static_cast<double>(grid_index + 1) / control.steps;
     double dt = std::min(increment, next_grid - t);
     if (next_grid - t - dt < 1e-9 * nominal) dt = next_grid - t;
     const bool reaches_grid = dt == next_grid - t;
     const double t_end = reaches_grid ? next_grid : t + dt;
-    if (by_displacement) constraint.target = t_end * control.target;
-    else constraint.load_increment = t_end - state.load_factor;
+    if (by_displacement) constraint.target = value(t_end) * control.target;
+    else constraint.load_increment = value(t_end) - state.load_factor;
 
     const State saved = state;
     const NewtonOutcome outcome = newton.step(constraint, state);
@@ -73,7 +83,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     record.iterations = outcome.iterations;
     record.residual_norms = outcome.residual_norms;
     record.cutbacks = halvings;
-    record.increment = by_displacement ? dt * control.target : dt;
+    record.increment = (value(t_end) - value(t)) * (by_displacement ? control.target : 1.0);
     record.contact_iterates = outcome.contact_iterates;
 
     if (outcome.status == Status::converged) {
@@ -114,12 +124,12 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
       newton.reset(state);
       continue;
     }
-    record.load_factor = by_displacement ? saved.load_factor : saved.load_factor + dt;
+    record.load_factor = by_displacement ? saved.load_factor : value(t_end);
     record.converged = false;
     record.message = outcome.message;
     result.status = settings.cutback ? Status::cutback_limit : outcome.status;
-    const double from = by_displacement ? t * control.target : t;
-    const double to = by_displacement ? t_end * control.target : t_end;
+    const double from = value(t) * (by_displacement ? control.target : 1.0);
+    const double to = value(t_end) * (by_displacement ? control.target : 1.0);
     result.message = failure_text(record.step, from, to, by_displacement ? "controlled displacement" : "load factor",
                                   outcome, halvings);
     result.steps.push_back(std::move(record));

@@ -1,0 +1,396 @@
+// Contact verification (issue 3): a cantilever pushed by a rigid point against the linear
+// formula 3EIh/a³ (and its Timoshenko counterpart) and against an exact elastica-with-contact
+// solution computed here by shooting; a point pushed along the beam across many element ends;
+// release on unloading; a node crossing the beam within one step; two contacts at once;
+// beam-on-beam; and the assembled tangent with active contacts against finite differences.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "support/models.hpp"
+#include "tsmframe/assembly/global_system.hpp"
+#include "tsmframe/contact/contact_tracker.hpp"
+
+namespace {
+
+using namespace tsm::test;
+using tsm::solver::RunResult;
+using tsm::solver::StepRecord;
+
+/// A cantilever along x (node 1 clamped) and a rigid pusher, node 100 at (x, y0), moved by
+/// (push_x, push_y) at λ = 1; the pusher's rotation and, unless pushed along x, its x are fixed.
+json pusher_model(const BeamSpec& b, double x, double y0, double push_x, double push_y, int steps) {
+  json m = beam_model(b);
+  m["nodes"].push_back({{"id", 100}, {"x", x}, {"y", y0}});
+  json fix = json::array({"rz"});
+  if (push_x == 0.0) fix.push_back("ux");
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 100}, {"fix", fix}}});
+  json prescribed = {{"node", 100}, {"uy", push_y}};
+  if (push_x != 0.0) prescribed["ux"] = push_x;
+  m["prescribed"] = json::array({prescribed});
+  m["contacts"] = json::array({{{"node", 100}, {"members", "all"}}});
+  m["analysis"] = {{"control", {{"type", "load"}, {"steps", steps}}}, {"cutback", true}};
+  return m;
+}
+
+/// Global equilibrium to the accuracy the step reports: a contact next to a beam node is so stiff
+/// that its residual may stop at a round-off floor above 1e-9 (criterion "round-off").
+void expect_equilibrium(const tsm::Model& model, const StepRecord& step) {
+  expect_global_equilibrium(model, step, std::max(1e-9, 10.0 * step.residual_norms.back()));
+}
+
+RunResult run(const json& m, tsm::Model& model) {
+  model = tsm::io::read_model(m);
+  return tsm::solver::run_analysis(model);
+}
+
+const tsm::solver::ContactPoint& contact_of(const StepRecord& step, size_t k = 0) { return step.contacts.at(k); }
+
+/// Arc length of the contact point from the clamp on a uniform mesh of n elements of length L/n.
+double contact_arc_length(const tsm::solver::ContactPoint& c, double L, int n) {
+  return (c.element + c.alpha) * L / n;
+}
+
+// ---- Exact elastica with a frictionless point contact ----
+// Inextensible cantilever (EI = 1, clamped at the origin along x) pushed by a point fixed at
+// (a, h): the force is normal to the beam at the contact, P (−sin θc, cos θc); beyond the
+// contact the beam is straight. Shooting on (P, θc): integrate EI θ' = M(s) = (a − x) Fy − (h − y) Fx
+// from s = 0 until x = a, then y = h and θ = θc must hold.
+struct ElasticaContact {
+  double force;        // P / EI (for L = 1)
+  double arc_length;   // s_c of the contact point
+};
+
+std::array<double, 3> integrate_to(double a, double h, double P, double theta_c, double& s_end) {
+  const double Fx = -P * std::sin(theta_c), Fy = P * std::cos(theta_c);
+  auto f = [&](const std::array<double, 3>& q) {  // q = (x, y, θ)
+    return std::array<double, 3>{std::cos(q[2]), std::sin(q[2]), (a - q[0]) * Fy - (h - q[1]) * Fx};
+  };
+  auto rk4 = [&](const std::array<double, 3>& q, double ds) {
+    std::array<double, 3> k1 = f(q), t, k2, k3, k4, out;
+    for (int i = 0; i < 3; ++i) t[i] = q[i] + 0.5 * ds * k1[i];
+    k2 = f(t);
+    for (int i = 0; i < 3; ++i) t[i] = q[i] + 0.5 * ds * k2[i];
+    k3 = f(t);
+    for (int i = 0; i < 3; ++i) t[i] = q[i] + ds * k3[i];
+    k4 = f(t);
+    for (int i = 0; i < 3; ++i) out[i] = q[i] + ds / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+    return out;
+  };
+  const double ds = 1e-4;
+  std::array<double, 3> q = {0.0, 0.0, 0.0};
+  double s = 0.0;
+  while (true) {
+    const std::array<double, 3> next = rk4(q, ds);
+    if (next[0] >= a) {  // the contact lies within this step: bisect its length
+      double lo = 0.0, hi = ds;
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (rk4(q, mid)[0] < a ? lo : hi) = mid;
+      }
+      s_end = s + 0.5 * (lo + hi);
+      return rk4(q, 0.5 * (lo + hi));
+    }
+    q = next;
+    s += ds;
+    if (s > 10.0) {
+      s_end = s;
+      return q;
+    }
+  }
+}
+
+ElasticaContact elastica_with_contact(double a, double h) {
+  double P = 3.0 * h / (a * a * a), theta = 1.5 * h / a, s = 0.0;
+  for (int it = 0; it < 50; ++it) {
+    auto residual = [&](double p, double t) {
+      double s_end = 0.0;
+      const std::array<double, 3> q = integrate_to(a, h, p, t, s_end);
+      return Eigen::Vector2d(q[1] - h, q[2] - t);
+    };
+    const Eigen::Vector2d r = residual(P, theta);
+    if (r.norm() < 1e-12) break;
+    Eigen::Matrix2d J;
+    const double dp = 1e-7 * P, dt = 1e-7;
+    J.col(0) = (residual(P + dp, theta) - r) / dp;
+    J.col(1) = (residual(P, theta + dt) - r) / dt;
+    const Eigen::Vector2d step = J.colPivHouseholderQr().solve(-r);
+    P += step[0];
+    theta += step[1];
+  }
+  integrate_to(a, h, P, theta, s);
+  return {P, s};
+}
+
+TEST(ElasticaContactReference, TendsToTheLinearFormulaForATinyPush) {
+  const ElasticaContact e = elastica_with_contact(0.5, 1e-5);
+  EXPECT_NEAR(e.force, 3.0 * 1e-5 / 0.125, 1e-4 * e.force);
+  EXPECT_NEAR(e.arc_length, 0.5, 1e-6);
+}
+
+// ---- Small push: the linear formula, contact on a beam node and inside an element ----
+
+struct SmallPushCase {
+  const char* element;
+  double x;  // 0.5: exactly on node 21 (α = 1 | 0, the edge case); 0.5125: mid-element
+};
+
+class SmallPush : public ::testing::TestWithParam<SmallPushCase> {};
+
+TEST_P(SmallPush, ForceIsThreeEIhOverACubedPlusShear) {
+  const SmallPushCase& p = GetParam();
+  BeamSpec b;
+  b.divisions = 40;
+  b.A = 1e6;
+  b.element = p.element;  // G = 0.5, shear_area = 1e3: shear adds a/(G A_s) = 2.4 % of the compliance
+  const double h = 1e-6;
+  tsm::Model model;
+  const RunResult r = run(pusher_model(b, p.x, 0.0, 0.0, h, 1), model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const double a = p.x;
+  const bool timoshenko = std::string(p.element) == "timoshenko";
+  const double compliance = a * a * a / (3.0 * b.E * b.I) + (timoshenko ? a / (b.G * b.shear_area) : 0.0);
+  const StepRecord& last = r.steps.back();
+  ASSERT_GE(contact_of(last).element, 0);
+  EXPECT_NEAR(contact_of(last).force, h / compliance, 1e-4 * h / compliance);
+  EXPECT_NEAR(contact_arc_length(contact_of(last), 1.0, 40), a, 1e-9);
+  expect_equilibrium(model, last);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, SmallPush,
+                         ::testing::Values(SmallPushCase{"euler-bernoulli", 0.5}, SmallPushCase{"timoshenko", 0.5},
+                                           SmallPushCase{"euler-bernoulli", 0.5125},
+                                           SmallPushCase{"timoshenko", 0.5125}));
+
+// ---- Large push against the exact elastica with contact ----
+
+class LargePush : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(LargePush, MatchesTheElasticaWithContact) {
+  BeamSpec b;
+  b.divisions = 40;
+  b.A = 1e7;  // inextensible
+  b.shear_area = 1e9;
+  b.element = GetParam();
+  const double a = 0.5, h = 0.3;
+  tsm::Model model;
+  const RunResult r = run(pusher_model(b, a, 0.0, 0.0, h, 30), model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const ElasticaContact exact = elastica_with_contact(a, h);
+  const tsm::solver::ContactPoint& c = contact_of(r.steps.back());
+  ASSERT_GE(c.element, 0);
+  std::printf("[figure] %s: force %.6g exact %.6g (%.2e rel), s_c %.6f exact %.6f\n", GetParam(), c.force, exact.force, c.force / exact.force - 1.0, contact_arc_length(c, 1.0, 40), exact.arc_length);
+  EXPECT_NEAR(c.force, exact.force, 0.01 * exact.force);                      // issue: within 1 %
+  EXPECT_NEAR(contact_arc_length(c, 1.0, 40), exact.arc_length, 0.005);       // within 0.5 % of L
+  EXPECT_GT(exact.arc_length - a, 0.02);  // the point has slid along the beam by more than an element
+  for (const StepRecord& s : r.steps) expect_equilibrium(model, s);
+}
+
+INSTANTIATE_TEST_SUITE_P(Theories, LargePush, ::testing::Values("euler-bernoulli", "timoshenko"));
+
+// ---- Sliding across element ends ----
+
+class AcrossElementEnds : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(AcrossElementEnds, EveryStepConvergesAndThePointMovesMonotonically) {
+  // The pusher presses the beam down slightly while travelling from x = 0.2 to x = 0.8 along it:
+  // the contact point crosses 12 element ends of a 20-element mesh.
+  BeamSpec b;
+  b.divisions = 20;
+  b.A = 1e5;
+  b.element = GetParam();
+  tsm::Model model;
+  const RunResult r = run(pusher_model(b, 0.2, 0.0, 0.6, 0.05, 30), model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  double previous_position = -1.0;
+  int previous_element = -1, crossed = 0;
+  for (const StepRecord& s : r.steps) {
+    ASSERT_TRUE(s.converged);
+    EXPECT_EQ(s.cutbacks, 0) << "step " << s.step;
+    const tsm::solver::ContactPoint& c = contact_of(s);
+    ASSERT_GE(c.element, 0) << "step " << s.step;
+    EXPECT_GE(c.element, previous_element);
+    crossed += previous_element >= 0 ? c.element - previous_element : 0;
+    const double position = contact_arc_length(c, 1.0, 20);
+    EXPECT_GT(position, previous_position) << "step " << s.step;
+    EXPECT_GT(c.force, 0.0);
+    previous_position = position;
+    previous_element = c.element;
+    expect_equilibrium(model, s);
+  }
+  EXPECT_GE(crossed, 10);
+}
+
+INSTANTIATE_TEST_SUITE_P(Theories, AcrossElementEnds, ::testing::Values("euler-bernoulli", "timoshenko"));
+
+// ---- Release ----
+
+TEST(ContactRelease, PullingBackReleasesAtZeroForceAndTheBeamReturnsStraight) {
+  // Pusher 0.0123 below the beam, pushed 0.05 up and back down (λ: 0 → 1 → 0).
+  BeamSpec b;
+  b.divisions = 20;
+  b.A = 1e6;
+  tsm::Model model;
+  json m = pusher_model(b, 0.6, -0.0123, 0.0, 0.05, 20);
+  m["analysis"]["control"]["path"] = {1.0, 0.0};
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  ASSERT_EQ(r.steps.size(), 40u);
+  const double flexibility = 0.6 * 0.6 * 0.6 / 3.0;  // EI = 1
+  int active_steps = 0;
+  for (const StepRecord& s : r.steps) {
+    const double lift = 0.05 * s.load_factor - 0.0123;  // pusher above the straight beam
+    const tsm::solver::ContactPoint& c = contact_of(s);
+    if (lift < 0.0) {
+      EXPECT_LT(c.element, 0) << "step " << s.step << ": in contact while below the beam";
+      EXPECT_LT(s.displacements.cwiseAbs().maxCoeff(), 1e-12 + 0.06) << "step " << s.step;
+      // only the pusher moves; the beam is straight
+      for (int k = 0; k < model.node_count(); ++k)
+        if (model.nodes[k].id != 100) EXPECT_LT(s.displacements.segment<3>(3 * k).norm(), 1e-12) << "node " << model.nodes[k].id;
+    } else {
+      ++active_steps;
+      ASSERT_GE(c.element, 0) << "step " << s.step;
+      // Small lifts: the force follows the linear law down to zero (within geometric effects).
+      if (lift < 0.005) EXPECT_NEAR(c.force, lift / flexibility, 2e-3 * lift / flexibility) << "step " << s.step;
+    }
+  }
+  EXPECT_EQ(active_steps, 2 * 16 - 1);  // λ = 0.25 … 1 on the way up and back down
+}
+
+// ---- A node crossing the beam within one step; two contacts; beam on beam ----
+
+TEST(ContactDetection, ANodeCrossingTheBeamInOneStepGivesTheSameAnswerAsManySteps) {
+  BeamSpec b;
+  b.divisions = 20;
+  b.A = 1e6;
+  tsm::Model one, many;
+  const RunResult a = run(pusher_model(b, 0.55, -0.01, 0.0, 0.06, 1), one);
+  const RunResult c = run(pusher_model(b, 0.55, -0.01, 0.0, 0.06, 10), many);
+  ASSERT_EQ(a.status, tsm::solver::Status::converged) << a.message;
+  ASSERT_EQ(c.status, tsm::solver::Status::converged) << c.message;
+  const auto& p = contact_of(a.steps.back());
+  const auto& q = contact_of(c.steps.back());
+  EXPECT_EQ(p.element, q.element);
+  EXPECT_NEAR(p.alpha, q.alpha, 1e-9);
+  EXPECT_NEAR(p.force, q.force, 1e-9 * q.force);
+}
+
+TEST(ContactDetection, TwoContactsAtOnceMatchTheLinearFlexibility) {
+  BeamSpec b;
+  b.divisions = 40;
+  b.A = 1e6;
+  json m = pusher_model(b, 0.3, 0.0, 0.0, 1e-6, 1);
+  m["nodes"].push_back({{"id", 101}, {"x", 0.7}, {"y", 0.0}});
+  m["supports"].push_back({{"node", 101}, {"fix", {"ux", "rz"}}});
+  m["prescribed"].push_back({{"node", 101}, {"uy", 4e-6}});
+  m["contacts"].push_back({{"node", 101}, {"members", "all"}});
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  // Cantilever flexibility (EI = 1): f_ij = a_i² (3 a_j − a_i) / 6 for a_i ≤ a_j.
+  const double a1 = 0.3, a2 = 0.7;
+  Eigen::Matrix2d F;
+  F << a1 * a1 * a1 / 3.0, a1 * a1 * (3 * a2 - a1) / 6.0, a1 * a1 * (3 * a2 - a1) / 6.0, a2 * a2 * a2 / 3.0;
+  const Eigen::Vector2d P = F.fullPivLu().solve(Eigen::Vector2d(1e-6, 4e-6));
+  ASSERT_GT(P.minCoeff(), 0.0);
+  EXPECT_NEAR(contact_of(r.steps.back(), 0).force, P[0], 1e-4 * P.norm());
+  EXPECT_NEAR(contact_of(r.steps.back(), 1).force, P[1], 1e-4 * P.norm());
+}
+
+TEST(ContactDetection, BeamOnBeamMatchesTheSeriesSprings) {
+  // A hanging post (clamped at its top, moved down) lands with its free bottom node on the
+  // mid-span of a cantilever: the contact force compresses the post and bends the cantilever.
+  BeamSpec b;
+  b.divisions = 20;
+  b.A = 1e6;
+  json m = beam_model(b);
+  m["nodes"].push_back({{"id", 10}, {"x", 0.5}, {"y", 1e-6}});
+  m["nodes"].push_back({{"id", 11}, {"x", 0.5}, {"y", 0.5}});
+  m["sections"]["post"] = {{"A", 2e-1}, {"I", 1.0}, {"shear_area", 1e3}};
+  m["members"].push_back({{"from", 11}, {"to", 10}, {"divisions", 4}, {"material", "m"}, {"section", "post"}});
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 11}, {"fix", {"ux", "rz"}}}});
+  m["prescribed"] = json::array({{{"node", 11}, {"uy", -1.1e-5}}});
+  m["contacts"] = json::array({{{"node", 10}, {"members", {0}}}});
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const double closing = 1e-5;                                   // 1.1e-5 minus the 1e-6 gap
+  const double compliance = 0.125 / 3.0 + 0.5 / (1.0 * 2e-1);    // cantilever a³/3EI + post L/EA
+  EXPECT_NEAR(contact_of(r.steps.back()).force, closing / compliance, 1e-4 * closing / compliance);
+}
+
+// ---- The assembled tangent with active contacts ----
+
+TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
+  for (const char* element : {"euler-bernoulli", "timoshenko"}) {
+    BeamSpec b;
+    b.divisions = 6;
+    b.A = 1e3;
+    b.element = element;
+    // The contact node is the free bottom of a post clamped at its top, so all of the contact
+    // element's dofs are unknowns.
+    json m = beam_model(b);
+    m["nodes"].push_back({{"id", 100}, {"x", 0.45}, {"y", 0.0}});
+    m["nodes"].push_back({{"id", 11}, {"x", 0.45}, {"y", 0.5}});
+    m["members"].push_back({{"from", 11}, {"to", 100}, {"divisions", 2}, {"material", "m"}, {"section", "s"}});
+    m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 11}, {"type", "fixed"}}});
+    m["contacts"] = json::array({{{"node", 100}, {"members", "all"}}});
+    const tsm::Model model = tsm::io::read_model(m);
+    tsm::assembly::DofMap dofs(model);
+    tsm::assembly::GlobalSystem system(model, dofs);
+    tsm::contact::ContactTracker tracker(model);
+    std::vector<tsm::contact::ContactState> states = tracker.initial_states();
+    // A bent, rotated state with the pusher pressed 0.02 into the beam near α = 0.7.
+    Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
+    for (int k = 0; k < model.node_count(); ++k) {
+      const double x = model.nodes[k].position.x();
+      D.segment<3>(3 * k) << -0.05 * x * x, 0.3 * x * x, 0.6 * x;
+    }
+    const int c = model.node_index(100);
+    const double x_c = 0.45;
+    D.segment<2>(3 * c) << -0.05 * x_c * x_c + 0.01, 0.3 * x_c * x_c + 0.02;
+    std::vector<double> rotations(model.elements.size(), 0.0);
+    tsm::assembly::Evaluation e;
+    system.evaluate(D, rotations, true, e);
+    tracker.update(D, e.chord_rotations, e.contacts, states, false);
+    ASSERT_TRUE(states[0].active);
+    const auto active = tracker.active_contacts(states);
+    system.evaluate(D, e.chord_rotations, true, e, active);
+    ASSERT_GT(std::abs(e.contacts[0].Y), 1.0);
+    // Dense K_ff: block part (mirrored) plus the contact terms.
+    const int n = dofs.free_count();
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
+    const auto& T = system.tangent();
+    for (int col = 0; col < T.size; ++col)
+      for (int p = T.column[col]; p < T.column[col + 1]; ++p)
+        for (int a = 0; a < 3; ++a)
+          for (int d = 0; d < 3; ++d) {
+            const int r = dofs.equation(3 * dofs.block_node(T.row[p]) + a), q = dofs.equation(3 * dofs.block_node(col) + d);
+            if (r < 0 || q < 0) continue;
+            K(r, q) += T.value[p](a, d);
+            if (T.row[p] != col) K(q, r) += T.value[p](a, d);
+          }
+    for (const auto& t : system.contact_tangents())
+      for (int a = 0; a < 9; ++a)
+        for (int d = 0; d < 9; ++d)
+          if (t.equation[a] >= 0 && t.equation[d] >= 0) K(t.equation[a], t.equation[d]) += t.value(a, d);
+    Eigen::MatrixXd fd(n, n);
+    for (int q = 0; q < n; ++q) {
+      Eigen::VectorXd plus = D, minus = D;
+      plus[dofs.dof(q)] += 1e-7;
+      minus[dofs.dof(q)] -= 1e-7;
+      tsm::assembly::Evaluation ep, em;
+      system.evaluate(plus, e.chord_rotations, false, ep, active);
+      system.evaluate(minus, e.chord_rotations, false, em, active);
+      for (int r = 0; r < n; ++r) fd(r, q) = (ep.internal_force[dofs.dof(r)] - em.internal_force[dofs.dof(r)]) / 2e-7;
+    }
+    EXPECT_LE((K - fd).norm(), 1e-6 * fd.norm()) << element;
+    EXPECT_GT((K - K.transpose()).norm(), 1e-8 * K.norm()) << "the sliding term makes it non-symmetric";
+  }
+}
+
+}  // namespace
