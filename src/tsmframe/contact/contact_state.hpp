@@ -23,6 +23,10 @@ struct ContactState {
   /// Released during the current step: it stays released until the step has converged (the
   /// iterates after a release may sweep the beam through the node).
   bool released_in_step = false;
+  /// At that release: the side the node was on and the normal n of the element it left. Until
+  /// the step ends the node must stay on that side of every element whose span it is in.
+  int released_side = 0;
+  double released_normal[2] = {0.0, 0.0};
 };
 
 }  // namespace tsm::contact

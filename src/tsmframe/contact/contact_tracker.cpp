@@ -149,6 +149,11 @@ std::vector<ActiveContact> ContactTracker::active_contacts(const std::vector<Con
 void ContactTracker::release(const Spec& spec, const Eigen::VectorXd& D, const std::vector<double>& rotations,
                              ContactState& state) const {
   reset_sides(spec, D, rotations, state.side, state);
+  const Eigen::Vector2d n = chord_normal(initial_[state.element], element_displacements(model_.elements[state.element], D),
+                                         rotations[state.element]);
+  state.released_side = state.side;
+  state.released_normal[0] = n.x();
+  state.released_normal[1] = n.y();
   state.active = false;
   state.released_in_step = true;
   state.element = -1;
@@ -248,6 +253,23 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
     }
   }
   return changes;
+}
+
+bool ContactTracker::passed_through(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                    const std::vector<ContactState>& states) const {
+  for (size_t k = 0; k < specs_.size(); ++k) {
+    const ContactState& state = states[k];
+    if (state.active || !state.released_in_step) continue;
+    const Eigen::Vector2d released_normal(state.released_normal[0], state.released_normal[1]);
+    for (const int f : specs_[k].candidates) {
+      const NodeOnElement where = locate(specs_[k], f, D, rotations);
+      if (where.alpha < 0.0 || where.alpha > 1.0) continue;
+      const Eigen::Vector2d n = chord_normal(initial_[f], element_displacements(model_.elements[f], D), rotations[f]);
+      const int expected = n.dot(released_normal) >= 0.0 ? state.released_side : -state.released_side;
+      if (expected * where.gap < -touch_tolerance_) return true;
+    }
+  }
+  return false;
 }
 
 void ContactTracker::accept(const Eigen::VectorXd& D, const std::vector<double>& rotations,

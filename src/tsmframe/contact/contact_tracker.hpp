@@ -60,6 +60,10 @@ class ContactTracker {
   ContactChanges update(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
                         const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states,
                         bool release_pulling) const;
+  /// Whether a contact released during this step has let its node pass through a beam (it may
+  /// not start again within the step): the converged state is then not acceptable.
+  bool passed_through(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
+                      const std::vector<ContactState>& states) const;
   /// At a converged state: inactive contacts take their current sides as reference.
   void accept(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
               std::vector<ContactState>& states) const;

@@ -241,6 +241,11 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
         }
         continue;
       }
+      if (contacts_ && contacts_->passed_through(state.displacements, state.chord_rotations, state.contacts)) {
+        out.status = Status::diverged;
+        out.message = iterate_text("a contact node passed through a beam after its contact was released", it);
+        return out;
+      }
       out.criterion = criterion;
       if (contacts_) contacts_->accept(state.displacements, state.chord_rotations, state.contacts);
       return out;
