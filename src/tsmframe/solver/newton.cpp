@@ -57,6 +57,7 @@ bool NewtonSolver::evaluate(State& state) {
     if (!changes.any()) break;
     changed = true;
     switches_ += changes.activated + changes.released;
+    handovers_ += changes.handed_over;
   }
   // α and force of the evaluation that stands (update() has set them unless the passes ran out).
   size_t next = 0;
@@ -168,8 +169,12 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
   NewtonOutcome out;
   Eigen::VectorXd R = unbalanced_force(state.load_factor);
   ResidualScale start_scale;
-  switches_ = 0;
+  switches_ = handovers_ = 0;
   const int max_switches = 4 + 4 * static_cast<int>(state.contacts.size());
+  // A contact point that keeps hopping between elements within one step is wandering over
+  // iterates far from the path (it may land on another branch, a beam looped around the node):
+  // fail the step so that cutback follows the path in smaller steps.
+  const int max_handovers = 10 * static_cast<int>(state.contacts.size());
   if (contacts_) out.contact_iterates.push_back(contact_points(state));
 
   for (int it = 1; it <= settings_.max_iterations; ++it) {
@@ -210,9 +215,10 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     state.load_factor += dlambda;
     const bool contacts_changed = evaluate(state);
     if (contacts_) out.contact_iterates.push_back(contact_points(state));
-    if (switches_ > max_switches) {
+    if (switches_ > max_switches || handovers_ > max_handovers) {
       out.status = Status::contact_chatter;
-      out.message = iterate_text("contacts keep switching on and off", it);
+      out.message = iterate_text(switches_ > max_switches ? "contacts keep switching on and off"
+                                                          : "contact points keep hopping between elements", it);
       return out;
     }
 

@@ -83,7 +83,8 @@ class NewtonSolver {
   assembly::GlobalSystem& system_;
   NewtonSettings settings_;
   const contact::ContactTracker* contacts_ = nullptr;
-  int switches_ = 0;  ///< contact activations + releases in the current step
+  int switches_ = 0;   ///< contact activations + releases in the current step
+  int handovers_ = 0;  ///< contact hand-overs across element ends in the current step
   LinearSolver solver_;
   assembly::Evaluation eval_;
   Eigen::VectorXd load_free_;        ///< F_ref over the free equations
