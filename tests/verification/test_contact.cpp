@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdio>
+#include <numbers>
 #include <cmath>
 
 #include <Eigen/Dense>
@@ -226,6 +227,35 @@ TEST_P(AcrossElementEnds, EveryStepConvergesAndThePointMovesMonotonically) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Theories, AcrossElementEnds, ::testing::Values("euler-bernoulli", "timoshenko"));
+
+TEST(AcrossMembers, ThePointPassesAJointBetweenTwoMembers) {
+  // The beam is two members meeting at x = 0.5 with a 3° kink (the second one drawn from its far
+  // end, so its chord and normal point the other way): the contact crosses the joint.
+  BeamSpec b;
+  b.divisions = 10;
+  b.A = 1e5;
+  json m = pusher_model(b, 0.2, 0.0, 0.6, 0.05, 30);
+  const double kink = 0.5 * std::tan(3.0 * std::numbers::pi / 180.0);
+  m["nodes"].push_back({{"id", 3}, {"x", 0.5}, {"y", 0.0}});
+  m["nodes"][1]["y"] = kink;
+  m["members"] = json::array({{{"from", 1}, {"to", 3}, {"divisions", 10}, {"material", "m"}, {"section", "s"}},
+                              {{"from", 2}, {"to", 3}, {"divisions", 10}, {"material", "m"}, {"section", "s"}}});
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  bool on_first = false, on_second = false;
+  for (const StepRecord& s : r.steps) {
+    const tsm::solver::ContactPoint& c = contact_of(s);
+    ASSERT_GE(c.element, 0) << "step " << s.step;
+    EXPECT_GT(c.force, 0.0) << "step " << s.step;
+    (model.elements[c.element].member == 0 ? on_first : on_second) = true;
+    if (model.elements[c.element].member == 1) {
+      EXPECT_TRUE(on_first);
+    }
+    expect_equilibrium(model, s);
+  }
+  EXPECT_TRUE(on_first && on_second);
+}
 
 // ---- Release ----
 
