@@ -34,6 +34,7 @@ std::string progress_line(const tsm::solver::StepRecord& step, bool log_iteratio
   os << "step " << step.step << "  load factor " << tsm::io::format_number(step.load_factor) << "  iterations "
      << step.iterations << "  residual "
      << (step.residual_norms.empty() ? std::string("-") : tsm::io::format_number(step.residual_norms.back()));
+  if (step.arc_length > 0.0) os << "  arc length " << tsm::io::format_number(step.arc_length);
   if (step.converged) os << " (" << step.criterion << ")";
   else os << "  FAILED: " << step.message;
   if (step.cutbacks > 0) os << "  after " << step.cutbacks << " cutbacks";

@@ -23,10 +23,13 @@ struct ContactState {
   /// Released during the current step: it stays released until the step has converged (the
   /// iterates after a release may sweep the beam through the node).
   bool released_in_step = false;
-  /// At that release: the side the node was on and the normal n of the element it left. Until
-  /// the step ends the node must stay on that side of every element whose span it is in.
+  /// At that release: the side the node was on, the normal n of the element it left, and per
+  /// candidate whether the node lay within its span (0 ≤ α ≤ 1). Until the step ends the node
+  /// must not reach the other side of those elements while within their span (going round a
+  /// free end is allowed).
   int released_side = 0;
   double released_normal[2] = {0.0, 0.0};
+  std::vector<char> released_within;
 };
 
 }  // namespace tsm::contact

@@ -154,6 +154,17 @@ void ContactTracker::release(const Spec& spec, const Eigen::VectorXd& D, const s
   state.released_side = state.side;
   state.released_normal[0] = n.x();
   state.released_normal[1] = n.y();
+  // The elements whose span holds the node, and their neighbours in the set: near a joint the
+  // node may sit just past one element's end yet is inside the beam's continuation.
+  state.released_within.assign(spec.candidates.size(), 0);
+  for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
+    const int f = spec.candidates[ci];
+    const double alpha = locate(spec, f, D, rotations).alpha;
+    if (alpha < -alpha_tolerance || alpha > 1.0 + alpha_tolerance) continue;
+    for (const int node : {model_.elements[f].start, model_.elements[f].end})
+      for (int p = node_start_[node]; p < node_start_[node + 1]; ++p)
+        if (spec.candidate_index[node_elements_[p]] >= 0) state.released_within[spec.candidate_index[node_elements_[p]]] = 1;
+  }
   state.active = false;
   state.released_in_step = true;
   state.element = -1;
@@ -261,7 +272,9 @@ bool ContactTracker::passed_through(const Eigen::VectorXd& D, const std::vector<
     const ContactState& state = states[k];
     if (state.active || !state.released_in_step) continue;
     const Eigen::Vector2d released_normal(state.released_normal[0], state.released_normal[1]);
-    for (const int f : specs_[k].candidates) {
+    for (size_t ci = 0; ci < specs_[k].candidates.size(); ++ci) {
+      if (!state.released_within[ci]) continue;
+      const int f = specs_[k].candidates[ci];
       const NodeOnElement where = locate(specs_[k], f, D, rotations);
       if (where.alpha < 0.0 || where.alpha > 1.0) continue;
       const Eigen::Vector2d n = chord_normal(initial_[f], element_displacements(model_.elements[f], D), rotations[f]);

@@ -581,7 +581,37 @@ class Reader {
         fail(child(path, "dof"), std::string("the controlled dof ") + dof_name(control.dof) + " of node " + std::to_string(model_.nodes[control.node].id) + " is fixed or prescribed");
     } else if (type == "arc-length") {
       check_keys(c, path, {"type", "initial_increment", "max_steps", "until", "min_increment", "max_increment"});
-      fail(child(path, "type"), "arc-length control is not available in this version of tsmframe yet (see CHANGELOG.md)");
+      control.type = ControlType::arc_length;
+      control.initial_increment = positive(required_number(c, "initial_increment", path), child(path, "initial_increment"));
+      if (!c.contains("max_steps")) fail(child(path, "max_steps"), "missing (required)");
+      control.max_steps = static_cast<int>(bounded_integer(c["max_steps"], child(path, "max_steps"), 1, max_steps));
+      control.min_increment = control.initial_increment / 1024.0;
+      control.max_increment = 10.0 * control.initial_increment;
+      if (auto v = optional_number(c, "min_increment", path)) control.min_increment = positive(*v, child(path, "min_increment"));
+      if (auto v = optional_number(c, "max_increment", path)) control.max_increment = positive(*v, child(path, "max_increment"));
+      if (control.min_increment > control.initial_increment) fail(child(path, "min_increment"), "must not exceed initial_increment");
+      if (control.max_increment < control.initial_increment) fail(child(path, "max_increment"), "must not be below initial_increment");
+      if (c.contains("until")) {
+        const std::string upath = child(path, "until");
+        const json& u = c["until"];
+        expect_object(u, upath);
+        if (u.contains("load_factor")) {
+          check_keys(u, upath, {"load_factor"});
+          control.until = Control::Until::load_factor;
+          control.until_value = required_number(u, "load_factor", upath);
+          if (control.until_value == 0.0) fail(child(upath, "load_factor"), "must not be zero (the path starts there)");
+        } else {
+          check_keys(u, upath, {"node", "dof", "value"});
+          control.until = Control::Until::displacement;
+          control.until_node = required_node(u, upath);
+          if (!u.contains("dof")) fail(child(upath, "dof"), "missing (required, or give \"load_factor\")");
+          control.until_dof = dof_from_name(string(u["dof"], child(upath, "dof")), child(upath, "dof"));
+          control.until_value = required_number(u, "value", upath);
+          if (model_.constrained[dofs_per_node * control.until_node + control.until_dof])
+            fail(child(upath, "dof"), std::string("the dof ") + dof_name(control.until_dof) + " of node " + std::to_string(model_.nodes[control.until_node].id) + " is fixed or prescribed");
+          if (control.until_value == 0.0) fail(child(upath, "value"), "must not be zero (the path starts there)");
+        }
+      }
     } else {
       fail(child(path, "type"), "unknown control " + quote_text(type) + " (expected \"load\", \"displacement\" or \"arc-length\")");
     }

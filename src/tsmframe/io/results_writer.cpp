@@ -31,6 +31,7 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
   w.end_array();
   if (step.converged) w.key("criterion").value(step.criterion);
   w.key("increment").value(step.increment);
+  if (step.arc_length > 0.0) w.key("arc_length").value(step.arc_length);
   w.key("cutbacks").value(step.cutbacks);
   if (!step.converged) w.key("message").value(step.message);
   if (step.has_state) {
@@ -105,6 +106,14 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
   w.end_array();
   w.newline().key("steps").begin_array();
   for (const solver::StepRecord& step : result.steps) write_step(w, model, step, supported);
+  w.end_array();
+  // Converged steps where λ peaks or dips along the path (limit points, with arc-length control).
+  w.newline().key("limit_points").begin_array();
+  for (const solver::LimitPoint& p : result.limit_points) {
+    w.newline().begin_object();
+    w.key("step").value(p.step).key("kind").value(p.maximum ? "maximum" : "minimum").key("load_factor").value(p.load_factor);
+    w.end_object();
+  }
   w.end_array();
   w.newline().end_object();
   out << '\n';

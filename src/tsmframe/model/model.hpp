@@ -56,6 +56,16 @@ struct Control {
   int node = -1;
   int dof = uy;
   double target = 0.0;
+  // arc-length control (FORMAT.md): arc length of the first step, bounds, step budget, and when
+  // to stop (a load factor, or a value of one dof, reached in either direction)
+  double initial_increment = 0.0;
+  double min_increment = 0.0;
+  double max_increment = 0.0;
+  int max_steps = 0;
+  enum class Until { steps, load_factor, displacement } until = Until::steps;
+  double until_value = 0.0;
+  int until_node = -1;
+  int until_dof = uy;
 };
 
 struct OutputSelection {

@@ -1,5 +1,6 @@
 #include "tsmframe/solver/analysis.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -28,6 +29,94 @@ std::string failure_text(int step, double from, double to, const char* what, con
   return os.str();
 }
 
+/// Appends step records to a run: converged steps get their state (only the newest keeps it
+/// unless the output selection wants it), every step goes to the observer.
+class Recorder {
+ public:
+  Recorder(const Model& model, const NewtonSolver& newton, const StepObserver& observer, RunResult& result)
+      : model_(model), newton_(newton), observer_(observer), result_(result) {}
+
+  int next_step() const { return static_cast<int>(result_.steps.size()) + 1; }
+
+  /// A record for the outcome of one attempt.
+  StepRecord start(const NewtonOutcome& outcome, int cutbacks) const {
+    StepRecord record;
+    record.step = next_step();
+    record.iterations = outcome.iterations;
+    record.residual_norms = outcome.residual_norms;
+    record.cutbacks = cutbacks;
+    record.contact_iterates = outcome.contact_iterates;
+    return record;
+  }
+
+  void converged(StepRecord record, const NewtonOutcome& outcome, const State& state) {
+    const AnalysisSettings& settings = model_.analysis;
+    record.load_factor = state.load_factor;
+    record.converged = true;
+    record.criterion = outcome.criterion;
+    record.has_state = true;
+    record.monitored.resize(dofs_per_node * static_cast<int>(settings.monitor.size()));
+    for (size_t m = 0; m < settings.monitor.size(); ++m)
+      record.monitored.segment<3>(dofs_per_node * m) = state.displacements.segment<3>(dofs_per_node * settings.monitor[m]);
+    record.displacements = state.displacements;
+    record.element_forces = newton_.element_forces();
+    record.reactions = newton_.reactions(state.load_factor);
+    record.contacts = newton_.contact_points(state);
+    if (last_with_state_ >= 0 && !keeps_state(settings.output, result_.steps[last_with_state_].step)) {
+      StepRecord& previous = result_.steps[last_with_state_];
+      previous.has_state = false;
+      previous.displacements = previous.element_forces = previous.reactions = Eigen::VectorXd();
+    }
+    last_with_state_ = static_cast<int>(result_.steps.size());
+    result_.steps.push_back(std::move(record));
+    if (observer_) observer_(result_.steps.back());
+  }
+
+  /// Replaces the newest converged step (arc-length landing exactly on its `until`).
+  void replace_last(StepRecord record, const NewtonOutcome& outcome, const State& state) {
+    record.step = result_.steps.back().step;
+    record.cutbacks = result_.steps.back().cutbacks;
+    result_.steps.pop_back();
+    last_with_state_ = -1;
+    for (int k = static_cast<int>(result_.steps.size()) - 1; k >= 0 && last_with_state_ < 0; --k)
+      if (result_.steps[k].has_state) last_with_state_ = k;
+    converged(std::move(record), outcome, state);
+  }
+
+  void failed(StepRecord record, const std::string& message) {
+    record.converged = false;
+    record.message = message;
+    result_.steps.push_back(std::move(record));
+    if (observer_) observer_(result_.steps.back());
+  }
+
+ private:
+  const Model& model_;
+  const NewtonSolver& newton_;
+  const StepObserver& observer_;
+  RunResult& result_;
+  int last_with_state_ = -1;
+};
+
+/// Limit points: converged steps whose λ is a strict local extremum of the path.
+std::vector<LimitPoint> limit_points(const std::vector<StepRecord>& steps) {
+  std::vector<const StepRecord*> path;
+  for (const StepRecord& s : steps)
+    if (s.converged) path.push_back(&s);
+  std::vector<LimitPoint> points;
+  double before = 0.0;  // λ at the start of the path
+  for (size_t k = 0; k + 1 < path.size(); ++k) {
+    const double here = path[k]->load_factor, after = path[k + 1]->load_factor;
+    if (here > before && here > after) points.push_back({path[k]->step, true, here});
+    if (here < before && here < after) points.push_back({path[k]->step, false, here});
+    before = here;
+  }
+  return points;
+}
+
+RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
+                         const StepObserver& observer);
+
 }  // namespace
 
 RunResult run_analysis(const Model& model, const StepObserver& observer) {
@@ -41,6 +130,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   State state{Eigen::VectorXd::Zero(model.dof_count()), 0.0,
               std::vector<double>(model.elements.size(), 0.0), contacts.initial_states()};
   newton.reset(state);
+  if (control.type == ControlType::arc_length) return run_arc_length(model, dofs, newton, state, observer);
 
   const bool by_displacement = control.type == ControlType::displacement;
   PathConstraint constraint;
@@ -65,7 +155,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   double t = 0.0, increment = nominal;
   int halvings = 0, grid_index = 0;
   RunResult result;
-  int last_with_state = -1;
+  Recorder recorder(model, newton, observer, result);
 
   while (grid_index < grid_steps) {
     const double next_grid = static_cast<double>(grid_index + 1) / control.steps;
@@ -78,39 +168,15 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
 
     const State saved = state;
     const NewtonOutcome outcome = newton.step(constraint, state);
-    StepRecord record;
-    record.step = static_cast<int>(result.steps.size()) + 1;
-    record.iterations = outcome.iterations;
-    record.residual_norms = outcome.residual_norms;
-    record.cutbacks = halvings;
+    StepRecord record = recorder.start(outcome, halvings);
     record.increment = (value(t_end) - value(t)) * (by_displacement ? control.target : 1.0);
-    record.contact_iterates = outcome.contact_iterates;
 
     if (outcome.status == Status::converged) {
       t = t_end;
       if (reaches_grid) ++grid_index;
       halvings = 0;
       increment = std::min(2.0 * increment, nominal);
-      record.load_factor = state.load_factor;
-      record.converged = true;
-      record.criterion = outcome.criterion;
-      record.has_state = true;
-      record.monitored.resize(dofs_per_node * static_cast<int>(settings.monitor.size()));
-      for (size_t m = 0; m < settings.monitor.size(); ++m)
-        record.monitored.segment<3>(dofs_per_node * m) = state.displacements.segment<3>(dofs_per_node * settings.monitor[m]);
-      record.displacements = state.displacements;
-      record.element_forces = newton.element_forces();
-      record.reactions = newton.reactions(state.load_factor);
-      record.contacts = newton.contact_points(state);
-      // Only the newest step keeps its state unless the output selection wants it.
-      if (last_with_state >= 0 && !keeps_state(settings.output, result.steps[last_with_state].step)) {
-        StepRecord& previous = result.steps[last_with_state];
-        previous.has_state = false;
-        previous.displacements = previous.element_forces = previous.reactions = Eigen::VectorXd();
-      }
-      last_with_state = static_cast<int>(result.steps.size());
-      result.steps.push_back(std::move(record));
-      if (observer) observer(result.steps.back());
+      recorder.converged(std::move(record), outcome, state);
       continue;
     }
 
@@ -125,19 +191,142 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
       continue;
     }
     record.load_factor = by_displacement ? saved.load_factor : value(t_end);
-    record.converged = false;
-    record.message = outcome.message;
     result.status = settings.cutback ? Status::cutback_limit : outcome.status;
     const double from = value(t) * (by_displacement ? control.target : 1.0);
     const double to = value(t_end) * (by_displacement ? control.target : 1.0);
     result.message = failure_text(record.step, from, to, by_displacement ? "controlled displacement" : "load factor",
                                   outcome, halvings);
-    result.steps.push_back(std::move(record));
-    if (observer) observer(result.steps.back());
+    recorder.failed(std::move(record), outcome.message);
+    result.limit_points = limit_points(result.steps);
     return result;
   }
   result.status = Status::converged;
+  result.limit_points = limit_points(result.steps);
   return result;
 }
+
+namespace {
+
+/// The quantity `until` watches, and its target (FORMAT.md `until`).
+double watched(const Control& control, const State& state) {
+  if (control.until == Control::Until::load_factor) return state.load_factor;
+  return state.displacements[dofs_per_node * control.until_node + control.until_dof];
+}
+
+RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
+                         const StepObserver& observer) {
+  const AnalysisSettings& settings = model.analysis;
+  const Control& control = settings.control;
+  // Step size: after a step of n iterations the next arc length is scaled by √(aim / n), at
+  // most doubled or halved, within [min_increment, max_increment]; a failed step is retried at
+  // half the arc length (cutback) until min_increment.
+  constexpr double aim_iterations = 6.0;
+  RunResult result;
+  Recorder recorder(model, newton, observer, result);
+  PathConstraint constraint;
+  constraint.kind = PathConstraint::Kind::arc_length;
+  double arc = control.initial_increment;
+  int halvings = 0, converged_steps = 0;
+  const bool watching = control.until != Control::Until::steps;
+
+  while (converged_steps < control.max_steps) {
+    const State saved = state;
+    constraint.arc_length = arc;
+    const NewtonOutcome outcome = newton.step(constraint, state);
+    StepRecord record = recorder.start(outcome, halvings);
+    record.arc_length = arc;
+    if (outcome.status == Status::converged) {
+      record.increment = state.load_factor - saved.load_factor;
+      ++converged_steps;
+      // The step's increment steers the next predictor.
+      constraint.previous_increment.resize(dofs.free_count());
+      for (int eq = 0; eq < dofs.free_count(); ++eq)
+        constraint.previous_increment[eq] = state.displacements[dofs.dof(eq)] - saved.displacements[dofs.dof(eq)];
+      constraint.previous_load_increment = record.increment;
+      halvings = 0;
+      const double factor = std::clamp(std::sqrt(aim_iterations / std::max(1, outcome.iterations)), 0.5, 2.0);
+      arc = std::clamp(arc * factor, control.min_increment, control.max_increment);
+      const double before = watched(control, saved), after = watched(control, state);
+      const bool reached = watching && (before - control.until_value) * (after - control.until_value) <= 0.0 && after != before;
+      recorder.converged(std::move(record), outcome, state);
+      if (!reached) continue;
+      // Land exactly on the target: redo the step from its start under load or displacement control.
+      State landed = saved;
+      newton.reset(landed);
+      PathConstraint land;
+      if (control.until == Control::Until::load_factor) {
+        land.kind = PathConstraint::Kind::load_increment;
+        land.load_increment = control.until_value - saved.load_factor;
+      } else {
+        land.kind = PathConstraint::Kind::displacement_target;
+        land.equation = dofs.equation(dofs_per_node * control.until_node + control.until_dof);
+        land.target = control.until_value;
+      }
+      const NewtonOutcome landing = newton.step(land, landed);
+      if (landing.status == Status::converged) {
+        StepRecord exact = recorder.start(landing, 0);
+        exact.increment = landed.load_factor - saved.load_factor;
+        exact.arc_length = 0.0;  // landed under load/displacement control
+        state = landed;
+        recorder.replace_last(std::move(exact), landing, state);
+      } else {
+        newton.reset(state);  // keep the arc-length step that passed the target
+      }
+      result.status = Status::converged;
+      result.limit_points = limit_points(result.steps);
+      return result;
+    }
+    state = saved;
+    if (settings.cutback && halvings < settings.max_cutbacks && arc / 2.0 >= control.min_increment * (1.0 - 1e-12)) {
+      ++halvings;
+      arc /= 2.0;
+      newton.reset(state);
+      continue;
+    }
+    // No arc reaches the path here: it jumps (a contact slipping off a beam's end springs the
+    // beam back at one load factor). Try one load-controlled step of the last Δλ across the jump.
+    if (constraint.previous_load_increment != 0.0) {
+      newton.reset(state);
+      PathConstraint jump;
+      jump.load_increment = constraint.previous_load_increment;
+      const NewtonOutcome across = newton.step(jump, state);
+      if (across.status == Status::converged) {
+        StepRecord crossed = recorder.start(across, halvings);
+        crossed.increment = state.load_factor - saved.load_factor;
+        constraint.previous_increment.resize(0);  // the jump is no direction to follow
+        halvings = 0;
+        arc = control.initial_increment;
+        ++converged_steps;
+        recorder.converged(std::move(crossed), across, state);
+        continue;
+      }
+      state = saved;
+      newton.reset(state);
+    }
+    record.load_factor = saved.load_factor;
+    result.status = settings.cutback ? Status::cutback_limit : outcome.status;
+    std::ostringstream os;
+    os << "step " << record.step << " (arc length " << arc << " from load factor " << saved.load_factor
+       << ") failed: " << outcome.message;
+    if (halvings > 0) os << ", after " << halvings << " cutbacks in a row";
+    result.message = os.str();
+    recorder.failed(std::move(record), outcome.message);
+    result.limit_points = limit_points(result.steps);
+    return result;
+  }
+  result.limit_points = limit_points(result.steps);
+  if (watching) {
+    result.status = Status::step_limit;
+    std::ostringstream os;
+    os << "max_steps (" << control.max_steps << ") used before reaching the `until` target " << control.until_value
+       << " (now " << watched(control, state) << ")";
+    result.message = os.str();
+  } else {
+    result.status = Status::converged;
+  }
+  return result;
+}
+
+}  // namespace
 
 }  // namespace tsm::solver

@@ -36,6 +36,7 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
   for (int dof = 0; dof < model.dof_count(); ++dof) {
     constrained_[dof] = model.constrained[dof] ? 1 : 0;
     if (constrained_[dof]) constrained_dofs_.push_back(dof);
+    if (dof % dofs_per_node != rz) prescribed_squared_ += model.reference_prescribed[dof] * model.reference_prescribed[dof];
   }
   solver_.analyze(system.dofs(), system.tangent());
 }
@@ -157,6 +158,20 @@ bool NewtonSolver::at_round_off(const Eigen::VectorXd& correction, const State& 
          step[1] <= round_off_ratio * std::max(1.0, largest[1]);
 }
 
+double NewtonSolver::arc_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
+  double sum = 0.0;
+  for (Eigen::Index eq = 0; eq < a.size(); ++eq)
+    if (!is_moment_[eq]) sum += a[eq] * b[eq];
+  return sum;
+}
+
+Eigen::VectorXd NewtonSolver::free_displacements(const State& state) const {
+  const assembly::DofMap& dofs = system_.dofs();
+  Eigen::VectorXd v(dofs.free_count());
+  for (int eq = 0; eq < dofs.free_count(); ++eq) v[eq] = state.displacements[dofs.dof(eq)];
+  return v;
+}
+
 bool NewtonSolver::within_floor(const std::array<double, 2>& norms) const {
   const auto [force, moment] = norms;
   return force <= floor_ratio * eval_.force_floor && moment <= floor_ratio * eval_.moment_floor;
@@ -170,6 +185,9 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
   Eigen::VectorXd R = unbalanced_force(state.load_factor);
   ResidualScale start_scale;
   switches_ = handovers_ = 0;
+  const bool by_arc = constraint.kind == PathConstraint::Kind::arc_length;
+  const Eigen::VectorXd start = by_arc ? free_displacements(state) : Eigen::VectorXd();
+  const double start_load_factor = state.load_factor;
   const int max_switches = 4 + 4 * static_cast<int>(state.contacts.size());
   // A contact point that keeps hopping between elements within one step is wandering over
   // iterates far from the path (it may land on another branch, a beam looped around the node):
@@ -190,6 +208,42 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     if (constraint.kind == PathConstraint::Kind::load_increment) {
       if (it == 1) dlambda = constraint.load_increment;
       correction = solver_.solve(R + dlambda * load_direction);
+    } else if (by_arc) {
+      // δD = δD_R + δλ δD_F; δλ from the arc-length constraint (Crisfield's cylindrical form).
+      const Eigen::VectorXd a = solver_.solve(load_direction), b = solver_.solve(R);
+      const double P2 = prescribed_squared_, s2 = constraint.arc_length * constraint.arc_length;
+      const double qa = arc_dot(a, a) + P2;
+      if (!(qa > 0.0) || !std::isfinite(qa)) {
+        out.status = Status::singular;
+        out.message = iterate_text("the load moves no translation (arc length undefined)", it);
+        return out;
+      }
+      if (it == 1) {  // predictor along the tangent, continuing the direction of the last step
+        double direction = 1.0;
+        if (constraint.previous_increment.size() > 0) {
+          const double along = arc_dot(constraint.previous_increment, a) + constraint.previous_load_increment * P2;
+          direction = along < 0.0 ? -1.0 : 1.0;
+        }
+        dlambda = direction * constraint.arc_length / std::sqrt(qa);
+      } else {
+        const Eigen::VectorXd increment = free_displacements(state) - start;
+        const double dl = state.load_factor - start_load_factor;
+        const Eigen::VectorXd u = increment + b;
+        const double qb = 2.0 * (arc_dot(u, a) + dl * P2);
+        const double qc = arc_dot(u, u) + dl * dl * P2 - s2;
+        const double disc = qb * qb - 4.0 * qa * qc;
+        if (!(disc >= 0.0)) {
+          out.status = Status::diverged;
+          out.message = iterate_text("the arc-length constraint has no real root", it);
+          return out;
+        }
+        const double q = -0.5 * (qb + std::copysign(std::sqrt(disc), qb));
+        const double r1 = q / qa, r2 = q != 0.0 ? qc / q : -r1;
+        // The root whose new increment turns least from the current one: no doubling back.
+        auto turn = [&](double r) { return arc_dot(increment, u + r * a) + dl * (dl + r) * P2; };
+        dlambda = turn(r1) >= turn(r2) ? r1 : r2;
+      }
+      correction = b + dlambda * a;
     } else {
       const Eigen::VectorXd a = solver_.solve(load_direction), b = solver_.solve(R);
       const int k = constraint.equation;

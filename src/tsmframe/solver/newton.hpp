@@ -21,10 +21,19 @@ struct PathConstraint {
   enum class Kind {
     load_increment,       ///< λ += increment in the predictor, then fixed
     displacement_target,  ///< λ chosen every iterate so that one free dof equals target
+    arc_length,           ///< the step's increment (ΔD, Δλ) has length arc_length (Crisfield)
   } kind = Kind::load_increment;
   double load_increment = 0.0;
   int equation = -1;  ///< free equation of the controlled dof
   double target = 0.0;
+  /// Arc length Δs: ‖ΔD_t‖² + Δλ² ‖D_p,ref‖² = Δs², ΔD_t the translations of the free dofs and
+  /// D_p,ref the prescribed translations (cylindrical in the free dofs, spherical in the
+  /// prescribed ones, which move with λ).
+  double arc_length = 0.0;
+  /// The last converged step's increment (free equations) and Δλ, for the direction of the
+  /// predictor; empty at the start of the path (λ then rises).
+  Eigen::VectorXd previous_increment;
+  double previous_load_increment = 0.0;
 };
 
 struct NewtonSettings {
@@ -79,6 +88,9 @@ class NewtonSolver {
   bool at_round_off(const Eigen::VectorXd& correction, const State& state) const;
   /// ‖R‖ per kind within a small multiple of the rounding floor of the internal forces.
   bool within_floor(const std::array<double, 2>& residual_norms) const;
+  /// Translational part of dot products for the arc-length constraint.
+  double arc_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const;
+  Eigen::VectorXd free_displacements(const State& state) const;
 
   assembly::GlobalSystem& system_;
   NewtonSettings settings_;
@@ -91,6 +103,7 @@ class NewtonSolver {
   std::vector<unsigned char> is_moment_;    ///< per free equation: 1 for a rotation dof
   std::vector<unsigned char> constrained_;  ///< per dof: fixed or prescribed
   std::vector<int> constrained_dofs_;
+  double prescribed_squared_ = 0.0;  ///< ‖D_p,ref‖² over prescribed translations
 };
 
 }  // namespace tsm::solver

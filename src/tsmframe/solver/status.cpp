@@ -10,6 +10,7 @@ const char* status_name(Status status) {
     case Status::singular: return "singular";
     case Status::cutback_limit: return "cutback-limit";
     case Status::contact_chatter: return "contact-chatter";
+    case Status::step_limit: return "step-limit";
   }
   return "unknown";
 }

@@ -10,6 +10,7 @@ enum class Status {
   singular,        ///< the tangent could not be factorised (a limit or bifurcation point)
   cutback_limit,   ///< a step still failed after the allowed number of halvings
   contact_chatter, ///< contacts kept switching on and off within one step
+  step_limit,      ///< arc-length control used max_steps before reaching its `until`
 };
 
 /// The spelling used in results.json ("max-iterations", ...).

@@ -26,7 +26,8 @@ struct StepRecord {
   std::vector<double> residual_norms;  ///< relative ‖R‖ of each iterate, iterate 0 first
   std::string criterion;               ///< "force" or "round-off" (converged steps)
   int cutbacks = 0;                    ///< failed attempts halved away before this step
-  double increment = 0.0;              ///< Δλ (load control) or the controlled dof's increment
+  double increment = 0.0;              ///< Δλ (load and arc-length control) or the controlled dof's increment
+  double arc_length = 0.0;             ///< Δs of the step (arc-length control; 0 otherwise)
   std::string message;                 ///< why a failed step failed
   Eigen::VectorXd monitored;           ///< (u, v, Θ) of each monitored node (converged steps)
   bool has_state = false;              ///< the arrays below are filled
@@ -38,10 +39,18 @@ struct StepRecord {
   std::vector<std::vector<ContactPoint>> contact_iterates;
 };
 
+/// A converged step where λ is largest or smallest among its neighbours on the path.
+struct LimitPoint {
+  int step = 0;
+  bool maximum = true;
+  double load_factor = 0.0;
+};
+
 struct RunResult {
   Status status = Status::converged;
   std::string message;  ///< a sentence when the run did not reach its end
   std::vector<StepRecord> steps;
+  std::vector<LimitPoint> limit_points;  ///< in path order
 };
 
 }  // namespace tsm::solver
