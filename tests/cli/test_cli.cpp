@@ -190,6 +190,20 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
        },
        "contacts[1].node: this node already has a contact entry"},
       {"load path standing still", [](json& m) { m["analysis"]["control"]["path"] = {1.0, 1.0}; }, "analysis.control.path[1]: repeats the load factor"},
+      {"arc-length without max_steps",
+       [](json& m) { m["analysis"]["control"] = {{"type", "arc-length"}, {"initial_increment", 0.1}}; },
+       "analysis.control.max_steps: missing (required)"},
+      {"arc-length until on a fixed dof",
+       [](json& m) {
+         m["analysis"]["control"] = {{"type", "arc-length"}, {"initial_increment", 0.1}, {"max_steps", 10},
+                                     {"until", {{"node", 1}, {"dof", "uy"}, {"value", 1.0}}}};
+       },
+       "analysis.control.until.dof: the dof uy of node 1 is fixed or prescribed"},
+      {"arc-length bounds",
+       [](json& m) {
+         m["analysis"]["control"] = {{"type", "arc-length"}, {"initial_increment", 0.1}, {"max_steps", 10}, {"min_increment", 0.2}};
+       },
+       "analysis.control.min_increment: must not exceed initial_increment"},
       {"bad control", [](json& m) { m["analysis"]["control"]["type"] = "force"; }, "analysis.control.type: unknown control"},
       {"bad steps", [](json& m) { m["analysis"]["control"]["steps"] = 0; }, "analysis.control.steps: must be between 1"},
       {"fractional divisions", [](json& m) { m["members"][0]["divisions"] = 2.5; }, "members[0].divisions: expected a whole number"},
@@ -245,6 +259,41 @@ TEST_F(Cli, ContactResultsInJsonAndCsv) {
   std::string header, row;
   std::getline(csv, header);
   EXPECT_NE(header.find(",contact_element_100,contact_xi_100,contact_force_100"), std::string::npos) << header;
+}
+
+TEST_F(Cli, ArcLengthMarksLimitPoints) {
+  // A shallow two-bar truss (bending negligible) under an apex load: snap-through.
+  const json m = json::parse(R"({
+    "materials": {"m": {"E": 1.0}}, "sections": {"s": {"A": 1.0, "I": 1e-9}},
+    "nodes": [{"id": 1, "x": 0, "y": 0}, {"id": 2, "x": 1, "y": 0.1}, {"id": 3, "x": 2, "y": 0}],
+    "members": [{"from": 1, "to": 2, "material": "m", "section": "s"}, {"from": 2, "to": 3, "material": "m", "section": "s"}],
+    "supports": [{"node": 1, "type": "pinned"}, {"node": 3, "type": "pinned"}],
+    "loads": [{"node": 2, "fy": -1e-3}],
+    "analysis": {"control": {"type": "arc-length", "initial_increment": 0.01, "max_increment": 0.01, "max_steps": 200,
+                             "until": {"node": 2, "dof": "uy", "value": -0.25}}}})");
+  const std::string model = write("truss.json", m.dump(2));
+  const fs::path out = dir_ / "out";
+  const Outcome o = run_cli("run " + model + " --out " + out.string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("arc length 0.01"), std::string::npos) << o.output;
+  std::ifstream in(out / "results.json");
+  const json r = json::parse(in);
+  ASSERT_EQ(r["limit_points"].size(), 2u);
+  EXPECT_EQ(r["limit_points"][0]["kind"], "maximum");
+  EXPECT_EQ(r["limit_points"][1]["kind"], "minimum");
+  EXPECT_GT(r["limit_points"][0]["load_factor"].get<double>(), 0.0);
+  EXPECT_LT(r["limit_points"][1]["load_factor"].get<double>(), 0.0);
+  EXPECT_GT(r["steps"][0]["arc_length"].get<double>(), 0.0);
+  // a budget too small for the `until`: exit 1, status step-limit, steps kept
+  json short_run = m;
+  short_run["analysis"]["control"]["max_steps"] = 3;
+  const std::string model2 = write("short.json", short_run.dump(2));
+  const Outcome o2 = run_cli("run " + model2 + " --out " + (dir_ / "out2").string());
+  EXPECT_EQ(o2.exit_code, 1) << o2.output;
+  std::ifstream in2(dir_ / "out2" / "results.json");
+  const json r2 = json::parse(in2);
+  EXPECT_EQ(r2["status"], "step-limit");
+  EXPECT_EQ(r2["steps"].size(), 3u);
 }
 
 TEST_F(Cli, InvalidJsonNamesLineAndColumn) {

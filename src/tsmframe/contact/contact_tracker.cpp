@@ -212,7 +212,8 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
           best_alpha = where.alpha;
         }
       }
-      if (best < 0) {  // no element beyond: the point has left the beam's free end
+      if (best < 0) {  // no element beyond: the point has left the beam's free end …
+        if (!release_pulling) continue;  // … but only a converged iterate says so (till then α is held at the end)
         occupied[state.element] = 0;
         release(spec, D, rotations, state);
         ++changes.released;

@@ -6,7 +6,8 @@
 //  - an active contact whose point has left its element (α < 0 or α > 1) is handed to the
 //    neighbouring element of its member set at that end (along a member, or across a joint to
 //    another member in the set) — at most one element per iterate; if there is none, the point
-//    has left the beam's free end and the contact is released;
+//    has left the beam's free end and the contact is released (at a converged iterate: till
+//    then the force acts at the end);
 //  - an inactive contact node that has reached or crossed an element's deflected centre line
 //    (0 ≤ α ≤ 1, the side flipped since the last converged state) becomes a contact element there.
 // Contact is measured from the element's own deflected shape (the line where the contact force

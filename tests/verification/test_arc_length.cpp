@@ -1,0 +1,224 @@
+// Arc-length control (issue 6): the von Mises two-bar truss against its closed form through
+// both limit points; arc-length and load control agree where both can go; Lee's frame (limit
+// load and snap-back) and DaDeppo & Schmidt's 215° arch against published limit loads; a contact
+// point that slips off a cantilever's free end.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+#include <numbers>
+
+#include "support/models.hpp"
+
+namespace {
+
+using namespace tsm::test;
+using tsm::solver::RunResult;
+using tsm::solver::StepRecord;
+
+RunResult run(const json& m, tsm::Model& model) {
+  model = tsm::io::read_model(m);
+  return tsm::solver::run_analysis(model);
+}
+
+// ---- Von Mises truss: two bars of EA = 1, half-span b = 1, rise h = 0.1, apex load P ----
+// One beam element per bar (I = 1e-9: bending negligible), so each bar is exactly a truss bar
+// with N = EA (l − l0)/l0; apex drop w: P(w) = 2 EA (L0 − L)/L0 · (h − w)/L, L = √(b² + (h − w)²).
+
+constexpr double rise = 0.1, reference_load = 1e-3;
+
+double truss_load(double w) {
+  const double L0 = std::hypot(1.0, rise), L = std::hypot(1.0, rise - w);
+  return 2.0 * (L0 - L) / L0 * (rise - w) / L;
+}
+
+json truss_model(const json& control) {
+  return json{
+      {"materials", {{"m", {{"E", 1.0}}}}},
+      {"sections", {{"s", {{"A", 1.0}, {"I", 1e-9}}}}},
+      {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 1.0}, {"y", rise}},
+                             {{"id", 3}, {"x", 2.0}, {"y", 0.0}}})},
+      {"members", json::array({{{"from", 1}, {"to", 2}, {"material", "m"}, {"section", "s"}},
+                               {{"from", 2}, {"to", 3}, {"material", "m"}, {"section", "s"}}})},
+      {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 3}, {"type", "pinned"}}})},
+      {"loads", json::array({{{"node", 2}, {"fy", -reference_load}}})},
+      {"analysis", {{"control", control}}},
+  };
+}
+
+TEST(ArcLength, VonMisesTrussFollowsTheClosedFormThroughBothLimitPoints) {
+  tsm::Model model;
+  const RunResult r = run(truss_model({{"type", "arc-length"}, {"initial_increment", 0.004}, {"max_increment", 0.004},
+                                       {"max_steps", 500}, {"until", {{"node", 2}, {"dof", "uy"}, {"value", -0.25}}}}),
+                          model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  // Closed-form limit points by a fine scan: the maximum before the bars are flat (w < h), the
+  // minimum after (h < w < 2h).
+  double p_max = -1.0, p_min = 1.0;
+  for (int k = 0; k <= 200000; ++k) {
+    const double w = 2.0 * rise * k / 200000.0, p = truss_load(w);
+    if (w < rise) p_max = std::max(p_max, p);
+    else p_min = std::min(p_min, p);
+  }
+  for (const StepRecord& s : r.steps) {
+    ASSERT_TRUE(s.converged);
+    const double w = -node_displacement(model, s, 2)[1];
+    EXPECT_NEAR(s.load_factor * reference_load, truss_load(w), 1e-5 * p_max) << "step " << s.step << " w " << w;
+  }
+  EXPECT_NEAR(-node_displacement(model, r.steps.back(), 2)[1], 0.25, 1e-12);  // landed on `until`
+  ASSERT_EQ(r.limit_points.size(), 2u);
+  EXPECT_TRUE(r.limit_points[0].maximum);
+  EXPECT_FALSE(r.limit_points[1].maximum);
+  EXPECT_NEAR(r.limit_points[0].load_factor * reference_load, p_max, 2e-3 * p_max);
+  EXPECT_NEAR(r.limit_points[1].load_factor * reference_load, p_min, 2e-3 * std::abs(p_min));
+  EXPECT_LT(p_min, 0.0);  // the path dips below zero load and comes back up
+}
+
+TEST(ArcLength, AgreesWithLoadControlWhereBothGo) {
+  tsm::Model arc_model, load_model;
+  const RunResult arc = run(truss_model({{"type", "arc-length"}, {"initial_increment", 0.01}, {"max_steps", 100},
+                                         {"until", {{"load_factor", 0.3}}}}),
+                            arc_model);
+  const RunResult load = run(truss_model({{"type", "load"}, {"steps", 10}}), load_model);
+  ASSERT_EQ(arc.status, tsm::solver::Status::converged) << arc.message;
+  ASSERT_EQ(load.status, tsm::solver::Status::converged) << load.message;
+  EXPECT_EQ(arc.steps.back().load_factor, 0.3);
+  // load control to λ = 1 passes 0.3 at step 3
+  const StepRecord& at = load.steps[2];
+  ASSERT_NEAR(at.load_factor, 0.3, 1e-15);
+  const double w_arc = node_displacement(arc_model, arc.steps.back(), 2)[1], w_load = node_displacement(load_model, at, 2)[1];
+  EXPECT_NEAR(w_arc, w_load, 1e-8 * std::abs(w_load));  // both converged to tolerance 1e-8
+  EXPECT_TRUE(arc.limit_points.empty());
+}
+
+// ---- Lee's frame ----
+// Column (0,0)–(0,120), beam (0,120)–(120,120), pinned at (0,0) and (120,120), downward load at
+// 24 from the knee; E = 720, A = 6, I = 2 (b = 3, h = 2). Limit load P L²/EI ≈ 18.5 (Lee, Manuel &
+// Rossow 1968; Schweizerhof & Wriggers, CMAME 59, 1986), followed by a snap-back: the load
+// point's deflection turns back along the path.
+
+TEST(ArcLength, LeesFrameLimitLoadAndSnapBack) {
+  const json m = {
+      {"materials", {{"m", {{"E", 720.0}}}}},
+      {"sections", {{"s", {{"A", 6.0}, {"I", 2.0}}}}},
+      {"nodes", json::array({{{"id", 1}, {"x", 0}, {"y", 0}}, {{"id", 2}, {"x", 0}, {"y", 120}},
+                             {{"id", 3}, {"x", 24}, {"y", 120}}, {{"id", 4}, {"x", 120}, {"y", 120}}})},
+      {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 20}, {"material", "m"}, {"section", "s"}},
+                               {{"from", 2}, {"to", 3}, {"divisions", 4}, {"material", "m"}, {"section", "s"}},
+                               {{"from", 3}, {"to", 4}, {"divisions", 16}, {"material", "m"}, {"section", "s"}}})},
+      {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 4}, {"type", "pinned"}}})},
+      {"loads", json::array({{{"node", 3}, {"fy", -1.0}}})},
+      {"analysis", {{"control", {{"type", "arc-length"}, {"initial_increment", 1.0}, {"max_increment", 1.0},
+                                 {"max_steps", 2000}, {"until", {{"node", 3}, {"dof", "uy"}, {"value", -90.0}}}}},
+                    {"output", "all"}}},
+  };
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  ASSERT_FALSE(r.limit_points.empty());
+  ASSERT_TRUE(r.limit_points[0].maximum);
+  const double normalised = r.limit_points[0].load_factor * 120.0 * 120.0 / (720.0 * 2.0);
+  std::printf("[figure] Lee's frame: P L^2/EI at the limit point = %.4f (published 18.5)\n", normalised);
+  EXPECT_NEAR(normalised, 18.5, 0.01 * 18.5);
+  int reversals = 0;
+  for (size_t k = 2; k < r.steps.size(); ++k) {
+    const double a = node_displacement(model, r.steps[k - 2], 3)[1], b = node_displacement(model, r.steps[k - 1], 3)[1],
+                 c = node_displacement(model, r.steps[k], 3)[1];
+    reversals += (b - a) * (c - b) < 0.0;
+  }
+  EXPECT_GE(reversals, 1) << "no snap-back: the load point's deflection never turned back";
+}
+
+// ---- DaDeppo & Schmidt's deep arch ----
+// Circular arch, R = 100, 215° (ends 17.5° below the centre's level), clamped at one end and
+// hinged at the other, vertical load at the apex, EI = 1e6, EA = 1e8. Limit load P R²/EI = 8.97
+// (DaDeppo & Schmidt, J. Appl. Mech. 42, 1975, 894–896), i.e. P = 897.
+
+TEST(ArcLength, DeepArchLimitLoad) {
+  const double R = 100.0, half = 107.5 * std::numbers::pi / 180.0;
+  const double right = std::numbers::pi / 2 - half, left = std::numbers::pi / 2 + half;
+  const json m = {
+      {"materials", {{"m", {{"E", 1e6}}}}},
+      {"sections", {{"s", {{"A", 100.0}, {"I", 1.0}}}}},
+      {"nodes", json::array({{{"id", 1}, {"x", R * std::cos(right)}, {"y", R * std::sin(right)}},
+                             {{"id", 2}, {"x", 0.0}, {"y", R}},
+                             {{"id", 3}, {"x", R * std::cos(left)}, {"y", R * std::sin(left)}}})},
+      {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 20}, {"material", "m"}, {"section", "s"},
+                                {"arc", {{"center", {0.0, 0.0}}, {"sweep", half}}}},
+                               {{"from", 2}, {"to", 3}, {"divisions", 20}, {"material", "m"}, {"section", "s"},
+                                {"arc", {{"center", {0.0, 0.0}}, {"sweep", half}}}}})},
+      {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 3}, {"type", "pinned"}}})},
+      {"loads", json::array({{{"node", 2}, {"fy", -1.0}}})},
+      {"analysis", {{"control", {{"type", "arc-length"}, {"initial_increment", 1.0}, {"max_increment", 2.0},
+                                 {"max_steps", 1000}, {"until", {{"node", 2}, {"dof", "uy"}, {"value", -120.0}}}}},
+                    {"output", "last"}}},
+  };
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  ASSERT_FALSE(r.limit_points.empty());
+  ASSERT_TRUE(r.limit_points[0].maximum);
+  std::printf("[figure] 215 deg arch: limit load P = %.2f (published 897)\n", r.limit_points[0].load_factor);
+  EXPECT_NEAR(r.limit_points[0].load_factor, 897.0, 0.01 * 897.0);
+}
+
+// ---- A contact point slipping off a cantilever's free end ----
+
+json slip_model(const json& control) {
+  BeamSpec b;
+  b.divisions = 20;
+  b.A = 1e5;
+  json m = beam_model(b);
+  m["nodes"].push_back({{"id", 100}, {"x", 0.9}, {"y", 0.0}});
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 100}, {"fix", {"ux", "rz"}}}});
+  m["prescribed"] = json::array({{{"node", 100}, {"uy", 1.0}}});
+  m["contacts"] = json::array({{{"node", 100}, {"members", "all"}}});
+  m["analysis"] = {{"control", control}};
+  return m;
+}
+
+TEST(ArcLength, ContactSlipsOffTheFreeEndAndThePathGoesOn) {
+  tsm::Model model;
+  const RunResult r = run(slip_model({{"type", "arc-length"}, {"initial_increment", 0.02}, {"max_increment", 0.02},
+                                      {"max_steps", 400}, {"until", {{"load_factor", 1.0}}}}),
+                          model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  // The contact force rises while the point slides out to the tip, then the node slips off.
+  double largest = 0.0;
+  int last_in_contact = -1;
+  for (size_t k = 0; k < r.steps.size(); ++k) {
+    const auto& c = r.steps[k].contacts.at(0);
+    if (c.element < 0) continue;
+    largest = std::max(largest, c.force);
+    last_in_contact = static_cast<int>(k);
+  }
+  ASSERT_GE(last_in_contact, 0);
+  const auto& final_contact = r.steps[last_in_contact].contacts[0];
+  EXPECT_EQ(final_contact.element, 19);        // the last element …
+  EXPECT_GT(final_contact.alpha, 0.99);        // … at its free end
+  EXPECT_EQ(final_contact.force, largest);     // the load maximum is where it slips off
+  EXPECT_LT(last_in_contact + 1, static_cast<int>(r.steps.size()));
+  const StepRecord& end = r.steps.back();
+  EXPECT_EQ(end.load_factor, 1.0);
+  EXPECT_LT(end.contacts[0].element, 0);
+  EXPECT_LT(node_displacement(model, end, 2).norm(), 1e-9);  // the beam is straight again
+}
+
+TEST(ArcLength, ContactAgreesWithLoadControl) {
+  tsm::Model arc_model, load_model;
+  const RunResult arc = run(slip_model({{"type", "arc-length"}, {"initial_increment", 0.02}, {"max_steps", 200},
+                                        {"until", {{"load_factor", 0.2}}}}),
+                            arc_model);
+  const RunResult load = run(slip_model({{"type", "load"}, {"steps", 5}}), load_model);
+  ASSERT_EQ(arc.status, tsm::solver::Status::converged) << arc.message;
+  ASSERT_EQ(load.status, tsm::solver::Status::converged) << load.message;
+  const auto hit = std::find_if(load.steps.begin(), load.steps.end(), [](const StepRecord& s) { return s.load_factor == 0.2; });
+  ASSERT_NE(hit, load.steps.end());  // λ = 0.2 is a grid point (cutback sub-steps end on the grid)
+  const StepRecord& at = *hit;
+  EXPECT_EQ(arc.steps.back().contacts[0].element, at.contacts[0].element);
+  EXPECT_NEAR(arc.steps.back().contacts[0].alpha, at.contacts[0].alpha, 1e-9);
+  EXPECT_NEAR(arc.steps.back().contacts[0].force, at.contacts[0].force, 1e-8 * at.contacts[0].force);
+}
+
+}  // namespace
