@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <algorithm>
 #include <iostream>
 #include <sstream>
 
@@ -13,6 +14,7 @@
 #include "tsmframe/io/model_reader.hpp"
 #include "tsmframe/io/results_writer.hpp"
 #include "tsmframe/solver/analysis.hpp"
+#include "tsmframe/study/study.hpp"
 #include "tsmframe/version.hpp"
 
 namespace {
@@ -90,6 +92,46 @@ int run(const RunOptions& options) {
   return exit_converged;
 }
 
+struct StudyOptions {
+  std::string study;
+  std::string out = "out/study";
+  bool quiet = false;
+  int jobs = 0;  // 0: all cores
+};
+
+int study(const StudyOptions& options) {
+  omp_set_num_threads(1);  // the cases run in parallel; each one on one thread
+  tsm::study::Study definition;
+  try {
+    definition = tsm::study::read_study_file(options.study);
+  } catch (const tsm::io::InputError& e) {
+    std::cerr << options.study << ": " << e.what() << '\n';
+    return exit_bad_input;
+  }
+  const size_t total = definition.case_count();
+  size_t done = 0;
+  const auto progress = [&](const tsm::study::CaseResult& row) {
+    ++done;
+    if (options.quiet) return;
+    std::cerr << "case " << row.index + 1 << '/' << total;
+    for (size_t p = 0; p < definition.parameters.size(); ++p)
+      std::cerr << "  " << definition.parameters[p].name << ' ' << definition.parameters[p].labels[row.choice[p]];
+    std::cerr << "  " << row.status << "  " << row.steps << " steps, " << row.iterations << " iterations  [" << done
+              << " done]\n";
+  };
+  const std::vector<tsm::study::CaseResult> rows = tsm::study::run_study(definition, options.jobs, options.out, progress);
+  try {
+    tsm::study::write_study(options.out, definition, rows);
+  } catch (const std::exception& e) {
+    std::cerr << "tsmframe: " << e.what() << '\n';
+    return exit_bad_input;
+  }
+  const size_t failed = std::count_if(rows.begin(), rows.end(), [](const auto& r) { return !r.converged; });
+  std::cerr << options.study << ": " << rows.size() << " cases, " << failed << " did not converge; rows in " << options.out
+            << "/study.csv and study.json\n";
+  return failed == 0 ? exit_converged : exit_not_converged;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -106,6 +148,13 @@ int main(int argc, char** argv) {
   run_command->add_option("-j,--threads", options.threads, "threads for the element loop (default: all cores; results are identical)")
       ->check(CLI::Range(1, 1024));
 
+  StudyOptions study_options;
+  CLI::App* study_command = app.add_subcommand("study", "Run a parameter study: one row per case in study.csv and study.json");
+  study_command->add_option("study", study_options.study, "study file (tsmframe-study/1, see README)")->required();
+  study_command->add_option("-o,--out", study_options.out, "output directory (default: out/study)");
+  study_command->add_flag("-q,--quiet", study_options.quiet, "no progress lines");
+  study_command->add_option("-j,--jobs", study_options.jobs, "cases run at once (default: all cores)")->check(CLI::Range(1, 1024));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -115,6 +164,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (run_command->parsed()) return run(options);
+    if (study_command->parsed()) return study(study_options);
   } catch (const std::exception& e) {
     std::cerr << "tsmframe: internal error: " << e.what() << '\n';
     return exit_not_converged;

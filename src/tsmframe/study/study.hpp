@@ -1,0 +1,74 @@
+#pragma once
+// Parameter studies: one model and a sweep over parameters, every case run on its own (in
+// parallel over the machine's cores), one results row per case. A case that fails — bad input
+// after substitution, non-convergence — is a row too, never a crash of the sweep.
+//
+// Study file ("tsmframe-study/1"):
+//   {"format": "tsmframe-study/1", "title": "…",
+//    "model": {…} | "model_file": "relative/to/the/study.json",
+//    "sweep": [
+//      {"name": "divisions", "path": "/members/0/divisions", "values": [6, 8, 10]},
+//      {"name": "divisions", "path": ["/members/0/divisions"], "range": [6, 200]},    // [from, to(, step)]
+//      {"name": "setup", "variants": [{"label": "cantilever", "set": {"/supports": […], "/loads": […]}}, …]}
+//    ],
+//    "keep": false}                      // true: each case's results.json and steps.csv under cases/<k>/
+// The cases are the Cartesian product of the sweep entries, the first entry varying slowest.
+// Paths are JSON pointers (RFC 6901) into the model.
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tsmframe/solver/status.hpp"
+
+namespace tsm::study {
+
+struct Parameter {
+  std::string name;
+  std::vector<std::string> labels;               ///< one per value, as written in the rows
+  std::vector<std::vector<std::pair<std::string, nlohmann::json>>> assignments;  ///< per value: pointer → value
+};
+
+struct Study {
+  std::string title;
+  nlohmann::json model;
+  std::vector<Parameter> parameters;
+  bool keep = false;
+  size_t case_count() const;
+};
+
+/// Reads a study file; throws io::InputError with the JSON path.
+Study read_study_file(const std::string& path);
+Study read_study(const nlohmann::json& document, const std::string& directory);
+
+/// One row of the study.
+struct CaseResult {
+  size_t index = 0;
+  std::vector<size_t> choice;       ///< value index per parameter
+  std::string status;               ///< status_name, or "bad-input"
+  bool converged = false;
+  int steps = 0;                    ///< converged steps
+  int iterations = 0;               ///< all Newton iterations, failed attempts included
+  int last_iterations = 0;          ///< iterations of the last attempt
+  double load_factor = 0.0;         ///< λ at the last converged step
+  double seconds = 0.0;
+  std::string message;
+  // The first contact's story (when the model has contacts):
+  int contact_first_element = 0;    ///< element id where it first touched (0: never)
+  double contact_max_alpha_first = 0.0;  ///< largest α reached there at a converged step
+  int contact_last_element = 0;     ///< element id at the last step in contact
+  int contact_elements_passed = 0;  ///< element ends passed after the first element
+};
+
+/// Runs every case on `threads` threads (0: all cores). `progress` is called after each case.
+std::vector<CaseResult> run_study(const Study& study, int threads, const std::string& keep_directory,
+                                  const std::function<void(const CaseResult&)>& progress = {});
+
+/// The case's model JSON (the base model with the case's assignments).
+nlohmann::json case_model(const Study& study, const std::vector<size_t>& choice);
+std::vector<size_t> case_choice(const Study& study, size_t index);
+
+/// study.csv and study.json into `directory` (atomically).
+void write_study(const std::string& directory, const Study& study, const std::vector<CaseResult>& rows);
+
+}  // namespace tsm::study
