@@ -6,6 +6,8 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -13,6 +15,7 @@
 #include "tsmframe/io/json_writer.hpp"
 #include "tsmframe/io/model_reader.hpp"
 #include "tsmframe/io/results_writer.hpp"
+#include "tsmframe/io/vtk_writer.hpp"
 #include "tsmframe/solver/analysis.hpp"
 #include "tsmframe/study/study.hpp"
 #include "tsmframe/version.hpp"
@@ -28,6 +31,8 @@ struct RunOptions {
   std::string out = "out";
   bool quiet = false;
   bool log_iterations = false;
+  bool vtk = false;
+  bool plot = false;
   int threads = 0;  // 0: all cores
 };
 
@@ -65,15 +70,46 @@ int run(const RunOptions& options) {
     std::cerr << options.model << ": " << e.what() << '\n';
     return exit_bad_input;
   }
+  // ParaView files are written as the steps converge (each step's full state exists only then).
+  const std::filesystem::path vtk_dir = std::filesystem::path(options.out) / "vtk";
+  std::vector<std::pair<double, std::string>> vtk_steps;
+  std::string vtk_error;
+  if (options.vtk) {
+    std::error_code error;
+    std::filesystem::create_directories(vtk_dir, error);
+    if (error) vtk_error = vtk_dir.string() + ": " + error.message();
+  }
   const auto observer = [&](const tsm::solver::StepRecord& step) {
     if (!options.quiet) std::cerr << progress_line(step, options.log_iterations) << std::endl;
+    if (!options.vtk || !vtk_error.empty() || !step.converged || !step.has_state) return;
+    char name[32];
+    std::snprintf(name, sizeof name, "step-%05d.vtu", step.step);
+    try {
+      tsm::io::write_vtu((vtk_dir / name).string(), model, step);
+      vtk_steps.emplace_back(step.load_factor, name);
+    } catch (const std::exception& e) {
+      vtk_error = e.what();
+    }
   };
   const tsm::solver::RunResult result = tsm::solver::run_analysis(model, observer);
   try {
     tsm::io::write_results(options.out, model, result);
+    if (options.vtk && vtk_error.empty()) tsm::io::write_pvd((vtk_dir / "results.pvd").string(), vtk_steps);
   } catch (const std::exception& e) {
     std::cerr << "tsmframe: " << e.what() << '\n';
     return exit_bad_input;
+  }
+  if (!vtk_error.empty()) {
+    std::cerr << "tsmframe: ParaView files not written: " << vtk_error << '\n';
+    return exit_not_converged;
+  }
+  if (options.plot) {
+    const std::string command = std::string("/usr/bin/python3 \"") + TSMFRAME_SCRIPTS_DIR + "/plot_run.py\" \"" +
+                                options.out + "\"" + (options.quiet ? " >/dev/null" : "");
+    if (std::system(command.c_str()) != 0) {
+      std::cerr << "tsmframe: --plot failed (it needs Debian's python3-matplotlib: bash scripts/setup.sh)\n";
+      return exit_not_converged;
+    }
   }
   int converged_steps = 0, iterations = 0;
   for (const auto& step : result.steps) {
@@ -145,6 +181,8 @@ int main(int argc, char** argv) {
   run_command->add_option("-o,--out", options.out, "output directory (default: out)");
   run_command->add_flag("-q,--quiet", options.quiet, "no progress lines");
   run_command->add_flag("--log-iterations", options.log_iterations, "print the residual of every iterate");
+  run_command->add_flag("--vtk", options.vtk, "ParaView files: DIR/vtk/results.pvd and one .vtu per converged step with state");
+  run_command->add_flag("--plot", options.plot, "plots: deformed shapes and load-displacement curves in DIR/plots/");
   run_command->add_option("-j,--threads", options.threads, "threads for the element loop (default: all cores; results are identical)")
       ->check(CLI::Range(1, 1024));
 

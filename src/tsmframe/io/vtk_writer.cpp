@@ -1,0 +1,135 @@
+#include "tsmframe/io/vtk_writer.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "tsmframe/contact/contact_force_law.hpp"
+#include "tsmframe/element/chord.hpp"
+#include "tsmframe/io/atomic_file.hpp"
+#include "tsmframe/io/json_writer.hpp"
+
+namespace tsm::io {
+namespace {
+
+struct Curve {
+  std::vector<Eigen::Vector2d> points;        ///< current positions along the element
+  std::vector<Eigen::Vector2d> displacement;  ///< current − drawn position of those material points
+  std::vector<double> rotation;
+};
+
+Curve element_curve(const Model& model, const Element& e, const Eigen::VectorXd& D) {
+  const Eigen::Vector2d Xi = model.nodes[e.start].position, Xj = model.nodes[e.end].position;
+  const Eigen::Vector3d di = D.segment<3>(dofs_per_node * e.start), dj = D.segment<3>(dofs_per_node * e.end);
+  const Eigen::Vector2d xi = Xi + di.head<2>(), xj = Xj + dj.head<2>();
+  const double l0 = (Xj - Xi).norm(), phi0 = std::atan2(Xj.y() - Xi.y(), Xj.x() - Xi.x());
+  const double phi = std::atan2(xj.y() - xi.y(), xj.x() - xi.x());
+  // β = φ − φ0 + 2πk, the k that puts the chord closest to the end rotations (θ are small).
+  const double guess = 0.5 * (di[2] + dj[2]), raw = phi - phi0;
+  const double beta = raw + 2.0 * std::numbers::pi * std::round((guess - raw) / (2.0 * std::numbers::pi));
+  const double theta_i = di[2] - beta, theta_j = dj[2] - beta;
+  const Eigen::Vector2d n(-std::sin(phi), std::cos(phi));
+  Curve c;
+  for (int k = 0; k <= curve_points; ++k) {
+    const double s = static_cast<double>(k) / curve_points;
+    // The element's own deflection under its end rotations (Y = 0 in the contact law).
+    const contact::PointLoadLaw law = contact::point_load_law(e.section, l0, s, 0.25);
+    const double w = -(law.h_i * theta_i + law.h_j * theta_j);
+    const Eigen::Vector2d x = xi + s * (xj - xi) + w * n;
+    c.points.push_back(x);
+    c.displacement.push_back(x - (Xi + s * (Xj - Xi)));
+    c.rotation.push_back((1.0 - s) * di[2] + s * dj[2]);
+  }
+  return c;
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const Model& model, const solver::StepRecord& step) {
+  const Eigen::VectorXd& D = step.displacements;
+  std::vector<Curve> curves;
+  curves.reserve(model.elements.size());
+  for (const Element& e : model.elements) curves.push_back(element_curve(model, e, D));
+  struct ContactPoint {
+    Eigen::Vector2d position, force;
+    double Y;
+  };
+  std::vector<ContactPoint> contacts;
+  std::vector<double> element_Y(model.elements.size(), 0.0);
+  for (size_t k = 0; k < step.contacts.size(); ++k) {
+    const solver::ContactPoint& c = step.contacts[k];
+    if (c.element < 0) continue;
+    element_Y[c.element] = c.Y;
+    const int node = model.contacts[k].node;
+    const Element& e = model.elements[c.element];
+    const Eigen::Vector2d xi = model.nodes[e.start].position + D.segment<2>(dofs_per_node * e.start);
+    const Eigen::Vector2d xj = model.nodes[e.end].position + D.segment<2>(dofs_per_node * e.end);
+    const Eigen::Vector2d t = (xj - xi).normalized(), n(-t.y(), t.x());
+    // J S puts +Y n on node c: the force the element needs there, i.e. the push the node gives the beam.
+    contacts.push_back({model.nodes[node].position + D.segment<2>(dofs_per_node * node), c.Y * n, c.Y});
+  }
+  const size_t per = curve_points + 1, n_points = curves.size() * per + contacts.size();
+  const size_t n_cells = curves.size() + contacts.size();
+  write_files_atomically({{path, [&](std::ostream& out) {
+    auto num = [](double x) { return format_number(std::isfinite(x) ? x : 0.0); };
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+        << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << n_points << "\" NumberOfCells=\"" << n_cells << "\">\n";
+    out << "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (const Curve& c : curves)
+      for (const Eigen::Vector2d& p : c.points) out << num(p.x()) << ' ' << num(p.y()) << " 0\n";
+    for (const ContactPoint& c : contacts) out << num(c.position.x()) << ' ' << num(c.position.y()) << " 0\n";
+    out << "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+    for (size_t k = 0; k < curves.size(); ++k) {
+      for (size_t p = 0; p < per; ++p) out << k * per + p << (p + 1 < per ? ' ' : '\n');
+    }
+    for (size_t k = 0; k < contacts.size(); ++k) out << curves.size() * per + k << '\n';
+    out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+    for (size_t k = 0; k < curves.size(); ++k) out << (k + 1) * per << '\n';
+    for (size_t k = 0; k < contacts.size(); ++k) out << curves.size() * per + k + 1 << '\n';
+    out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+    for (size_t k = 0; k < curves.size(); ++k) out << "4\n";  // VTK_POLY_LINE
+    for (size_t k = 0; k < contacts.size(); ++k) out << "1\n";  // VTK_VERTEX
+    out << "</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\">\n";
+    out << "<DataArray type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (const Curve& c : curves)
+      for (const Eigen::Vector2d& u : c.displacement) out << num(u.x()) << ' ' << num(u.y()) << " 0\n";
+    for (size_t k = 0; k < contacts.size(); ++k) {
+      const int node = model.contacts[k].node;
+      out << num(D[dofs_per_node * node]) << ' ' << num(D[dofs_per_node * node + 1]) << " 0\n";
+    }
+    out << "</DataArray>\n<DataArray type=\"Float64\" Name=\"rotation\" format=\"ascii\">\n";
+    for (const Curve& c : curves)
+      for (double r : c.rotation) out << num(r) << '\n';
+    for (size_t k = 0; k < contacts.size(); ++k) out << "0\n";
+    out << "</DataArray>\n<DataArray type=\"Float64\" Name=\"contact_force\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (size_t k = 0; k < curves.size() * per; ++k) out << "0 0 0\n";
+    for (const ContactPoint& c : contacts) out << num(c.force.x()) << ' ' << num(c.force.y()) << " 0\n";
+    out << "</DataArray>\n</PointData>\n<CellData>\n";
+    const char* names[] = {"N", "M_i", "M_j"};
+    for (int f = 0; f < 3; ++f) {
+      out << "<DataArray type=\"Float64\" Name=\"" << names[f] << "\" format=\"ascii\">\n";
+      for (size_t k = 0; k < curves.size(); ++k) out << num(step.element_forces[3 * k + f]) << '\n';
+      for (size_t k = 0; k < contacts.size(); ++k) out << "0\n";
+      out << "</DataArray>\n";
+    }
+    out << "<DataArray type=\"Float64\" Name=\"Y\" format=\"ascii\">\n";
+    for (size_t k = 0; k < curves.size(); ++k) out << num(element_Y[k]) << '\n';
+    for (const ContactPoint& c : contacts) out << num(c.Y) << '\n';
+    out << "</DataArray>\n<DataArray type=\"Int32\" Name=\"element_id\" format=\"ascii\">\n";
+    for (const Element& e : model.elements) out << e.id << '\n';
+    for (size_t k = 0; k < contacts.size(); ++k) out << "0\n";
+    out << "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  }}});
+}
+
+void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& steps) {
+  write_files_atomically({{path, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n<Collection>\n";
+    // ParaView needs increasing times: the step number, with the load factor in the name.
+    for (size_t k = 0; k < steps.size(); ++k)
+      out << "<DataSet timestep=\"" << k + 1 << "\" part=\"0\" file=\"" << steps[k].second << "\" name=\"load factor "
+          << format_number(steps[k].first) << "\"/>\n";
+    out << "</Collection>\n</VTKFile>\n";
+  }}});
+}
+
+}  // namespace tsm::io

@@ -1,0 +1,117 @@
+#!/usr/bin/python3
+"""ParaView and plot output of `tsmframe run` (issue 4): the .pvd/.vtu files parse as XML (and with
+Debian's python3-vtk9 when it is installed), carry the documented arrays, the curved element points
+of the one-step circle lie on the exact circle, contact forces appear at the contact point; --plot
+writes non-empty PNG files; the study report is written.
+
+    /usr/bin/python3 tests/python/test_outputs.py TSMFRAME_BINARY SOURCE_DIR
+"""
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+import xml.etree.ElementTree as ET
+
+BINARY, SOURCE = sys.argv[1], sys.argv[2]
+
+
+def run(*args):
+    return subprocess.run([BINARY, *args], capture_output=True, text=True)
+
+
+def arrays(piece, section):
+    out = {}
+    for a in piece.find(section).findall("DataArray"):
+        comps = int(a.get("NumberOfComponents", "1"))
+        values = [float(v) for v in a.text.split()]
+        out[a.get("Name")] = [values[k:k + comps] for k in range(0, len(values), comps)]
+    return out
+
+
+def read_vtu(path):
+    piece = ET.parse(path).getroot().find("UnstructuredGrid/Piece")
+    points = [float(v) for v in piece.find("Points/DataArray").text.split()]
+    points = [points[k:k + 3] for k in range(0, len(points), 3)]
+    return piece, points, arrays(piece, "PointData"), arrays(piece, "CellData")
+
+
+class Vtk(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def test_circle_points_lie_on_the_exact_circle(self):
+        out = os.path.join(self.dir.name, "circle")
+        r = run("run", os.path.join(SOURCE, "examples", "cantilever-circle.json"), "--out", out, "--vtk", "-q")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        pvd = ET.parse(os.path.join(out, "vtk", "results.pvd")).getroot()
+        files = [d.get("file") for d in pvd.iter("DataSet")]
+        self.assertEqual(len(files), 1)  # one converged step
+        piece, points, point_data, cell_data = read_vtu(os.path.join(out, "vtk", files[0]))
+        n_elements = int(piece.get("NumberOfCells"))
+        self.assertEqual(n_elements, 52)
+        self.assertEqual(len(points), 52 * 9)  # 8 segments per element
+        for name in ("displacement", "rotation", "contact_force"):
+            self.assertEqual(len(point_data[name]), len(points), name)
+        for name in ("N", "M_i", "M_j", "Y", "element_id"):
+            self.assertEqual(len(cell_data[name]), n_elements, name)
+        # The discrete model's exact solution: every chord keeps its length l0 = L/52 (N = 0 in pure
+        # bending), so the nodes lie on the circle of radius R = l0 / (2 sin(π/52)), centre (0, R).
+        l0 = 10.0 / 52
+        R = l0 / (2 * math.sin(math.pi / 52))
+        nodes = points[::9] + [points[-1]]
+        self.assertLess(max(abs(math.hypot(x, y - R) - R) for x, y, _ in nodes), 1e-7 * R)
+        worst = max(abs(math.hypot(x, y - R) - R) for x, y, _ in points)
+        self.assertLess(worst, 2e-5 * R, f"curve points off the circle by {worst}")
+        # the interior points matter: a chord-only drawing would be off by R(1 - cos(π/52)) ≈ 1.8e-3 R
+        self.assertGreater(R * (1 - math.cos(math.pi / 52)), 50 * 2e-5 * R)
+        # rotations: 2π at the tip, 0 at the root
+        self.assertAlmostEqual(point_data["rotation"][-1][0], 2 * math.pi, places=6)
+        self.assertAlmostEqual(point_data["rotation"][0][0], 0.0, places=12)
+        try:
+            import vtk  # Debian's python3-vtk9, when installed
+        except ImportError:
+            return
+        reader = vtk.vtkXMLUnstructuredGridReader()
+        reader.SetFileName(os.path.join(out, "vtk", files[0]))
+        reader.Update()
+        grid = reader.GetOutput()
+        self.assertEqual(grid.GetNumberOfPoints(), len(points))
+        self.assertEqual(grid.GetNumberOfCells(), n_elements)
+        self.assertIsNotNone(grid.GetCellData().GetArray("M_j"))
+
+    def test_contact_force_vector_at_the_contact_point(self):
+        out = os.path.join(self.dir.name, "push")
+        r = run("run", os.path.join(SOURCE, "examples", "contact-push.json"), "--out", out, "--vtk", "-q")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        files = [d.get("file") for d in ET.parse(os.path.join(out, "vtk", "results.pvd")).getroot().iter("DataSet")]
+        self.assertEqual(len(files), 200)
+        piece, points, point_data, cell_data = read_vtu(os.path.join(out, "vtk", files[-1]))
+        self.assertEqual(int(piece.get("NumberOfCells")), 18 + 1)  # 18 elements and the contact vertex
+        force = point_data["contact_force"][-1]
+        self.assertGreater(math.hypot(force[0], force[1]), 1e5)
+        self.assertGreater(force[1], 0.0)  # the pusher pushes the beam up
+        self.assertEqual(points[-1][1], 2.0)  # the contact node, pushed 2 m up
+        self.assertEqual(sum(1 for y in cell_data["Y"] if y[0] != 0.0), 2)  # the contact element and vertex
+
+
+class Plots(unittest.TestCase):
+    def test_plot_writes_png_files(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "frame")
+            r = run("run", os.path.join(SOURCE, "examples", "portal-frame.json"), "--out", out, "--plot", "-q")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            for name in ("deformed.png", "load-displacement.png", "deformed.svg"):
+                path = os.path.join(out, "plots", name)
+                self.assertTrue(os.path.exists(path), name)
+                self.assertGreater(os.path.getsize(path), 1000, name)
+            with open(os.path.join(out, "plots", "deformed.png"), "rb") as f:
+                self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+
+
+if __name__ == "__main__":
+    unittest.main(argv=[sys.argv[0]], verbosity=2)
