@@ -29,5 +29,9 @@ for study in studies/*.json; do
   [ $code -le 1 ] || status=1
 done
 /usr/bin/python3 scripts/report.py out | tee -a out/summary.txt
+# The same Fig. 7 study through the Python module (examples/python/)
+PYTHONPATH=build/python /usr/bin/python3 examples/python/fig7_contact_edge.py out/python > out/python.log 2>&1 \
+  && echo "python example fig7_contact_edge: out/python/fig7-python.png" | tee -a out/summary.txt \
+  || { echo "python example failed: see out/python.log" | tee -a out/summary.txt; status=1; }
 echo "results: out/<example>/results.json and steps.csv; studies: out/studies/*/study.csv; report: out/report.html; this table: out/summary.txt"
 exit $status

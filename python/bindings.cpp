@@ -1,0 +1,130 @@
+// The Python extension `tsmframe._core`: thin — read a model (FORMAT.md JSON text), run it, and
+// hand the results over as numpy arrays plus the same results.json text the CLI writes. No
+// mechanics here; the friendly API lives in tsmframe/__init__.py.
+#include <omp.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <sstream>
+
+#include "tsmframe/io/input_error.hpp"
+#include "tsmframe/io/model_reader.hpp"
+#include "tsmframe/io/results_writer.hpp"
+#include "tsmframe/solver/analysis.hpp"
+#include "tsmframe/version.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+template <typename T>
+py::array_t<T> array(std::vector<py::ssize_t> shape, const std::vector<T>& data) {
+  py::array_t<T> a(shape);
+  std::copy(data.begin(), data.end(), a.mutable_data());
+  return a;
+}
+
+py::dict run_json(const std::string& text, int threads) {
+  tsm::Model model;
+  try {
+    model = tsm::io::read_model_text(text);
+  } catch (const tsm::io::InputError& e) {
+    throw py::value_error(e.what());  // the CLI's "JSON.path: reason"
+  }
+  tsm::solver::RunResult result;
+  {
+    py::gil_scoped_release release;
+    if (threads > 0) omp_set_num_threads(threads);
+    result = tsm::solver::run_analysis(model);
+  }
+  const py::ssize_t n = model.node_count(), m = static_cast<py::ssize_t>(model.elements.size());
+  const py::ssize_t c = static_cast<py::ssize_t>(model.contacts.size());
+  py::dict out;
+  out["status"] = tsm::solver::status_name(result.status);
+  out["message"] = result.message;
+  std::vector<int> node_ids, element_ids, element_nodes, element_members;
+  std::vector<double> node_xy;
+  std::vector<std::string> element_kinds;
+  for (const tsm::Node& node : model.nodes) {
+    node_ids.push_back(node.id);
+    node_xy.push_back(node.position.x());
+    node_xy.push_back(node.position.y());
+  }
+  for (const tsm::Element& e : model.elements) {
+    element_ids.push_back(e.id);
+    element_nodes.push_back(model.nodes[e.start].id);
+    element_nodes.push_back(model.nodes[e.end].id);
+    element_members.push_back(e.member);
+    element_kinds.push_back(tsm::theory_name(e.theory));
+  }
+  out["node_ids"] = array<int>({n}, node_ids);
+  out["node_xy"] = array<double>({n, 2}, node_xy);
+  out["element_ids"] = array<int>({m}, element_ids);
+  out["element_nodes"] = array<int>({m, 2}, element_nodes);
+  out["element_members"] = array<int>({m}, element_members);
+  out["element_kinds"] = element_kinds;
+  std::vector<int> contact_nodes;
+  for (const tsm::ContactSpec& spec : model.contacts) contact_nodes.push_back(model.nodes[spec.node].id);
+  out["contact_nodes"] = array<int>({c}, contact_nodes);
+
+  // Every step (converged or the failed last attempt): step number, λ, iterations, residuals.
+  std::vector<int> step_numbers, iterations, converged;
+  std::vector<double> load_factors;
+  py::list residuals, criteria;
+  // Converged steps: contacts; steps with state: displacements, element forces, reactions.
+  std::vector<int> state_steps, contact_element;
+  std::vector<double> displacements, forces, reactions, contact_alpha, contact_force;
+  for (const tsm::solver::StepRecord& s : result.steps) {
+    step_numbers.push_back(s.step);
+    load_factors.push_back(s.load_factor);
+    iterations.push_back(s.iterations);
+    converged.push_back(s.converged ? 1 : 0);
+    residuals.append(array<double>({static_cast<py::ssize_t>(s.residual_norms.size())}, s.residual_norms));
+    criteria.append(s.criterion);
+    if (s.converged)
+      for (py::ssize_t k = 0; k < c; ++k) {
+        const tsm::solver::ContactPoint& p = s.contacts[k];
+        contact_element.push_back(p.element >= 0 ? model.elements[p.element].id : 0);
+        contact_alpha.push_back(p.element >= 0 ? p.alpha : 0.0);
+        contact_force.push_back(p.element >= 0 ? p.force : 0.0);
+      }
+    if (!s.has_state) continue;
+    state_steps.push_back(s.step);
+    displacements.insert(displacements.end(), s.displacements.data(), s.displacements.data() + 3 * n);
+    forces.insert(forces.end(), s.element_forces.data(), s.element_forces.data() + 3 * m);
+    reactions.insert(reactions.end(), s.reactions.data(), s.reactions.data() + 3 * n);
+  }
+  const py::ssize_t steps = static_cast<py::ssize_t>(result.steps.size());
+  const py::ssize_t with_state = static_cast<py::ssize_t>(state_steps.size());
+  const py::ssize_t converged_steps = static_cast<py::ssize_t>(contact_element.size() / std::max<py::ssize_t>(c, 1));
+  out["step"] = array<int>({steps}, step_numbers);
+  out["load_factor"] = array<double>({steps}, load_factors);
+  out["iterations"] = array<int>({steps}, iterations);
+  out["converged"] = array<int>({steps}, converged);
+  out["residual_norms"] = residuals;
+  out["criterion"] = criteria;
+  out["state_steps"] = array<int>({with_state}, state_steps);
+  out["displacements"] = array<double>({with_state, n, 3}, displacements);
+  out["element_forces"] = array<double>({with_state, m, 3}, forces);
+  out["reactions"] = array<double>({with_state, n, 3}, reactions);
+  out["contact_element"] = array<int>({c > 0 ? converged_steps : 0, c}, contact_element);
+  out["contact_alpha"] = array<double>({c > 0 ? converged_steps : 0, c}, contact_alpha);
+  out["contact_force"] = array<double>({c > 0 ? converged_steps : 0, c}, contact_force);
+  std::ostringstream json, csv;
+  tsm::io::write_results_json(json, model, result);
+  tsm::io::write_steps_csv(csv, model, result);
+  out["results_json"] = json.str();
+  out["steps_csv"] = csv.str();
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, module) {
+  module.doc() = "tsmframe's solver (thin bindings; use the tsmframe package)";
+  module.attr("__version__") = tsm::version;
+  module.def("run_json", &run_json, py::arg("text"), py::arg("threads") = 0,
+             "Run a model given as FORMAT.md JSON text; returns a dict of numpy arrays and the results.json text. "
+             "Raises ValueError (JSON path: reason) for bad input.");
+}

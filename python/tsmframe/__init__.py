@@ -1,0 +1,218 @@
+"""tsmframe from Python: geometrically nonlinear plane frames by the Tangent Stiffness Method.
+
+Build a model in code or load a FORMAT.md file, run it, get numpy arrays::
+
+    import tsmframe as tf
+    m = tf.Model("cantilever rolled into a circle")
+    m.material("steel", E=2.05e11, G=7.9e10)
+    m.section("s", A=1e-2, I=8.33e-6, shear_area=8.33e-3)
+    m.node(1, 0, 0); m.node(2, 10, 0)
+    m.member(1, 2, divisions=52, element="timoshenko", material="steel", section="s")
+    m.support(1, "fixed")
+    m.load(2, mz=6.283185307 * 2.05e11 * 8.33e-6 / 10)
+    r = tf.run(m)                 # or tf.run("model.json")
+    r.status, r.displacement(2)   # ("converged", array([ux, uy, rz]) at the last step)
+
+Bad input raises ValueError with the same "JSON.path: reason" as the command line;
+non-convergence is r.status, never an exception. The numbers come from the same C++ solver as
+`tsmframe run` (results equal bit for bit: r.results_json is the CLI's results.json).
+"""
+import json as _json
+import os as _os
+
+import numpy as _np
+
+from ._core import __version__, run_json as _run_json
+
+__all__ = ["Model", "Result", "run", "load", "__version__"]
+
+
+class Model:
+    """A model built in code; mirrors FORMAT.md key for key (see to_dict())."""
+
+    def __init__(self, title="", units=None):
+        self._doc = {"format": "tsmframe-model/1", "title": title, "materials": {}, "sections": {},
+                     "nodes": [], "members": [], "supports": [], "loads": [], "prescribed": [],
+                     "contacts": [], "analysis": {}}
+        if units:
+            self._doc["units"] = dict(units)
+
+    @classmethod
+    def from_dict(cls, document):
+        m = cls()
+        m._doc = _json.loads(_json.dumps(document))
+        return m
+
+    def material(self, name, E, G=None, nu=None):
+        entry = {"E": E}
+        if G is not None:
+            entry["G"] = G
+        if nu is not None:
+            entry["nu"] = nu
+        self._doc["materials"][name] = entry
+        return self
+
+    def section(self, name, A, I, shear_area=None):
+        entry = {"A": A, "I": I}
+        if shear_area is not None:
+            entry["shear_area"] = shear_area
+        self._doc["sections"][name] = entry
+        return self
+
+    def node(self, id, x, y):
+        self._doc["nodes"].append({"id": id, "x": x, "y": y})
+        return self
+
+    def member(self, start, end, material, section, divisions=1, element="euler-bernoulli", arc=None):
+        """A straight member (or an arc: arc=(centre_x, centre_y, sweep_radians)) of `divisions` elements."""
+        entry = {"from": _ref(start), "to": _ref(end), "divisions": divisions, "element": element,
+                 "material": material, "section": section}
+        if arc is not None:
+            entry["arc"] = {"center": [arc[0], arc[1]], "sweep": arc[2]}
+        self._doc["members"].append(entry)
+        return self
+
+    def support(self, node, type=None, fix=None):
+        """type: "fixed", "pinned", "roller-x", "roller-y"; or fix: a list out of "ux", "uy", "rz"."""
+        entry = {"node": _ref(node)}
+        if type is not None:
+            entry["type"] = type
+        if fix is not None:
+            entry["fix"] = list(fix)
+        self._doc["supports"].append(entry)
+        return self
+
+    def load(self, node, fx=0.0, fy=0.0, mz=0.0):
+        self._doc["loads"].append({"node": _ref(node), "fx": fx, "fy": fy, "mz": mz})
+        return self
+
+    def prescribe(self, node, **dofs):
+        """Prescribed displacements reached at λ = 1, e.g. prescribe(100, uy=2.0)."""
+        self._doc["prescribed"].append({"node": _ref(node), **dofs})
+        return self
+
+    def contact(self, node, members="all", **options):
+        """A contact node; options: element, gap, edge, sliding_tangent (FORMAT.md, README)."""
+        self._doc["contacts"].append({"node": _ref(node), "members": members, **options})
+        return self
+
+    def analysis(self, control=None, **settings):
+        """control: {"type": "load", "steps": N} | {"type": "displacement", …} | {"type": "arc-length", …};
+        settings: tolerance, max_iterations, cutback, max_cutbacks, output, monitor."""
+        if control is not None:
+            self._doc["analysis"]["control"] = control
+        self._doc["analysis"].update(settings)
+        return self
+
+    def to_dict(self):
+        """The FORMAT.md document (empty optional lists left out)."""
+        return {k: v for k, v in self._doc.items() if not (isinstance(v, (list, dict)) and not v and k not in ("materials", "sections", "nodes", "members"))}
+
+    def to_json(self, indent=1):
+        return _json.dumps(self.to_dict(), indent=indent)
+
+    def save(self, path):
+        with open(path, "w") as f:
+            f.write(self.to_json())
+
+
+def _ref(node):
+    return list(node) if isinstance(node, (tuple, list)) else node
+
+
+def load(path):
+    """A Model from a FORMAT.md file (validated when run)."""
+    with open(path) as f:
+        try:
+            return Model.from_dict(_json.load(f))
+        except _json.JSONDecodeError as e:
+            raise ValueError(f"{path}: invalid JSON at line {e.lineno}, column {e.colno}: {e.msg}") from None
+
+
+class Result:
+    """The results of one run, as numpy arrays (shapes: n nodes, m elements, c contacts;
+    S = every step including a failed last attempt, C = converged steps, K = steps with state).
+
+    status, message            how the run ended ("converged", "diverged", …)
+    node_ids (n,), node_xy (n, 2), element_ids (m,), element_nodes (m, 2) node ids
+    step (S,), load_factor (S,), iterations (S,), converged (S,), residual_norms: S arrays, criterion: S strings
+    state_steps (K,)           step numbers that carry full state (analysis.output)
+    displacements (K, n, 3)    ux, uy, rz per node; rz is the true total rotation
+    element_forces (K, m, 3)   N, M_i, M_j (chord frame)
+    reactions (K, n, 3)        Rx, Ry, Mz (0 where the node is free)
+    contact_nodes (c,), contact_element (C, c) element id or 0, contact_alpha (C, c), contact_force (C, c)
+    results_json, steps_csv    exactly what `tsmframe run` writes
+    """
+
+    def __init__(self, data):
+        self.__dict__.update(data)
+
+    @property
+    def ok(self):
+        return self.status == "converged"
+
+    def _node(self, node_id):
+        index = _np.flatnonzero(self.node_ids == node_id)
+        if index.size != 1:
+            raise KeyError(f"no node {node_id}")
+        return int(index[0])
+
+    def displacement(self, node_id, step=-1):
+        """(ux, uy, rz) of a node at a step with state (index into state_steps; -1 = last)."""
+        return self.displacements[step, self._node(node_id)]
+
+    def history(self, node_id, dof):
+        """(load factors, values) of one dof (0 ux, 1 uy, 2 rz, or the name) over the steps with state."""
+        dof = {"ux": 0, "uy": 1, "rz": 2}.get(dof, dof)
+        lam = _np.array([self.load_factor[_np.flatnonzero(self.step == s)[0]] for s in self.state_steps])
+        return lam, self.displacements[:, self._node(node_id), dof]
+
+    def write(self, directory):
+        """results.json and steps.csv, as the command line writes them."""
+        _os.makedirs(directory, exist_ok=True)
+        with open(_os.path.join(directory, "results.json"), "w") as f:
+            f.write(self.results_json)
+        with open(_os.path.join(directory, "steps.csv"), "w") as f:
+            f.write(self.steps_csv)
+
+    def json(self):
+        return _json.loads(self.results_json)
+
+    # plots (matplotlib, imported on use)
+    def plot_shape(self, steps=(-1,), ax=None, **kw):
+        from .plots import plot_shape
+        return plot_shape(self, steps, ax, **kw)
+
+    def plot_load_displacement(self, node_id, dof="uy", ax=None, **kw):
+        from .plots import plot_load_displacement
+        return plot_load_displacement(self, node_id, dof, ax, **kw)
+
+    def plot_contact(self, ax=None, **kw):
+        from .plots import plot_contact
+        return plot_contact(self, ax, **kw)
+
+    def plot_iterations(self, ax=None, **kw):
+        from .plots import plot_iterations
+        return plot_iterations(self, ax, **kw)
+
+
+def run(model, threads=0):
+    """Run a Model, a FORMAT.md dict, a JSON text or a file path. Raises ValueError for bad input."""
+    if isinstance(model, Model):
+        text = model.to_json()
+    elif isinstance(model, dict):
+        text = _json.dumps(model)
+    elif isinstance(model, str) and model.lstrip().startswith("{"):
+        text = model
+    else:
+        path = _os.fspath(model)
+        try:
+            with open(path) as f:
+                text = f.read()
+        except OSError as e:
+            raise ValueError(f"{path}: cannot read: {e.strerror}") from None
+        try:
+            return Result(_run_json(text, threads))
+        except ValueError as e:
+            raise ValueError(f"{path}: {e}") from None
+    return Result(_run_json(text, threads))

@@ -1,0 +1,96 @@
+"""Plots of a tsmframe Result with matplotlib (Debian's python3-matplotlib)."""
+import math
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+
+def _axes(ax):
+    if ax is None:
+        _, ax = plt.subplots()
+    return ax
+
+
+def _wrap(a):
+    return math.atan2(math.sin(a), math.cos(a))
+
+
+def element_curves(result, k, points=12):
+    """(x, y) arrays of every element's true deflected curve at state k (the element's own
+    Hermite shape under its end rotations relative to the chord)."""
+    index = {int(i): n for n, i in enumerate(result.node_ids)}
+    D = result.displacements[k]
+    curves = []
+    for a, b in result.element_nodes:
+        ia, ib = index[int(a)], index[int(b)]
+        Xi, Xj = result.node_xy[ia], result.node_xy[ib]
+        xi, xj = Xi + D[ia, :2], Xj + D[ib, :2]
+        phi0 = math.atan2(Xj[1] - Xi[1], Xj[0] - Xi[0])
+        phi = math.atan2(xj[1] - xi[1], xj[0] - xi[0])
+        guess, raw = 0.5 * (D[ia, 2] + D[ib, 2]), phi - phi0
+        beta = raw + 2 * math.pi * round((guess - raw) / (2 * math.pi))
+        ti, tj = D[ia, 2] - beta, D[ib, 2] - beta
+        s = np.linspace(0.0, 1.0, points + 1)
+        l0 = float(np.hypot(*(Xj - Xi)))
+        w = l0 * (ti * s * (1 - s) ** 2 - tj * s * s * (1 - s))
+        n = np.array([-math.sin(phi), math.cos(phi)])
+        x = xi[0] + s * (xj[0] - xi[0]) + w * n[0]
+        y = xi[1] + s * (xj[1] - xi[1]) + w * n[1]
+        curves.append((x, y))
+    return curves
+
+
+def plot_shape(result, steps=(-1,), ax=None, undeformed=True, **kw):
+    """The deformed shape at the given states (indices into result.state_steps), curved elements."""
+    ax = _axes(ax)
+    if undeformed:
+        for a, b in result.element_nodes:
+            p = result.node_xy[[int(np.flatnonzero(result.node_ids == a)[0]), int(np.flatnonzero(result.node_ids == b)[0])]]
+            ax.plot(p[:, 0], p[:, 1], color="0.75", lw=1)
+    cmap = plt.get_cmap("viridis")
+    for n, k in enumerate(steps):
+        colour = kw.pop("color", None) or cmap(n / max(1, len(steps) - 1))
+        label = f"step {result.state_steps[k]}"
+        for c, (x, y) in enumerate(element_curves(result, k)):
+            ax.plot(x, y, color=colour, label=label if c == 0 else None, **kw)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_load_displacement(result, node_id, dof="uy", ax=None, **kw):
+    ax = _axes(ax)
+    lam, values = result.history(node_id, dof)
+    ax.plot(np.concatenate([[0.0], values]), np.concatenate([[0.0], lam]), ".-", label=f"{dof} of node {node_id}", **kw)
+    ax.set_xlabel(f"{dof} of node {node_id}")
+    ax.set_ylabel("load factor λ")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_contact(result, ax=None, **kw):
+    """Contact position (element − 1 + α) of every contact node against the load factor."""
+    ax = _axes(ax)
+    lam = result.load_factor[result.converged == 1]
+    for c, node in enumerate(result.contact_nodes):
+        where = np.where(result.contact_element[:, c] > 0, result.contact_element[:, c] - 1 + result.contact_alpha[:, c], np.nan)
+        ax.plot(lam, where, ".-", label=f"contact node {node}", **kw)
+    ax.set_xlabel("load factor λ")
+    ax.set_ylabel("contact position (element − 1 + α)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_iterations(result, ax=None, **kw):
+    """Relative residual of every iterate, step after step (log scale)."""
+    ax = _axes(ax)
+    for s, norms in zip(result.step, result.residual_norms):
+        ax.semilogy(range(len(norms)), np.maximum(norms, 1e-17), ".-", lw=0.8, **kw)
+    ax.set_xlabel("iterate")
+    ax.set_ylabel("relative residual")
+    ax.grid(True, which="both", alpha=0.3)
+    return ax

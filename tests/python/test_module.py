@@ -1,0 +1,91 @@
+"""The Python module (issue 7), run by pytest from the README's test command:
+results equal the CLI's results.json bit for bit, bad input raises ValueError with the JSON path,
+arrays have the documented shapes, the model builder works, plots are written as PNG."""
+import json
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import tsmframe as tf
+
+SOURCE = os.environ.get("TSMFRAME_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+CLI = os.environ.get("TSMFRAME_CLI", os.path.join(SOURCE, "build", "tsmframe"))
+
+
+@pytest.mark.parametrize("example", ["contact-push.json", "lee-frame-arc-length.json", "portal-frame.json"])
+def test_results_equal_the_command_line_bit_for_bit(example, tmp_path):
+    path = os.path.join(SOURCE, "examples", example)
+    cli = subprocess.run([CLI, "run", path, "--out", str(tmp_path), "-q"], capture_output=True, text=True)
+    assert cli.returncode == 0, cli.stderr
+    r = tf.run(path)
+    assert r.results_json == (tmp_path / "results.json").read_text()
+    assert r.steps_csv == (tmp_path / "steps.csv").read_text()
+
+
+def test_arrays_have_the_documented_shapes():
+    r = tf.run(os.path.join(SOURCE, "examples", "contact-push.json"))  # output every 20th step
+    n, m, c = len(r.node_ids), len(r.element_ids), len(r.contact_nodes)
+    S, C = len(r.step), int(r.converged.sum())
+    K = len(r.state_steps)
+    assert (n, m, c, S, C, K) == (20, 18, 1, 200, 200, 10)
+    assert r.node_xy.shape == (n, 2) and r.element_nodes.shape == (m, 2)
+    assert r.displacements.shape == (K, n, 3) and r.element_forces.shape == (K, m, 3) and r.reactions.shape == (K, n, 3)
+    assert r.contact_element.shape == (C, c) and r.contact_alpha.shape == (C, c) and r.contact_force.shape == (C, c)
+    assert len(r.residual_norms) == S and len(r.criterion) == S
+    assert list(r.state_steps) == list(range(20, 201, 20))
+    # the pusher is at its prescribed 2 m, the contact point in element 10, compression positive
+    assert r.displacement(100)[1] == pytest.approx(2.0, abs=1e-12)
+    assert r.contact_element[-1, 0] == 10 and r.contact_force[-1, 0] > 0
+    assert json.loads(r.results_json)["steps"][-1]["contacts"][0]["xi"] == r.contact_alpha[-1, 0]
+
+
+def test_bad_model_raises_value_error_with_the_path():
+    doc = tf.load(os.path.join(SOURCE, "examples", "portal-frame.json")).to_dict()
+    doc["members"][1]["section"] = "nope"
+    with pytest.raises(ValueError, match=r"members\[1\]\.section: unknown section \"nope\""):
+        tf.run(doc)
+    with pytest.raises(ValueError, match=r"missing\.json: cannot read"):
+        tf.run("missing.json")
+
+
+def test_non_convergence_is_a_status_not_an_exception():
+    m = tf.Model("too much in one step").material("m", E=1.0).section("s", A=1e4, I=1.0)
+    m.node(1, 0, 0).node(2, 1, 0).member(1, 2, "m", "s", divisions=4).support(1, "fixed").load(2, fy=1e9)
+    m.analysis({"type": "load", "steps": 1}, cutback=False, max_iterations=5)
+    r = tf.run(m)
+    assert r.status != "converged" and not r.ok and r.message
+    assert r.converged.tolist() == [0]
+
+
+def test_model_built_in_code_rolls_into_a_circle():
+    L, EI = 10.0, 2.05e11 * 8.333e-6
+    m = tf.Model("circle").material("steel", E=2.05e11, G=7.9e10).section("s", A=1e-2, I=8.333e-6, shear_area=8.33e-3)
+    m.node(1, 0, 0).node(2, L, 0).member(1, 2, "steel", "s", divisions=40, element="timoshenko")
+    m.support(1, "fixed").load(2, mz=2 * math.pi * EI / L)
+    m.analysis({"type": "load", "steps": 1}, max_iterations=100)
+    r = tf.run(m)
+    assert r.ok, r.message
+    ux, uy, rz = r.displacement(2)
+    assert rz == pytest.approx(2 * math.pi, abs=1e-8)
+    assert math.hypot(L + ux, uy) < 1e-6 * L  # the tip is back at the root
+
+
+def test_plots_are_written_as_png(tmp_path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    r = tf.run(os.path.join(SOURCE, "examples", "contact-push.json"))
+    for name, draw in [("shape", lambda ax: r.plot_shape(steps=range(len(r.state_steps)), ax=ax)),
+                       ("load", lambda ax: r.plot_load_displacement(2, "uy", ax=ax)),
+                       ("contact", lambda ax: r.plot_contact(ax=ax)),
+                       ("iterations", lambda ax: r.plot_iterations(ax=ax))]:
+        fig, ax = plt.subplots()
+        draw(ax)
+        path = tmp_path / f"{name}.png"
+        fig.savefig(path)
+        plt.close(fig)
+        assert path.stat().st_size > 5000
+        assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
