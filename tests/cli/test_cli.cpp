@@ -168,13 +168,6 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
          m["contacts"] = json::array({{{"node", 5}, {"members", {3}}}});
        },
        "contacts[0].members[0]: unknown member 3"},
-      {"cantilever contact frame (issue 8)",
-       [](json& m) {
-         m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});
-         m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
-         m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"frame", "cantilever"}}});
-       },
-       "contacts[0].frame: the \"cantilever\" contact frame is not available"},
       {"contact edge out of range",
        [](json& m) {
          m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});

@@ -169,33 +169,42 @@ INSTANTIATE_TEST_SUITE_P(Cases, SmallPush,
 
 // ---- Large push against the exact elastica with contact ----
 
-class LargePush : public ::testing::TestWithParam<const char*> {};
+struct PushCase {
+  const char* element;
+  const char* frame;  // "chord" (Eq. 6–9) or "cantilever" (FORMULATION §2b)
+};
+
+class LargePush : public ::testing::TestWithParam<PushCase> {};
 
 TEST_P(LargePush, MatchesTheElasticaWithContact) {
   BeamSpec b;
   b.divisions = 40;
   b.A = 1e7;  // inextensible
   b.shear_area = 1e9;
-  b.element = GetParam();
+  b.element = GetParam().element;
   const double a = 0.5, h = 0.3;
   tsm::Model model;
-  const RunResult r = run(pusher_model(b, a, 0.0, 0.0, h, 30), model);
+  json m = pusher_model(b, a, 0.0, 0.0, h, 30);
+  m["contacts"][0]["frame"] = GetParam().frame;
+  const RunResult r = run(m, model);
   ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
   const ElasticaContact exact = elastica_with_contact(a, h);
   const tsm::solver::ContactPoint& c = contact_of(r.steps.back());
   ASSERT_GE(c.element, 0);
-  std::printf("[figure] %s: force %.6g exact %.6g (%.2e rel), s_c %.6f exact %.6f\n", GetParam(), c.force, exact.force, c.force / exact.force - 1.0, contact_arc_length(c, 1.0, 40), exact.arc_length);
+  std::printf("[figure] %s %s: force %.6g exact %.6g (%.2e rel), s_c %.6f exact %.6f\n", GetParam().element, GetParam().frame, c.force, exact.force, c.force / exact.force - 1.0, contact_arc_length(c, 1.0, 40), exact.arc_length);
   EXPECT_NEAR(c.force, exact.force, 0.01 * exact.force);                      // issue: within 1 %
   EXPECT_NEAR(contact_arc_length(c, 1.0, 40), exact.arc_length, 0.005);       // within 0.5 % of L
   EXPECT_GT(exact.arc_length - a, 0.02);  // the point has slid along the beam by more than an element
   for (const StepRecord& s : r.steps) expect_equilibrium(model, s);
 }
 
-INSTANTIATE_TEST_SUITE_P(Theories, LargePush, ::testing::Values("euler-bernoulli", "timoshenko"));
+INSTANTIATE_TEST_SUITE_P(Formulations, LargePush,
+                         ::testing::Values(PushCase{"euler-bernoulli", "chord"}, PushCase{"timoshenko", "chord"},
+                                           PushCase{"euler-bernoulli", "cantilever"}, PushCase{"timoshenko", "cantilever"}));
 
 // ---- Sliding across element ends ----
 
-class AcrossElementEnds : public ::testing::TestWithParam<const char*> {};
+class AcrossElementEnds : public ::testing::TestWithParam<PushCase> {};
 
 TEST_P(AcrossElementEnds, EveryStepConvergesAndThePointMovesMonotonically) {
   // The pusher presses the beam down slightly while travelling from x = 0.2 to x = 0.8 along it:
@@ -203,9 +212,11 @@ TEST_P(AcrossElementEnds, EveryStepConvergesAndThePointMovesMonotonically) {
   BeamSpec b;
   b.divisions = 20;
   b.A = 1e5;
-  b.element = GetParam();
+  b.element = GetParam().element;
   tsm::Model model;
-  const RunResult r = run(pusher_model(b, 0.2, 0.0, 0.6, 0.05, 30), model);
+  json m = pusher_model(b, 0.2, 0.0, 0.6, 0.05, 30);
+  m["contacts"][0]["frame"] = GetParam().frame;
+  const RunResult r = run(m, model);
   ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
   double previous_position = -1.0;
   int previous_element = -1, crossed = 0;
@@ -226,7 +237,9 @@ TEST_P(AcrossElementEnds, EveryStepConvergesAndThePointMovesMonotonically) {
   EXPECT_GE(crossed, 10);
 }
 
-INSTANTIATE_TEST_SUITE_P(Theories, AcrossElementEnds, ::testing::Values("euler-bernoulli", "timoshenko"));
+INSTANTIATE_TEST_SUITE_P(Formulations, AcrossElementEnds,
+                         ::testing::Values(PushCase{"euler-bernoulli", "chord"}, PushCase{"timoshenko", "chord"},
+                                           PushCase{"euler-bernoulli", "cantilever"}, PushCase{"timoshenko", "cantilever"}));
 
 TEST(AcrossMembers, ThePointPassesAJointBetweenTwoMembers) {
   // The beam is two members meeting at x = 0.5 with a 3° kink (the second one drawn from its far

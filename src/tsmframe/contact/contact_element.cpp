@@ -1,5 +1,7 @@
 #include "tsmframe/contact/contact_element.hpp"
 
+#include "tsmframe/contact/cantilever_frame_element.hpp"
+
 namespace tsm::contact {
 namespace {
 
@@ -26,6 +28,7 @@ ContactEquilibriumMatrix contact_equilibrium_matrix(const element::Chord& chord,
 
 ContactResponse contact_response(const ContactElementData& data, const Vector9& d, double previous_rotation,
                                  bool with_tangent) {
+  if (data.cantilever_frame) return cantilever_frame_response(data, d, previous_rotation, with_tangent);
   ContactResponse r;
   const Vector6 beam = d.head<6>();
   r.chord = element::current_chord(data.initial, beam, previous_rotation);

@@ -28,6 +28,7 @@ struct ContactElementData {
   double offset = 0.0;                ///< δy_c at which Y = 0 on a straight beam (side · gap)
   double edge = 1e-2;                 ///< compliance clamp, see point_load_law
   bool sliding_term = true;           ///< include J (∂S/∂α)(∂α/∂x)ᵀ in the tangent
+  bool cantilever_frame = false;      ///< FORMULATION §2b's frame instead of the chord (Eq. 6–9)
 };
 
 struct ContactResponse {
@@ -40,7 +41,8 @@ struct ContactResponse {
   Matrix9 tangent;        ///< ∂(J S)/∂D (when asked for)
 };
 
-/// d = (u_i, v_i, Θ_i, u_j, v_j, Θ_j, u_c, v_c, Θ_c); Θ_c plays no part.
+/// d = (u_i, v_i, Θ_i, u_j, v_j, Θ_j, u_c, v_c, Θ_c); Θ_c plays no part. With
+/// data.cantilever_frame the cantilever-frame element answers (cantilever_frame_element.hpp).
 ContactResponse contact_response(const ContactElementData& data, const Vector9& d, double previous_rotation,
                                  bool with_tangent = true);
 

@@ -69,6 +69,7 @@ ContactTracker::ContactTracker(const Model& model) : model_(model) {
     s.gap = c.gap;
     s.edge = c.edge;
     s.sliding_term = c.sliding_tangent;
+    s.cantilever_frame = c.frame == "cantilever";
     specs_.push_back(std::move(s));
   }
 }
@@ -141,6 +142,7 @@ std::vector<ActiveContact> ContactTracker::active_contacts(const std::vector<Con
     a.data.offset = states[k].side * spec.gap;
     a.data.edge = spec.edge >= 0.0 ? spec.edge : default_edge();
     a.data.sliding_term = spec.sliding_term;
+    a.data.cantilever_frame = spec.cantilever_frame;
     active.push_back(a);
   }
   return active;

@@ -79,6 +79,7 @@ class ContactTracker {
     double gap = 0.0;
     double edge = -1.0;
     bool sliding_term = true;
+    bool cantilever_frame = false;
   };
   NodeOnElement locate(const Spec& spec, int element, const Eigen::VectorXd& displacements,
                        const std::vector<double>& chord_rotations) const;

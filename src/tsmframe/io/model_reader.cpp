@@ -501,7 +501,6 @@ class Reader {
       if (c.contains("frame")) {
         spec.frame = string(c["frame"], child(path, "frame"));
         if (spec.frame != "chord" && spec.frame != "cantilever") fail(child(path, "frame"), "unknown frame " + quote_text(spec.frame) + " (expected \"chord\" or \"cantilever\")");
-        if (spec.frame == "cantilever") fail(child(path, "frame"), "the \"cantilever\" contact frame is not available in this version of tsmframe yet (see CHANGELOG.md); use \"chord\"");
       }
       if (auto edge = optional_number(c, "edge", path)) {
         if (!(*edge >= 1e-12 && *edge <= 0.25)) fail(child(path, "edge"), "must lie between 1e-12 and 0.25 (a fraction of the element length)");

@@ -1,0 +1,168 @@
+// The cantilever-coordinate contact element (FORMULATION §2b, issue 8): its force law against
+// the matrix form, the plain cantilever as a → 0, the chord element's tangent at D = 0, the full
+// tangent against central finite differences after large rigid rotations (the sliding term
+// included, and shown to matter), self-equilibrium and rigid motion.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Geometry>
+
+#include "tsmframe/contact/cantilever_frame_element.hpp"
+
+namespace {
+
+using namespace tsm::contact;
+using tsm::element::Matrix3;
+using tsm::element::SectionStiffness;
+constexpr double pi = std::numbers::pi;
+
+TEST(CantileverFrameLaw, SplitIsTheMatrixOfFormulation2b) {
+  for (double psi : {0.0, 0.004, 0.05})
+    for (double alpha : {0.02, 0.3, 0.5, 0.8, 0.995}) {
+      const SectionStiffness s{.EA = 1.0, .EI = 2.5, .shear_flexibility = psi};
+      const double l0 = 0.7;
+      const Matrix3 k = cantilever_bending_stiffness(s, l0, alpha);
+      EXPECT_LE((k - k.transpose()).norm(), 1e-12 * k.norm());
+      // Schur complement of K(Y,Y): the plain cantilever, whatever α
+      const Eigen::Matrix2d schur = k.topLeftCorner<2, 2>() - k.topRightCorner<2, 1>() * k.bottomLeftCorner<1, 2>() / k(2, 2);
+      EXPECT_LE((schur - cantilever_stiffness(s, l0)).norm(), 1e-9 * schur.norm()) << psi << " " << alpha;
+      // K(Y, v_c) is the chord element's K(Y, δy_c) (FORMULATION §2b)
+      EXPECT_NEAR(k(2, 2), contact_bending_stiffness(s, l0, alpha)(2, 2), 1e-9 * k(2, 2));
+    }
+}
+
+TEST(CantileverFrameLaw, TheElementAppliesThatMatrix) {
+  // Horizontal element, node i at the origin and unrotated: d = (0, v_j, θ_j, v_c) is set
+  // directly, and (Q, M, Y) must be §2b's matrix times it.
+  for (double psi : {0.0, 0.02})
+    for (double alpha : {0.25, 0.6}) {
+      ContactElementData data;
+      data.initial = tsm::element::initial_chord({0.0, 0.0}, {0.8, 0.0});
+      data.section = {.EA = 1e3, .EI = 2.0, .shear_flexibility = psi};
+      data.k0 = tsm::element::basic_stiffness(data.section, 0.8);
+      data.contact_start = {alpha * 0.8, 0.0};
+      data.edge = 1e-3;
+      data.cantilever_frame = true;
+      const Eigen::Vector3d bend(1e-4, -3e-4, 2e-4);  // v_j, θ_j, v_c
+      Vector9 d;
+      d << 0, 0, 0, 0, bend[0], bend[1], 0, bend[2], 0;
+      const ContactResponse r = contact_response(data, d, 0.0, false);
+      const Eigen::Vector3d expected = cantilever_bending_stiffness(data.section, 0.8, alpha) * bend;
+      const Eigen::Vector3d got(r.nodal_forces[4], r.nodal_forces[5], r.forces[3]);  // Q (m = y), M at j, Y
+      EXPECT_LE((got - expected).norm(), 1e-9 * expected.norm()) << got.transpose() << " vs " << expected.transpose();
+    }
+}
+
+TEST(CantileverFrameLaw, TendsToThePlainCantileverAsTheContactNearsTheClamp) {
+  const SectionStiffness s{.EA = 1.0, .EI = 1.0, .shear_flexibility = 0.0};
+  const Matrix3 k = cantilever_bending_stiffness(s, 1.0, 1e-6);
+  EXPECT_NEAR(k(0, 0), 12.0, 1e-4);
+  EXPECT_NEAR(k(0, 1), -6.0, 1e-4);
+  EXPECT_NEAR(k(1, 1), 4.0, 1e-4);
+}
+
+struct Trial {
+  ContactElementData data;
+  Vector9 d;
+  double previous = 0.0;
+};
+
+Trial trial(double psi, double angle, double theta_i, double theta_j, double alpha0, double push, bool cantilever,
+            bool sliding = true) {
+  Trial s;
+  s.data.initial = tsm::element::initial_chord({0.3, -0.2}, {1.3, 0.4});
+  s.data.section = {.EA = 400.0, .EI = 3.0, .shear_flexibility = psi};
+  s.data.k0 = tsm::element::basic_stiffness(s.data.section, s.data.initial.length);
+  const Eigen::Vector2d chord = s.data.initial.end - s.data.initial.start;
+  s.data.contact_start = s.data.initial.start + alpha0 * chord;
+  s.data.edge = 1e-3;
+  s.data.sliding_term = sliding;
+  s.data.cantilever_frame = cantilever;
+  const Eigen::Rotation2Dd R(angle);
+  const Eigen::Vector2d end = s.data.initial.start + 1.002 * (R * chord);
+  const Eigen::Vector2d e = (R * chord).normalized(), n(-e.y(), e.x());
+  const Eigen::Vector2d contact = s.data.initial.start + (alpha0 + 0.03) * 1.002 * (R * chord) + push * n;
+  s.d << 0.05, -0.02, angle + theta_i, end.x() - s.data.initial.end.x() + 0.05, end.y() - s.data.initial.end.y() - 0.02,
+      angle + theta_j, contact.x() - s.data.contact_start.x() + 0.05, contact.y() - s.data.contact_start.y() - 0.02, 0.3;
+  s.previous = angle + 0.02;
+  return s;
+}
+
+Matrix9 finite_differences(const Trial& s) {
+  Matrix9 K;
+  for (int b = 0; b < 9; ++b) {
+    Vector9 plus = s.d, minus = s.d;
+    plus[b] += 1e-6;
+    minus[b] -= 1e-6;
+    K.col(b) = (contact_response(s.data, plus, s.previous).nodal_forces -
+                contact_response(s.data, minus, s.previous).nodal_forces) / 2e-6;
+  }
+  return K;
+}
+
+struct Case {
+  double psi, angle, theta_i, theta_j, alpha0, push;
+};
+
+class CantileverFrameTangent : public ::testing::TestWithParam<Case> {};
+
+TEST_P(CantileverFrameTangent, MatchesFiniteDifferencesAndNeedsTheSlidingTerm) {
+  const Case& p = GetParam();
+  const Trial with = trial(p.psi, p.angle, p.theta_i, p.theta_j, p.alpha0, p.push, true, true);
+  const Trial without = trial(p.psi, p.angle, p.theta_i, p.theta_j, p.alpha0, p.push, true, false);
+  const ContactResponse r = contact_response(with.data, with.d, with.previous);
+  ASSERT_GT(r.alpha, 0.0);
+  ASSERT_LT(r.alpha, 1.0);
+  const Matrix9 fd = finite_differences(with);
+  EXPECT_LE((r.tangent - fd).norm(), 1e-6 * fd.norm()) << "analytic\n" << r.tangent << "\nfd\n" << fd;
+  const Matrix9 quasi = contact_response(without.data, without.d, without.previous).tangent;
+  EXPECT_GT((quasi - fd).norm(), 1e-2 * fd.norm());  // far off without the sliding term
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, CantileverFrameTangent,
+                         ::testing::Values(Case{0.0, 0.0, 0.02, -0.03, 0.3, 0.02},
+                                           Case{0.0, 2.5, 0.2, -0.1, 0.6, 0.03},
+                                           Case{0.0, -3.0 * pi + 0.4, -0.3, 0.25, 0.2, -0.02},
+                                           Case{0.01, 4.0, 0.3, 0.1, 0.7, 0.03},
+                                           Case{0.002, -1.0, 0.1, -0.2, 0.85, 0.01}));
+
+TEST(CantileverFrameElement, EqualsTheChordElementInTheUndeformedState) {
+  for (double psi : {0.0, 0.01}) {
+    Trial a = trial(psi, 0.0, 0.0, 0.0, 0.4, 0.0, true), b = trial(psi, 0.0, 0.0, 0.0, 0.4, 0.0, false);
+    a.d.setZero();
+    b.d.setZero();
+    a.previous = b.previous = 0.0;
+    const Matrix9 Ka = contact_response(a.data, a.d, 0.0).tangent, Kb = contact_response(b.data, b.d, 0.0).tangent;
+    EXPECT_LE((Ka - Kb).norm(), 1e-9 * Kb.norm()) << "cantilever\n" << Ka << "\nchord\n" << Kb;
+  }
+}
+
+TEST(CantileverFrameElement, SelfEquilibratedAndForceFreeUnderRigidMotion) {
+  for (double psi : {0.0, 0.01}) {
+    const Trial s = trial(psi, 1.3, 0.2, -0.15, 0.4, 0.03, true);
+    const ContactResponse r = contact_response(s.data, s.d, s.previous);
+    ASSERT_GT(std::abs(r.forces[3]), 1.0);
+    const Vector9& F = r.nodal_forces;
+    const double scale = F.cwiseAbs().maxCoeff();
+    EXPECT_NEAR(F[0] + F[3] + F[6], 0.0, 1e-12 * scale);
+    EXPECT_NEAR(F[1] + F[4] + F[7], 0.0, 1e-12 * scale);
+    const Eigen::Vector2d xi = s.data.initial.start + s.d.segment<2>(0), xj = s.data.initial.end + s.d.segment<2>(3),
+                          xc = s.data.contact_start + s.d.segment<2>(6);
+    auto cross = [](const Eigen::Vector2d& x, double fx, double fy) { return x.x() * fy - x.y() * fx; };
+    EXPECT_NEAR(F[2] + F[5] + F[8] + cross(xi, F[0], F[1]) + cross(xj, F[3], F[4]) + cross(xc, F[6], F[7]), 0.0,
+                3e-12 * scale);
+    for (double angle : {0.7, -2.9, 5.0 * pi}) {
+      Trial rigid = trial(psi, angle, 0.0, 0.0, 0.35, 0.0, true);
+      const Eigen::Rotation2Dd R(angle);
+      const Eigen::Vector2d chord = rigid.data.initial.end - rigid.data.initial.start, shift(0.4, -0.3);
+      rigid.d << shift.x(), shift.y(), angle, 0, 0, angle, 0, 0, 0;
+      rigid.d.segment<2>(3) = rigid.data.initial.start + shift + R * chord - rigid.data.initial.end;
+      rigid.d.segment<2>(6) = rigid.data.initial.start + shift + 0.35 * (R * chord) - rigid.data.contact_start;
+      EXPECT_LT(contact_response(rigid.data, rigid.d, angle).nodal_forces.norm(), 1e-9 * 400.0) << angle;
+    }
+  }
+}
+
+}  // namespace
