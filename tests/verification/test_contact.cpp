@@ -167,6 +167,31 @@ INSTANTIATE_TEST_SUITE_P(Cases, SmallPush,
                                            SmallPushCase{"euler-bernoulli", 0.5125},
                                            SmallPushCase{"timoshenko", 0.5125}));
 
+TEST(ContactGap, ContactStartsAtTheGapAndTheForceFollowsTheClosing) {
+  // A pusher 10 mm below the beam with a 4 mm gap (say, the beam's half depth): it touches after
+  // 6 mm and then presses with 3EI(h − 6 mm)/a³.
+  BeamSpec b;
+  b.divisions = 40;
+  b.A = 1e6;
+  json m = pusher_model(b, 0.5125, -0.01, 0.0, 0.01 + 2e-6, 10);
+  m["contacts"][0]["gap"] = 0.004;
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  for (const StepRecord& s : r.steps) {
+    const double lift = -0.01 + s.load_factor * (0.01 + 2e-6) + 0.004;  // closing beyond the gap
+    const tsm::solver::ContactPoint& c = contact_of(s);
+    if (lift < 0.0) {
+      EXPECT_LT(c.element, 0) << "step " << s.step;
+    } else {
+      ASSERT_GE(c.element, 0) << "step " << s.step;
+      const double a = 0.5125;
+      EXPECT_NEAR(c.force, 3.0 * lift / (a * a * a), 2e-3 * 3.0 * lift / (a * a * a) + 1e-12) << "step " << s.step;
+    }
+  }
+  EXPECT_GE(contact_of(r.steps.back()).element, 0);
+}
+
 // ---- Large push against the exact elastica with contact ----
 
 struct PushCase {

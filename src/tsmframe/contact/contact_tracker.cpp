@@ -30,6 +30,7 @@ Eigen::Vector2d chord_normal(const element::InitialChord& initial, const element
 }  // namespace
 
 ContactTracker::ContactTracker(const Model& model) : model_(model) {
+  if (model.contacts.empty()) return;  // nothing to track: no per-element data for big contact-free models
   const int n_elements = static_cast<int>(model.elements.size());
   initial_.reserve(n_elements);
   for (const Element& e : model.elements)
