@@ -1,5 +1,6 @@
 // Results are bit-identical with 1 and 2 threads: the element loop runs in colour groups, so
-// every sum reaches each entry in the same order (global_system.hpp).
+// every sum reaches each entry in the same order (global_system.hpp), and the factorisation runs
+// subtrees of the elimination tree concurrently with each row's arithmetic unchanged (block_ldlt.hpp).
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -10,7 +11,8 @@ namespace {
 using namespace tsm::test;
 
 TEST(Threads, OneAndTwoThreadsGiveBitIdenticalResults) {
-  // Big enough for the parallel path (colour groups of ≥ 4096 elements): 3 cantilevers of 3000.
+  // Big enough for the parallel paths (colour groups of ≥ 4096 elements; subtrees of 64 … n/16
+  // blocks, here one per chain): 3 cantilevers of 3000.
   json m = beam_model({.L = 10.0, .E = 2e11, .G = 8e10, .A = 1e-2, .I = 1e-5, .shear_area = 8e-3, .divisions = 3000,
                        .element = "timoshenko"});
   m["nodes"].push_back({{"id", 3}, {"x", 0.0}, {"y", 5.0}});

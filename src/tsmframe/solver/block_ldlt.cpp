@@ -1,6 +1,7 @@
 #include "tsmframe/solver/block_ldlt.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 
 namespace tsm::solver {
 namespace {
@@ -65,35 +66,69 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   d_inverse_.resize(n);
   fill_.resize(n);
   work_.assign(n, Block::Zero());
+
+  // Tasks: the largest subtrees of at most n / 16 blocks (parents come after children, so one
+  // ascending pass sums subtree sizes and one descending pass hands every block to its task).
+  std::vector<int> size(n, 1), task(n, -1);
+  for (int k = 0; k < n; ++k)
+    if (parent_[k] >= 0) size[parent_[k]] += size[k];
+  const int limit = std::max(1, n / 16);
+  int tasks = 0;
+  for (int k = n - 1; k >= 0; --k) {
+    const int p = parent_[k];
+    if (p >= 0 && task[p] >= 0) task[k] = task[p];
+    else if (size[k] <= limit && size[k] >= 64) task[k] = tasks++;
+  }
+  task_start_.assign(tasks + 1, 0);
+  for (int k = 0; k < n; ++k)
+    if (task[k] >= 0) ++task_start_[task[k] + 1];
+  for (int t = 0; t < tasks; ++t) task_start_[t + 1] += task_start_[t];
+  task_rows_.resize(task_start_[tasks]);
+  top_rows_.clear();
+  std::vector<int> next(task_start_.begin(), task_start_.end() - 1);
+  for (int k = 0; k < n; ++k) {
+    if (task[k] >= 0) task_rows_[next[task[k]]++] = k;
+    else top_rows_.push_back(k);
+  }
+}
+
+bool BlockLDLT::factorize_row(const BlockMatrix& a, int k) {
+  // Scatter the upper column k of A into the workspace.
+  Block diagonal = Block::Zero();
+  for (int p = a.column[k]; p < a.column[k + 1]; ++p) {
+    if (a.row[p] == k) diagonal = a.value[p];
+    else work_[a.row[p]] = a.value[p];
+  }
+  for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) {
+    const int i = row_pattern_[t];
+    const Block y = work_[i];  // = D_i L(k, i)ᵀ once the earlier columns are subtracted
+    work_[i].setZero();
+    const Block lki = y.transpose() * d_inverse_[i];  // L(k, i) = yᵀ D_i⁻¹
+    diagonal.noalias() -= lki * y;
+    for (int p = l_column_[i]; p < fill_[i]; ++p) work_[l_row_[p]].noalias() -= l_value_[p] * y;
+    l_row_[fill_[i]] = k;
+    l_value_[fill_[i]++] = lki;
+  }
+  // D_k is symmetric; symmetrise away rounding before inverting it.
+  diagonal = 0.5 * (diagonal + diagonal.transpose()).eval();
+  const double det = diagonal.determinant();
+  if (!(det != 0.0) || !std::isfinite(det)) return false;
+  d_inverse_[k] = diagonal.inverse();
+  return d_inverse_[k].allFinite();
 }
 
 bool BlockLDLT::factorize(const BlockMatrix& a) {
-  const int n = size_;
   std::copy(l_column_.begin(), l_column_.end() - 1, fill_.begin());
-  for (int k = 0; k < n; ++k) {
-    // Scatter the upper column k of A into the workspace.
-    Block diagonal = Block::Zero();
-    for (int p = a.column[k]; p < a.column[k + 1]; ++p) {
-      if (a.row[p] == k) diagonal = a.value[p];
-      else work_[a.row[p]] = a.value[p];
-    }
-    for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) {
-      const int i = row_pattern_[t];
-      const Block y = work_[i];  // = D_i L(k, i)ᵀ once the earlier columns are subtracted
-      work_[i].setZero();
-      const Block lki = y.transpose() * d_inverse_[i];  // L(k, i) = yᵀ D_i⁻¹
-      diagonal.noalias() -= lki * y;
-      for (int p = l_column_[i]; p < fill_[i]; ++p) work_[l_row_[p]].noalias() -= l_value_[p] * y;
-      l_row_[fill_[i]] = k;
-      l_value_[fill_[i]++] = lki;
-    }
-    // D_k is symmetric; symmetrise away rounding before inverting it.
-    diagonal = 0.5 * (diagonal + diagonal.transpose()).eval();
-    const double det = diagonal.determinant();
-    if (!(det != 0.0) || !std::isfinite(det)) return false;
-    d_inverse_[k] = diagonal.inverse();
-    if (!d_inverse_[k].allFinite()) return false;
-  }
+  // Rows of one subtree touch only that subtree's columns and workspace (their patterns are
+  // descendants): the tasks run concurrently, each in ascending order.
+  const int tasks = static_cast<int>(task_start_.size()) - 1;
+  bool ok = true;
+#pragma omp parallel for schedule(dynamic, 1) reduction(&& : ok) if (tasks > 1)
+  for (int t = 0; t < tasks; ++t)
+    for (int r = task_start_[t]; r < task_start_[t + 1] && ok; ++r) ok = factorize_row(a, task_rows_[r]);
+  if (!ok) return false;
+  for (const int k : top_rows_)
+    if (!factorize_row(a, k)) return false;
   return true;
 }
 

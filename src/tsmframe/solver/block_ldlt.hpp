@@ -9,6 +9,7 @@
 // inverted exactly, so the factorisation also handles indefinite tangents (past a limit point)
 // as long as no 3×3 pivot block is singular. Up-looking algorithm as in CSparse's cs_chol,
 // lifted to blocks. The arithmetic order is fixed: results do not depend on threads.
+// Independent subtrees of the elimination tree are factorised in parallel (OpenMP).
 
 #include <Eigen/Core>
 #include <vector>
@@ -49,6 +50,15 @@ class BlockLDLT {
   // Workspace for factorize (kept to avoid allocation per iteration).
   std::vector<int> fill_;
   std::vector<Block> work_;
+  // Parallel factorisation: disjoint subtrees of the elimination tree touch disjoint rows,
+  // columns and workspace entries, so they are factorised concurrently; the blocks above them
+  // follow serially. Every row is computed with the same arithmetic in the same order whatever
+  // the number of threads: results are bit-identical.
+  std::vector<int> task_start_;  ///< task t: rows task_rows_[task_start_[t] .. task_start_[t+1]), ascending
+  std::vector<int> task_rows_;
+  std::vector<int> top_rows_;    ///< rows in no task, ascending
+
+  bool factorize_row(const BlockMatrix& a, int k);
 };
 
 }  // namespace tsm::solver
