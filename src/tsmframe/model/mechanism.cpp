@@ -1,5 +1,7 @@
 #include "tsmframe/model/mechanism.hpp"
 
+#include <algorithm>
+
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <numeric>
@@ -33,10 +35,15 @@ std::optional<std::string> find_mechanism(const Model& model) {
   }
   for (int k = 0; k < n; ++k) {
     if (held[k]) continue;
+    const bool contact_node = std::any_of(model.contacts.begin(), model.contacts.end(),
+                                          [&](const ContactSpec& c) { return c.node == k; });
     for (int dof = 0; dof < dofs_per_node; ++dof)
       if (!model.constrained[dofs_per_node * k + dof])
         return "structure is a mechanism: node " + std::to_string(model.nodes[k].id) +
-               " is held by no element and its " + dof_name(dof) + " is not supported";
+               " is held by no element and its " + dof_name(dof) + " is not supported" +
+               (contact_node ? std::string(" (a contact node must be held without its contact: prescribe its motion, "
+                                           "or make it a node of a beam)")
+                             : std::string());
   }
   std::vector<std::vector<int>> parts(n);
   for (int k = 0; k < n; ++k)
