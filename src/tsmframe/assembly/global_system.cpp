@@ -25,46 +25,8 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
     stiffness_.push_back(element::basic_stiffness(e.section, initial_.back().length));
   }
 
-  // Block pattern, upper triangle: column c holds the blocks ≤ c of the nodes joined to c's node.
-  const NodeGraph graph = node_graph(model);
+  build_pattern();
   const int n_blocks = dofs.block_count();
-  tangent_.size = n_blocks;
-  tangent_.column.assign(n_blocks + 1, 0);
-  for (int c = 0; c < n_blocks; ++c) {
-    const int node = dofs.block_node(c);
-    int count = 0;
-    for (int p = graph.start[node]; p < graph.start[node + 1]; ++p) {
-      const int r = dofs.block(graph.neighbours[p]);
-      count += r >= 0 && r <= c;
-    }
-    tangent_.column[c + 1] = tangent_.column[c] + count;
-  }
-  tangent_.row.resize(tangent_.column[n_blocks]);
-  tangent_.value.assign(tangent_.column[n_blocks], solver::Block::Zero());
-  for (int c = 0; c < n_blocks; ++c) {
-    const int node = dofs.block_node(c);
-    int write = tangent_.column[c];
-    for (int p = graph.start[node]; p < graph.start[node + 1]; ++p) {
-      const int r = dofs.block(graph.neighbours[p]);
-      if (r >= 0 && r <= c) tangent_.row[write++] = r;
-    }
-    std::sort(tangent_.row.begin() + tangent_.column[c], tangent_.row.begin() + tangent_.column[c + 1]);
-  }
-  auto entry = [&](int r, int c) {
-    const auto first = tangent_.row.begin() + tangent_.column[c], last = tangent_.row.begin() + tangent_.column[c + 1];
-    return static_cast<int>(std::lower_bound(first, last, r) - tangent_.row.begin());
-  };
-  slots_.resize(n_elements);
-  for (int k = 0; k < n_elements; ++k) {
-    const int bi = dofs.block(model.elements[k].start), bj = dofs.block(model.elements[k].end);
-    Slots& s = slots_[k];
-    if (bi >= 0) s.ii = entry(bi, bi);
-    if (bj >= 0) s.jj = entry(bj, bj);
-    if (bi >= 0 && bj >= 0 && bi != bj) {
-      s.transposed = bj < bi;
-      s.ij = s.transposed ? entry(bj, bi) : entry(bi, bj);
-    }
-  }
   block_mask_.assign(n_blocks, 0);
   for (int b = 0; b < n_blocks; ++b)
     for (int d = 0; d < dofs_per_node; ++d)
@@ -96,6 +58,78 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
   floor_squares_.resize(2 * static_cast<size_t>(n_elements));
   replaced_.assign(n_elements, 0);
   has_prescribed_ = model.reference_prescribed.size() > 0 && model.reference_prescribed.any();
+}
+
+void GlobalSystem::build_pattern() {
+  // Block pattern, upper triangle: column c holds the blocks ≤ c of the nodes joined to c's node
+  // by an element, or by a contact element that has been active (contact_pairs_).
+  const NodeGraph graph = node_graph(model_);
+  const int n_blocks = dofs_.block_count();
+  std::vector<std::vector<int>> extra(n_blocks);
+  for (const auto& [a, b] : contact_pairs_) {
+    const int ba = dofs_.block(a), bb = dofs_.block(b);
+    if (ba < 0 || bb < 0 || ba == bb) continue;
+    extra[std::max(ba, bb)].push_back(std::min(ba, bb));
+  }
+  tangent_.size = n_blocks;
+  tangent_.column.assign(n_blocks + 1, 0);
+  tangent_.row.clear();
+  for (int c = 0; c < n_blocks; ++c) {
+    const int node = dofs_.block_node(c);
+    const size_t first = tangent_.row.size();
+    for (int p = graph.start[node]; p < graph.start[node + 1]; ++p) {
+      const int r = dofs_.block(graph.neighbours[p]);
+      if (r >= 0 && r <= c) tangent_.row.push_back(r);
+    }
+    tangent_.row.insert(tangent_.row.end(), extra[c].begin(), extra[c].end());
+    std::sort(tangent_.row.begin() + first, tangent_.row.end());
+    tangent_.row.erase(std::unique(tangent_.row.begin() + first, tangent_.row.end()), tangent_.row.end());
+    tangent_.column[c + 1] = static_cast<int>(tangent_.row.size());
+  }
+  tangent_.value.assign(tangent_.row.size(), solver::Block::Zero());
+  const int n_elements = static_cast<int>(model_.elements.size());
+  slots_.resize(n_elements);
+  for (int k = 0; k < n_elements; ++k) {
+    const int bi = dofs_.block(model_.elements[k].start), bj = dofs_.block(model_.elements[k].end);
+    Slots& s = slots_[k];
+    s = Slots();
+    if (bi >= 0) s.ii = entry(bi, bi);
+    if (bj >= 0) s.jj = entry(bj, bj);
+    if (bi >= 0 && bj >= 0 && bi != bj) {
+      s.transposed = bj < bi;
+      s.ij = s.transposed ? entry(bj, bi) : entry(bi, bj);
+    }
+  }
+  ++pattern_version_;
+}
+
+int GlobalSystem::entry(int r, int c) const {
+  const auto first = tangent_.row.begin() + tangent_.column[c], last = tangent_.row.begin() + tangent_.column[c + 1];
+  const auto it = std::lower_bound(first, last, r);
+  return it != last && *it == r ? static_cast<int>(it - tangent_.row.begin()) : -1;
+}
+
+void GlobalSystem::ensure_contact_pattern(const std::vector<contact::ActiveContact>& contacts) {
+  bool missing = false;
+  for (const contact::ActiveContact& a : contacts) {
+    const Element& e = model_.elements[a.element];
+    for (const int node : {e.start, e.end}) {
+      const int bc = dofs_.block(a.node), bn = dofs_.block(node);
+      if (bc < 0 || bn < 0 || bc == bn) continue;
+      if (entry(std::min(bc, bn), std::max(bc, bn)) >= 0) continue;
+      contact_pairs_.emplace_back(a.node, node);
+      missing = true;
+    }
+  }
+  if (missing) build_pattern();
+}
+
+void GlobalSystem::add_block(int a, int b, const Eigen::Matrix3d& value) {
+  // K(a, b) for nodes a, b (both with blocks); the upper triangle stores K(min, max).
+  const int ba = dofs_.block(a), bb = dofs_.block(b);
+  if (ba < 0 || bb < 0) return;
+  if (ba <= bb) tangent_.value[entry(ba, bb)] += value;
+  else if (ba > bb) tangent_.value[entry(bb, ba)] += value.transpose();
 }
 
 void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
@@ -161,10 +195,19 @@ void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen
   floor_squares_[2 * a.element] = 4.0 * floor.force * floor.force + 6.0 * y_floor * y_floor;
   floor_squares_[2 * a.element + 1] = 2.0 * m_floor * m_floor;
   if (!with_tangent) return;
-  solver::DenseTerm term;
+  // The symmetric part joins the node blocks (i, j, c; each node pair once, the upper triangle);
+  // the sliding term stays a rank-one term for the linear solver.
+  const int nodes[3] = {e.start, e.end, a.node};
+  for (int p = 0; p < 3; ++p)
+    for (int q = p; q < 3; ++q) {
+      if (p != q && nodes[p] == nodes[q]) continue;
+      add_block(nodes[p], nodes[q], r.symmetric_tangent.block<3, 3>(3 * p, 3 * q));
+    }
+  solver::RankOne term;
   for (int k = 0; k < 9; ++k) term.equation[k] = dofs_.equation(g[k]);
-  term.value = r.tangent;
-  contact_tangents_.push_back(term);
+  term.u = r.sliding_u;
+  term.v = r.sliding_v;
+  if (r.sliding_u.squaredNorm() > 0.0 && r.sliding_v.squaredNorm() > 0.0) contact_rank_one_.push_back(term);
   if (!has_prescribed_) return;
   for (int b = 0; b < 9; ++b) {
     const double dp = model_.reference_prescribed[g[b]];
@@ -176,9 +219,10 @@ void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen
 
 void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                             bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts) {
+  if (with_tangent) ensure_contact_pattern(contacts);
   for (const contact::ActiveContact& a : contacts) replaced_[a.element] = 1;
   out.contacts.clear();
-  if (with_tangent) contact_tangents_.clear();
+  if (with_tangent) contact_rank_one_.clear();
   const int n_elements = static_cast<int>(model_.elements.size());
   out.internal_force.setZero(model_.dof_count());
   out.element_forces.resize(3 * n_elements);

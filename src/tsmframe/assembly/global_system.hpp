@@ -52,13 +52,21 @@ class GlobalSystem {
   /// K_ff from the last evaluation with tangent, as node blocks; the rows and columns of a
   /// block's constrained dofs are zero with 1 on the diagonal (they carry no equation).
   const BlockMatrix& tangent() const { return tangent_; }
-  /// The contact elements' tangents from the same evaluation (not in tangent(); non-symmetric).
-  const std::vector<solver::DenseTerm>& contact_tangents() const { return contact_tangents_; }
+  /// The contact elements' sliding terms from the same evaluation: K_ff = tangent() + Σ u vᵀ
+  /// (their symmetric parts are in tangent()).
+  const std::vector<solver::RankOne>& contact_rank_one() const { return contact_rank_one_; }
+  /// Changes whenever the block pattern of tangent() is rebuilt (a contact couples new nodes):
+  /// the linear solver must analyse it again.
+  int pattern_version() const { return pattern_version_; }
 
  private:
   void evaluate_element(int k, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                         bool with_tangent, Evaluation& out);
   void mask_constrained_dofs();
+  void build_pattern();
+  int entry(int block_row, int block_column) const;  ///< index in tangent_ of an upper entry, −1 if absent
+  void ensure_contact_pattern(const std::vector<contact::ActiveContact>& contacts);
+  void add_block(int node_a, int node_b, const Eigen::Matrix3d& value);
   void evaluate_contact(const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
                         const std::vector<double>& previous_rotations, bool with_tangent, Evaluation& out);
 
@@ -80,7 +88,9 @@ class GlobalSystem {
   std::vector<double> floor_squares_;      ///< per element: force², moment² of its rounding floor
   bool has_prescribed_ = false;
   std::vector<char> replaced_;             ///< per element: carries a contact in this evaluation
-  std::vector<solver::DenseTerm> contact_tangents_;
+  std::vector<solver::RankOne> contact_rank_one_;
+  std::vector<std::pair<int, int>> contact_pairs_;  ///< node pairs joined only by contact elements
+  int pattern_version_ = 0;
 };
 
 }  // namespace tsm::assembly

@@ -105,8 +105,11 @@ ContactResponse cantilever_frame_response(const ContactElementData& data, const 
     dalpha[2] = (vc - r.alpha * vj) / sj;
     dalpha.segment<2>(3) = (-r.alpha / sj) * t;
     dalpha.segment<2>(6) = t / sj;
-    r.tangent += (J * dS) * dalpha.transpose();
+    r.sliding_u = J * dS;
+    r.sliding_v = dalpha;
   }
+  r.symmetric_tangent = r.tangent;
+  r.tangent += r.sliding_u * r.sliding_v.transpose();
   return r;
 }
 

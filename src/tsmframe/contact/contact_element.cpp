@@ -76,8 +76,11 @@ ContactResponse contact_response(const ContactElementData& data, const Vector9& 
     const Vector4 dS(0.0, law.dh_i * Y + law.h_i * dY, law.dh_j * Y + law.h_j * dY, dY);
     const Vector9 dalpha = spread(((r.alpha - 1.0) / l) * e - (rho / (l * l)) * n,
                                   (rho / (l * l)) * n - (r.alpha / l) * e, e / l);
-    r.tangent += (J * dS) * dalpha.transpose();
+    r.sliding_u = J * dS;
+    r.sliding_v = dalpha;
   }
+  r.symmetric_tangent = r.tangent;
+  r.tangent += r.sliding_u * r.sliding_v.transpose();
   return r;
 }
 

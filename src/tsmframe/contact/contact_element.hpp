@@ -38,7 +38,10 @@ struct ContactResponse {
   Vector4 deformations;   ///< (δl, θ_i, θ_j, δy_c)
   Vector4 forces;         ///< S = (N, M_i, M_j, Y)
   Vector9 nodal_forces;   ///< J S
-  Matrix9 tangent;        ///< ∂(J S)/∂D (when asked for)
+  Matrix9 tangent;        ///< ∂(J S)/∂D (when asked for) = symmetric_tangent + sliding_u sliding_vᵀ
+  Matrix9 symmetric_tangent;  ///< J (∂S/∂d) Jᵀ + K_G
+  Vector9 sliding_u = Vector9::Zero();  ///< the sliding term is the rank-one u vᵀ: u = J ∂S/∂α …
+  Vector9 sliding_v = Vector9::Zero();  ///< … v = ∂α/∂x (both zero without the sliding term)
 };
 
 /// d = (u_i, v_i, Θ_i, u_j, v_j, Θ_j, u_c, v_c, Θ_c); Θ_c plays no part. With

@@ -23,6 +23,9 @@ struct ContactState {
   /// Released during the current step: it stays released until the step has converged (the
   /// iterates after a release may sweep the beam through the node).
   bool released_in_step = false;
+  /// Direction of the last hand-over in this step (+1 past node j, −1 past node i, 0 none), to
+  /// tell a point sliding on from one hopping back and forth.
+  int handover_direction = 0;
   /// At that release: the side the node was on, the normal n of the element it left, and per
   /// candidate whether the node lay within its span (0 ≤ α ≤ 1). Until the step ends the node
   /// must not reach the other side of those elements while within their span (going round a

@@ -198,38 +198,52 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
         continue;
       }
       if (state.alpha >= 0.0 && state.alpha <= 1.0) continue;
-      // The point has left its element: hand it to the neighbour at that end (one per iterate).
-      const Element& from = model_.elements[state.element];
-      const int end = state.alpha > 1.0 ? from.end : from.start;
-      int best = -1;
-      double best_outside = INFINITY, best_gap = INFINITY, best_alpha = 0.0;
-      for (int p = node_start_[end]; p < node_start_[end + 1]; ++p) {
-        const int f = node_elements_[p];
-        if (f == state.element || spec.candidate_index[f] < 0 || occupied[f]) continue;
-        const NodeOnElement where = locate(spec, f, D, rotations);
-        const double outside = std::max({0.0, -where.alpha, where.alpha - 1.0});
-        if (outside < best_outside || (outside == best_outside && std::abs(where.gap) < best_gap)) {
-          best = f;
-          best_outside = outside;
-          best_gap = std::abs(where.gap);
-          best_alpha = where.alpha;
+      // The point has left its element: hand it on to the neighbour at that end, and on while it
+      // is still beyond, but not farther than max(one element, 5 % of the model's size) per
+      // iterate (coarse meshes: one element; fine meshes slide many elements per iterate).
+      const double reach = 0.05 * model_.size;
+      double travelled = 0.0;
+      while (state.alpha < 0.0 || state.alpha > 1.0) {
+        const Element& from = model_.elements[state.element];
+        const int end = state.alpha > 1.0 ? from.end : from.start;
+        int best = -1;
+        double best_outside = INFINITY, best_gap = INFINITY, best_alpha = 0.0;
+        for (int p = node_start_[end]; p < node_start_[end + 1]; ++p) {
+          const int f = node_elements_[p];
+          if (f == state.element || spec.candidate_index[f] < 0 || occupied[f]) continue;
+          const NodeOnElement where = locate(spec, f, D, rotations);
+          const double outside = std::max({0.0, -where.alpha, where.alpha - 1.0});
+          if (outside < best_outside || (outside == best_outside && std::abs(where.gap) < best_gap)) {
+            best = f;
+            best_outside = outside;
+            best_gap = std::abs(where.gap);
+            best_alpha = where.alpha;
+          }
         }
-      }
-      if (best < 0) {  // no element beyond: the point has left the beam's free end …
-        if (!release_pulling) continue;  // … but only a converged iterate says so (till then α is held at the end)
+        if (best < 0) {  // no element beyond: the point has left the beam's free end …
+          if (release_pulling) {  // … but only a converged iterate says so (till then α is held at the end)
+            occupied[state.element] = 0;
+            release(spec, D, rotations, state);
+            ++changes.released;
+          }
+          break;
+        }
+        const Eigen::Vector2d n_from = chord_normal(initial_[state.element], element_displacements(from, D), rotations[state.element]);
+        const Eigen::Vector2d n_to = chord_normal(initial_[best], element_displacements(model_.elements[best], D), rotations[best]);
         occupied[state.element] = 0;
-        release(spec, D, rotations, state);
-        ++changes.released;
-        continue;
+        occupied[best] = 1;
+        state.side = n_from.dot(n_to) >= 0.0 ? state.side : -state.side;
+        const int direction = state.alpha > 1.0 ? 1 : -1;
+        if (state.handover_direction != 0 && direction != state.handover_direction) ++changes.reversed;
+        // The next element's own direction: past its start (α < 0) when it continues from our end j.
+        const Element& to = model_.elements[best];
+        state.handover_direction = (to.start == end) == (direction > 0) ? direction : -direction;
+        state.element = best;
+        state.alpha = best_alpha;
+        ++changes.handed_over;
+        travelled += initial_[best].length;
+        if (travelled >= reach) break;
       }
-      const Eigen::Vector2d n_from = chord_normal(initial_[state.element], element_displacements(from, D), rotations[state.element]);
-      const Eigen::Vector2d n_to = chord_normal(initial_[best], element_displacements(model_.elements[best], D), rotations[best]);
-      occupied[state.element] = 0;
-      occupied[best] = 1;
-      state.side = n_from.dot(n_to) >= 0.0 ? state.side : -state.side;
-      state.element = best;
-      state.alpha = best_alpha;
-      ++changes.handed_over;
       continue;
     }
     // Detection: the node has reached or crossed an element's deflected centre line.
@@ -293,6 +307,7 @@ void ContactTracker::accept(const Eigen::VectorXd& D, const std::vector<double>&
                             std::vector<ContactState>& states) const {
   for (size_t k = 0; k < specs_.size(); ++k) {
     states[k].released_in_step = false;
+    states[k].handover_direction = 0;
     if (!states[k].active) reset_sides(specs_[k], D, rotations, 0, states[k]);
   }
 }

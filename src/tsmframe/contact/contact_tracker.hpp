@@ -5,7 +5,8 @@
 //  - an active contact whose force would pull at a converged iterate is released (compression only);
 //  - an active contact whose point has left its element (α < 0 or α > 1) is handed to the
 //    neighbouring element of its member set at that end (along a member, or across a joint to
-//    another member in the set) — at most one element per iterate; if there is none, the point
+//    another member in the set), and on while still beyond, but no farther than
+//    max(one element, 5 % of the model's size) per iterate; if there is none, the point
 //    has left the beam's free end and the contact is released (at a converged iterate: till
 //    then the force acts at the end);
 //  - an inactive contact node that has reached or crossed an element's deflected centre line
@@ -41,6 +42,7 @@ struct ContactChanges {
   int activated = 0;
   int released = 0;
   int handed_over = 0;
+  int reversed = 0;  ///< hand-overs back the way a contact point came within the step
   bool any() const { return activated + released + handed_over > 0; }
 };
 

@@ -13,16 +13,41 @@ void LinearSolver::analyze(const assembly::DofMap& dofs, const BlockMatrix& matr
   ldlt_.analyze(matrix);
 }
 
-bool LinearSolver::factorize(const BlockMatrix& matrix, const std::vector<DenseTerm>& extra) {
-  general_ = !extra.empty();
-  if (general_) return factorize_general(matrix, extra);
-  return ldlt_.factorize(matrix);
+bool LinearSolver::factorize(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one) {
+  constexpr size_t most_rank_one = 32;  // beyond: one sparse LU is cheaper than that many extra solves
+  woodbury_z_.resize(0, 0);
+  general_ = rank_one.size() > most_rank_one;
+  if (general_) return factorize_general(matrix, rank_one);
+  if (!ldlt_.factorize(matrix)) {
+    if (rank_one.empty()) return false;
+    general_ = true;  // A alone is singular; A + Σ u vᵀ may not be
+    return factorize_general(matrix, rank_one);
+  }
+  if (rank_one.empty()) return true;
+  const Eigen::Index n = static_cast<Eigen::Index>(padded_.size()), q = static_cast<Eigen::Index>(rank_one.size());
+  woodbury_z_.resize(n, q);
+  woodbury_v_.setZero(n, q);
+  for (Eigen::Index k = 0; k < q; ++k) {
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
+    for (int a = 0; a < 9; ++a) {
+      const int eq = rank_one[k].equation[a];
+      if (eq < 0) continue;
+      u[eq] += rank_one[k].u[a];
+      woodbury_v_(eq, k) += rank_one[k].v[a];
+    }
+    woodbury_z_.col(k) = solve_symmetric(u);
+  }
+  const Eigen::MatrixXd capacitance = Eigen::MatrixXd::Identity(q, q) + woodbury_v_.transpose() * woodbury_z_;
+  if (!capacitance.allFinite()) return false;
+  woodbury_capacitance_.compute(capacitance);
+  const double det = woodbury_capacitance_.determinant();
+  return det != 0.0 && std::isfinite(det);
 }
 
-bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vector<DenseTerm>& extra) {
+bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one) {
   const assembly::DofMap& dofs = *dofs_;
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(2 * 9 * matrix.value.size() + 81 * extra.size());
+  entries.reserve(2 * 9 * matrix.value.size() + 81 * rank_one.size());
   auto equation = [&](int block, int d) { return dofs.equation(dofs_per_node * dofs.block_node(block) + d); };
   for (int c = 0; c < matrix.size; ++c) {
     for (int p = matrix.column[c]; p < matrix.column[c + 1]; ++p) {
@@ -40,11 +65,11 @@ bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vecto
       }
     }
   }
-  for (const DenseTerm& t : extra)
+  for (const RankOne& t : rank_one)
     for (int a = 0; a < 9; ++a) {
       if (t.equation[a] < 0) continue;
       for (int b = 0; b < 9; ++b)
-        if (t.equation[b] >= 0) entries.emplace_back(t.equation[a], t.equation[b], t.value(a, b));
+        if (t.equation[b] >= 0) entries.emplace_back(t.equation[a], t.equation[b], t.u[a] * t.v[b]);
     }
   const int n = dofs.free_count();
   general_matrix_.resize(n, n);
@@ -58,6 +83,15 @@ bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vecto
 
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& rhs) const {
   if (general_) return lu_->solve(rhs);
+  Eigen::VectorXd x = solve_symmetric(rhs);
+  if (woodbury_z_.cols() == 0) return x;
+  // (A + U Vᵀ)⁻¹ b = y − Z (I + Vᵀ Z)⁻¹ Vᵀ y,  y = A⁻¹ b,  Z = A⁻¹ U
+  const Eigen::VectorXd w = woodbury_capacitance_.solve(woodbury_v_.transpose() * x);
+  x.noalias() -= woodbury_z_ * w;
+  return x;
+}
+
+Eigen::VectorXd LinearSolver::solve_symmetric(const Eigen::VectorXd& rhs) const {
   Eigen::VectorXd padded = Eigen::VectorXd::Zero(padded_size_);
   for (Eigen::Index eq = 0; eq < rhs.size(); ++eq) padded[padded_[eq]] = rhs[eq];
   ldlt_.solve_in_place(padded);

@@ -1,11 +1,14 @@
 #pragma once
-// The linear solver of the Newton iteration: K_ff δD = R. The symmetric tangent of beams alone
-// goes to the node-block LDLᵀ (block_ldlt); while contact elements are active their
-// non-symmetric terms join it and the whole K_ff goes to Eigen's SparseLU (COLAMD ordering).
-// Vectors are over the free equations.
+// The linear solver of the Newton iteration: K_ff δD = R, K_ff = A + Σ u_k v_kᵀ with A the
+// symmetric node-block tangent (node-block LDLᵀ, block_ldlt) and u_k v_kᵀ the non-symmetric
+// sliding terms of active contact elements, applied exactly by the Sherman–Morrison–Woodbury
+// formula (one extra solve per contact). With many contacts, or if A alone cannot be factorised
+// (a structure held only through a contact's sliding term), the whole K_ff goes to Eigen's
+// SparseLU instead. Vectors are over the free equations.
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <Eigen/LU>
 #include <Eigen/SparseLU>
 #include <array>
 #include <memory>
@@ -16,30 +19,33 @@
 
 namespace tsm::solver {
 
-/// A dense element matrix over up to 9 global dofs (a contact element), possibly non-symmetric.
-struct DenseTerm {
-  std::array<int, 9> equation{};         ///< free equation of each row/column, −1 if constrained
-  Eigen::Matrix<double, 9, 9> value;
+/// A rank-one term u vᵀ over up to 9 global dofs (a contact element's sliding term).
+struct RankOne {
+  std::array<int, 9> equation{};  ///< free equation of each entry, −1 if constrained
+  Eigen::Matrix<double, 9, 1> u, v;
 };
 
 class LinearSolver {
  public:
   /// Symbolic analysis of the tangent's block pattern (values ignored); done once.
   void analyze(const assembly::DofMap& dofs, const BlockMatrix& matrix);
-  /// Numeric factorisation of `matrix` plus `extra` (contact elements); false if singular or
-  /// not finite.
-  bool factorize(const BlockMatrix& matrix, const std::vector<DenseTerm>& extra = {});
+  /// Numeric factorisation of `matrix` + Σ u vᵀ; false if singular or not finite.
+  bool factorize(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one = {});
   /// Solves with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
 
  private:
-  bool factorize_general(const BlockMatrix& matrix, const std::vector<DenseTerm>& extra);
+  bool factorize_general(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one);
+  Eigen::VectorXd solve_symmetric(const Eigen::VectorXd& rhs) const;
 
   BlockLDLT ldlt_;
   const assembly::DofMap* dofs_ = nullptr;
   bool general_ = false;  ///< the last factorisation is the SparseLU one
   Eigen::SparseMatrix<double> general_matrix_;
   std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>> lu_;
+  // Woodbury: Z = A⁻¹ U (one column per contact), V (dense), and the LU of I + Vᵀ Z.
+  Eigen::MatrixXd woodbury_z_, woodbury_v_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> woodbury_capacitance_;
   std::vector<int> padded_;  ///< per free equation: its place in the block-padded vector
   int padded_size_ = 0;
 };

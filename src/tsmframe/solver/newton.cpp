@@ -39,6 +39,7 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
     if (dof % dofs_per_node != rz) prescribed_squared_ += model.reference_prescribed[dof] * model.reference_prescribed[dof];
   }
   solver_.analyze(system.dofs(), system.tangent());
+  analysed_pattern_ = system.pattern_version();
 }
 
 bool NewtonSolver::evaluate(State& state) {
@@ -58,7 +59,7 @@ bool NewtonSolver::evaluate(State& state) {
     if (!changes.any()) break;
     changed = true;
     switches_ += changes.activated + changes.released;
-    handovers_ += changes.handed_over;
+    handovers_ += changes.reversed;
   }
   // α and force of the evaluation that stands (update() has set them unless the passes ran out).
   size_t next = 0;
@@ -189,14 +190,19 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
   const Eigen::VectorXd start = by_arc ? free_displacements(state) : Eigen::VectorXd();
   const double start_load_factor = state.load_factor;
   const int max_switches = 4 + 4 * static_cast<int>(state.contacts.size());
-  // A contact point that keeps hopping between elements within one step is wandering over
-  // iterates far from the path (it may land on another branch, a beam looped around the node):
-  // fail the step so that cutback follows the path in smaller steps.
-  const int max_handovers = 10 * static_cast<int>(state.contacts.size());
+  // A contact point that keeps hopping back and forth between elements within one step is
+  // wandering over iterates far from the path (it may land on another branch, a beam looped
+  // around the node): fail the step so that cutback follows the path in smaller steps. Sliding
+  // on in one direction, one element per iterate, is not limited here.
+  const int max_handovers = 4 * static_cast<int>(state.contacts.size());
   if (contacts_) out.contact_iterates.push_back(contact_points(state));
 
   for (int it = 1; it <= settings_.max_iterations; ++it) {
-    if (!solver_.factorize(system_.tangent(), system_.contact_tangents())) {
+    if (system_.pattern_version() != analysed_pattern_) {  // a contact has joined new nodes
+      solver_.analyze(system_.dofs(), system_.tangent());
+      analysed_pattern_ = system_.pattern_version();
+    }
+    if (!solver_.factorize(system_.tangent(), system_.contact_rank_one())) {
       out.status = Status::singular;
       out.message = iterate_text("the tangent stiffness is singular (a limit or bifurcation point)", it);
       return out;

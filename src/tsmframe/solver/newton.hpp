@@ -96,7 +96,7 @@ class NewtonSolver {
   NewtonSettings settings_;
   const contact::ContactTracker* contacts_ = nullptr;
   int switches_ = 0;   ///< contact activations + releases in the current step
-  int handovers_ = 0;  ///< contact hand-overs across element ends in the current step
+  int handovers_ = 0;  ///< contact hand-overs back the way the point came, in the current step
   LinearSolver solver_;
   assembly::Evaluation eval_;
   Eigen::VectorXd load_free_;        ///< F_ref over the free equations
@@ -104,6 +104,7 @@ class NewtonSolver {
   std::vector<unsigned char> constrained_;  ///< per dof: fixed or prescribed
   std::vector<int> constrained_dofs_;
   double prescribed_squared_ = 0.0;  ///< ‖D_p,ref‖² over prescribed translations
+  int analysed_pattern_ = -1;        ///< pattern version the linear solver has analysed
 };
 
 }  // namespace tsm::solver
