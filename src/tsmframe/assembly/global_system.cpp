@@ -55,7 +55,6 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
   std::vector<int> fill(colour_start_.begin(), colour_start_.end() - 1);
   for (int k = 0; k < n_elements; ++k) colour_order_[fill[colour[k]]++] = k;
 
-  floor_squares_.resize(2 * static_cast<size_t>(n_elements));
   replaced_.assign(n_elements, 0);
   has_prescribed_ = model.reference_prescribed.size() > 0 && model.reference_prescribed.any();
 }
@@ -144,9 +143,6 @@ void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
   out.element_forces.segment<3>(3 * k) = r.forces;
   out.chord_rotations[k] = r.chord.rotation;
   for (int a = 0; a < 6; ++a) out.internal_force[g[a]] += r.nodal_forces[a];
-  const element::RoundOffFloor floor = element::round_off_floor(initial_[k], stiffness_[k], d, r);
-  floor_squares_[2 * k] = 4.0 * floor.force * floor.force;  // two nodes, two translations each
-  floor_squares_[2 * k + 1] = 2.0 * floor.moment * floor.moment;
   if (!with_tangent) return;
   const Slots& slot = slots_[k];
   if (slot.ii >= 0) tangent_.value[slot.ii] += r.tangent.topLeftCorner<3, 3>();
@@ -182,18 +178,6 @@ void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen
   out.chord_rotations[a.element] = r.chord.rotation;
   out.contacts.push_back({r.alpha, r.forces[3]});
   for (int k = 0; k < 9; ++k) out.internal_force[g[k]] += r.nodal_forces[k];
-  // Rounding floor: the beam part as for the plain element, plus Y's, which is the error of
-  // δy_c − w (about ε times the coordinates involved) divided by the compliance.
-  constexpr double eps = std::numeric_limits<double>::epsilon();
-  const element::BeamResponse plain = element::beam_response(a.data.initial, a.data.k0, d.head<6>(), previous_rotations[a.element], false);
-  const element::RoundOffFloor floor = element::round_off_floor(a.data.initial, a.data.k0, d.head<6>(), plain);
-  const contact::PointLoadLaw law = contact::point_load_law(a.data.section, a.data.initial.length, r.alpha, a.data.edge);
-  const double coordinates = d.head<2>().cwiseAbs().sum() + d.segment<2>(3).cwiseAbs().sum() + d.segment<2>(6).cwiseAbs().sum() +
-                             (a.data.contact_start - a.data.initial.start).norm() + a.data.initial.length;
-  const double y_floor = eps * coordinates / law.compliance + eps * std::abs(r.forces[3]);
-  const double m_floor = floor.moment + std::max(std::abs(law.h_i), std::abs(law.h_j)) * y_floor;
-  floor_squares_[2 * a.element] = 4.0 * floor.force * floor.force + 6.0 * y_floor * y_floor;
-  floor_squares_[2 * a.element + 1] = 2.0 * m_floor * m_floor;
   if (!with_tangent) return;
   // The symmetric part joins the node blocks (i, j, c; each node pair once, the upper triangle);
   // the sliding term stays a rank-one term for the linear solver.
@@ -244,13 +228,48 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
     replaced_[a.element] = 0;
   }
   if (with_tangent) mask_constrained_dofs();
-  double force_floor = 0.0, moment_floor = 0.0;
-  for (int k = 0; k < n_elements; ++k) {
-    force_floor += floor_squares_[2 * k];
-    moment_floor += floor_squares_[2 * k + 1];
+}
+
+RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+                                           const std::vector<contact::ActiveContact>& contacts) const {
+  // Squares summed: element errors taken as independent. Asked for only when Newton stagnates.
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  std::vector<char> replaced(model_.elements.size(), 0);
+  for (const contact::ActiveContact& a : contacts) replaced[a.element] = 1;
+  double force = 0.0, moment = 0.0;
+  for (size_t k = 0; k < model_.elements.size(); ++k) {
+    if (replaced[k]) continue;
+    const auto g = element_dofs(model_.elements[k]);
+    element::Vector6 d;
+    for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
+    const element::BeamResponse r = element::beam_response(initial_[k], stiffness_[k], d, rotations[k], false);
+    const element::RoundOffFloor f = element::round_off_floor(initial_[k], stiffness_[k], d, r);
+    force += 4.0 * f.force * f.force;  // two nodes, two translations each
+    moment += 2.0 * f.moment * f.moment;
   }
-  out.force_floor = std::sqrt(force_floor);
-  out.moment_floor = std::sqrt(moment_floor);
+  for (const contact::ActiveContact& a : contacts) {
+    // The beam part as for the plain element, plus Y's: the error of δy_c − w (about ε times the
+    // coordinates involved) divided by the compliance.
+    const Element& e = model_.elements[a.element];
+    contact::Vector9 d;
+    for (int c = 0; c < dofs_per_node; ++c) {
+      d[c] = displacements[dofs_per_node * e.start + c];
+      d[3 + c] = displacements[dofs_per_node * e.end + c];
+      d[6 + c] = displacements[dofs_per_node * a.node + c];
+    }
+    const contact::ContactResponse r = contact::contact_response(a.data, d, rotations[a.element], false);
+    const element::BeamResponse plain = element::beam_response(a.data.initial, a.data.k0, d.head<6>(), rotations[a.element], false);
+    const element::RoundOffFloor f = element::round_off_floor(a.data.initial, a.data.k0, d.head<6>(), plain);
+    const contact::PointLoadLaw law = contact::point_load_law(a.data.section, a.data.initial.length, r.alpha, a.data.edge);
+    const double coordinates = d.head<2>().cwiseAbs().sum() + d.segment<2>(3).cwiseAbs().sum() +
+                               d.segment<2>(6).cwiseAbs().sum() + (a.data.contact_start - a.data.initial.start).norm() +
+                               a.data.initial.length;
+    const double y_floor = eps * coordinates / law.compliance + eps * std::abs(r.forces[3]);
+    const double m_floor = f.moment + std::max(std::abs(law.h_i), std::abs(law.h_j)) * y_floor;
+    force += 4.0 * f.force * f.force + 6.0 * y_floor * y_floor;
+    moment += 2.0 * m_floor * m_floor;
+  }
+  return {std::sqrt(force), std::sqrt(moment)};
 }
 
 void GlobalSystem::mask_constrained_dofs() {

@@ -28,12 +28,15 @@ struct Evaluation {
   /// K_fp · D_p,ref over the free equations: how the tangent couples free dofs to the
   /// prescribed displacements (for the tangent predictor, FORMULATION §4).
   Eigen::VectorXd prescribed_coupling;
-  /// Estimated rounding error of the assembled internal forces, per kind (2-norm over dofs,
-  /// element errors taken as independent): the floor under any residual at this state.
-  double force_floor = 0.0;
-  double moment_floor = 0.0;
   /// One entry per active contact, in the order they were given.
   std::vector<contact::ContactEvaluation> contacts;
+};
+
+/// Estimated rounding error of the assembled internal forces, per kind (2-norm over dofs):
+/// the floor under any residual at a state.
+struct RoundingFloor {
+  double force = 0.0;
+  double moment = 0.0;
 };
 
 class GlobalSystem {
@@ -52,6 +55,10 @@ class GlobalSystem {
   /// K_ff from the last evaluation with tangent, as node blocks; the rows and columns of a
   /// block's constrained dofs are zero with 1 on the diagonal (they carry no equation).
   const BlockMatrix& tangent() const { return tangent_; }
+  /// The rounding floor at a state (chord rotations of that state's evaluation): a pass over the
+  /// elements of its own, asked for only when Newton stagnates.
+  RoundingFloor rounding_floor(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+                               const std::vector<contact::ActiveContact>& contacts) const;
   /// The contact elements' sliding terms from the same evaluation: K_ff = tangent() + Σ u vᵀ
   /// (their symmetric parts are in tangent()).
   const std::vector<solver::RankOne>& contact_rank_one() const { return contact_rank_one_; }
@@ -85,7 +92,6 @@ class GlobalSystem {
   std::vector<unsigned char> block_mask_;  ///< per block: bit d set if dof d of its node is constrained
   std::vector<int> colour_order_;          ///< element indices, grouped by colour
   std::vector<int> colour_start_;          ///< group c: colour_order_[colour_start_[c] .. colour_start_[c+1])
-  std::vector<double> floor_squares_;      ///< per element: force², moment² of its rounding floor
   bool has_prescribed_ = false;
   std::vector<char> replaced_;             ///< per element: carries a contact in this evaluation
   std::vector<solver::RankOne> contact_rank_one_;

@@ -12,6 +12,7 @@ constexpr double blow_up_ratio = 1e12;     // ‖R‖ > 1e12 · scale is diverge
 constexpr double runaway_ratio = 1e6;      // |u| > 1e6 · (size + prescribed) is divergence
 constexpr double floor_ratio = 10.0;       // ‖R‖ ≤ 10 × the estimated rounding floor …
 constexpr double stagnation = 0.5;         // … ends a step once Newton no longer halves it
+constexpr double floor_check_below = 1e-3; // the floor (a pass of its own) is only worth checking below this
 
 std::string iterate_text(const char* what, int iteration) {
   std::ostringstream os;
@@ -173,9 +174,12 @@ Eigen::VectorXd NewtonSolver::free_displacements(const State& state) const {
   return v;
 }
 
-bool NewtonSolver::within_floor(const std::array<double, 2>& norms) const {
+bool NewtonSolver::within_floor(const std::array<double, 2>& norms, const State& state) const {
   const auto [force, moment] = norms;
-  return force <= floor_ratio * eval_.force_floor && moment <= floor_ratio * eval_.moment_floor;
+  const std::vector<contact::ActiveContact> active =
+      contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
+  const assembly::RoundingFloor floor = system_.rounding_floor(state.displacements, state.chord_rotations, active);
+  return force <= floor_ratio * floor.force && moment <= floor_ratio * floor.moment;
 }
 
 NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state) {
@@ -293,7 +297,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     }
     const bool stagnating = relative >= stagnation * out.residual_norms[out.residual_norms.size() - 2];
     const char* criterion = relative <= settings_.tolerance ? "force"
-                            : !contacts_changed && (at_round_off(correction, state) || (stagnating && within_floor(norms)))
+                            : !contacts_changed && (at_round_off(correction, state) || (stagnating && relative < floor_check_below && within_floor(norms, state)))
                                 ? "round-off"
                                 : nullptr;
     if (criterion) {

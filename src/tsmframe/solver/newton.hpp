@@ -87,7 +87,7 @@ class NewtonSolver {
   double relative_norm(const std::array<double, 2>& norms, const ResidualScale& scale) const;
   bool at_round_off(const Eigen::VectorXd& correction, const State& state) const;
   /// ‖R‖ per kind within a small multiple of the rounding floor of the internal forces.
-  bool within_floor(const std::array<double, 2>& residual_norms) const;
+  bool within_floor(const std::array<double, 2>& residual_norms, const State& state) const;
   /// Translational part of dot products for the arc-length constraint.
   double arc_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const;
   Eigen::VectorXd free_displacements(const State& state) const;
