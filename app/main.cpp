@@ -181,7 +181,7 @@ int main(int argc, char** argv) {
   run_command->add_option("-o,--out", options.out, "output directory (default: out)");
   run_command->add_flag("-q,--quiet", options.quiet, "no progress lines");
   run_command->add_flag("--log-iterations", options.log_iterations, "print the residual of every iterate");
-  run_command->add_flag("--vtk", options.vtk, "ParaView files: DIR/vtk/results.pvd and one .vtu per converged step with state");
+  run_command->add_flag("--vtk", options.vtk, "ParaView files: DIR/vtk/results.pvd and one .vtu per converged step");
   run_command->add_flag("--plot", options.plot, "plots: deformed shapes and load-displacement curves in DIR/plots/");
   run_command->add_option("-j,--threads", options.threads, "threads for the element loop (default: all cores; results are identical)")
       ->check(CLI::Range(1, 1024));
