@@ -55,16 +55,15 @@ ContactTracker::ContactTracker(const Model& model) : model_(model) {
     s.candidate_index.assign(n_elements, -1);
     std::vector<bool> in_set(model.member_count, false);
     for (int m : c.members) in_set[m] = true;
-    s.timoshenko_override = c.element == "timoshenko";
-    s.euler_bernoulli_override = c.element == "euler-bernoulli";
+    const bool timoshenko_override = c.element == "timoshenko", euler_bernoulli_override = c.element == "euler-bernoulli";
     for (int k = 0; k < n_elements; ++k) {
       const Element& e = model.elements[k];
       if (!in_set[e.member]) continue;
       s.candidate_index[k] = static_cast<int>(s.candidates.size());
       s.candidates.push_back(k);
       double psi = e.section.shear_flexibility;
-      if (s.euler_bernoulli_override) psi = 0.0;
-      if (s.timoshenko_override) psi = c.member_shear_flexibility[e.member];
+      if (euler_bernoulli_override) psi = 0.0;
+      if (timoshenko_override) psi = c.member_shear_flexibility[e.member];
       s.shear_flexibility.push_back(psi);
     }
     s.gap = c.gap;
@@ -73,12 +72,6 @@ ContactTracker::ContactTracker(const Model& model) : model_(model) {
     s.cantilever_frame = c.frame == "cantilever";
     specs_.push_back(std::move(s));
   }
-}
-
-bool ContactTracker::timoshenko(const Spec& spec, int element) const {
-  if (spec.timoshenko_override) return true;
-  if (spec.euler_bernoulli_override) return false;
-  return model_.elements[element].theory == BeamTheory::timoshenko;
 }
 
 element::SectionStiffness ContactTracker::contact_section(const Spec& spec, int element) const {

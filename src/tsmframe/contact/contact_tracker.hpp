@@ -77,7 +77,6 @@ class ContactTracker {
     std::vector<int> candidates;        ///< element indices the node may touch
     std::vector<int> candidate_index;   ///< per element: its place in candidates, −1 if not one
     std::vector<double> shear_flexibility;  ///< per element: Ψ of the contact law
-    bool timoshenko_override = false, euler_bernoulli_override = false;
     double gap = 0.0;
     double edge = -1.0;
     bool sliding_term = true;
@@ -86,7 +85,6 @@ class ContactTracker {
   NodeOnElement locate(const Spec& spec, int element, const Eigen::VectorXd& displacements,
                        const std::vector<double>& chord_rotations) const;
   element::SectionStiffness contact_section(const Spec& spec, int element) const;
-  bool timoshenko(const Spec& spec, int element) const;
   void release(const Spec& spec, const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
                ContactState& state) const;
   void reset_sides(const Spec& spec, const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,

@@ -60,7 +60,7 @@ bool NewtonSolver::evaluate(State& state) {
     if (!changes.any()) break;
     changed = true;
     switches_ += changes.activated + changes.released;
-    handovers_ += changes.reversed;
+    reversals_ += changes.reversed;
   }
   // α and force of the evaluation that stands (update() has set them unless the passes ran out).
   size_t next = 0;
@@ -189,7 +189,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
   NewtonOutcome out;
   Eigen::VectorXd R = unbalanced_force(state.load_factor);
   ResidualScale start_scale;
-  switches_ = handovers_ = 0;
+  switches_ = reversals_ = 0;
   const bool by_arc = constraint.kind == PathConstraint::Kind::arc_length;
   const Eigen::VectorXd start = by_arc ? free_displacements(state) : Eigen::VectorXd();
   const double start_load_factor = state.load_factor;
@@ -198,7 +198,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
   // wandering over iterates far from the path (it may land on another branch, a beam looped
   // around the node): fail the step so that cutback follows the path in smaller steps. Sliding
   // on in one direction, one element per iterate, is not limited here.
-  const int max_handovers = 4 * static_cast<int>(state.contacts.size());
+  const int max_reversals = 4 * static_cast<int>(state.contacts.size());
   if (contacts_) out.contact_iterates.push_back(contact_points(state));
 
   for (int it = 1; it <= settings_.max_iterations; ++it) {
@@ -279,7 +279,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     state.load_factor += dlambda;
     const bool contacts_changed = evaluate(state);
     if (contacts_) out.contact_iterates.push_back(contact_points(state));
-    if (switches_ > max_switches || handovers_ > max_handovers) {
+    if (switches_ > max_switches || reversals_ > max_reversals) {
       out.status = Status::contact_chatter;
       out.message = iterate_text(switches_ > max_switches ? "contacts keep switching on and off"
                                                           : "contact points keep hopping between elements", it);

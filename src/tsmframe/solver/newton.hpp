@@ -96,7 +96,7 @@ class NewtonSolver {
   NewtonSettings settings_;
   const contact::ContactTracker* contacts_ = nullptr;
   int switches_ = 0;   ///< contact activations + releases in the current step
-  int handovers_ = 0;  ///< contact hand-overs back the way the point came, in the current step
+  int reversals_ = 0;  ///< contact hand-overs back the way the point came, in the current step
   LinearSolver solver_;
   assembly::Evaluation eval_;
   Eigen::VectorXd load_free_;        ///< F_ref over the free equations
