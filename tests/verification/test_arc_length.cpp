@@ -1,13 +1,16 @@
 // Arc-length control (issue 6): the von Mises two-bar truss against its closed form through
 // both limit points; arc-length and load control agree where both can go; Lee's frame (limit
-// load and snap-back) and DaDeppo & Schmidt's 215° arch against published limit loads; a contact
-// point that slips off a cantilever's free end.
+// load and snap-back) and DaDeppo & Schmidt's 215° arch against published limit loads; Williams'
+// toggle against the exact elastica of the same frame; a contact point that slips off a
+// cantilever's free end.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cmath>
 #include <numbers>
+
+#include <Eigen/Dense>
 
 #include "support/models.hpp"
 
@@ -161,6 +164,110 @@ TEST(ArcLength, DeepArchLimitLoad) {
   ASSERT_TRUE(r.limit_points[0].maximum);
   std::printf("[figure] 215 deg arch: limit load P = %.2f (published 897)\n", r.limit_points[0].load_factor);
   EXPECT_NEAR(r.limit_points[0].load_factor, 897.0, 0.01 * 897.0);
+}
+
+// ---- Williams' toggle ----
+// Two equal aluminium bars, clamped at both supports and rigidly joined at the apex, apex load P
+// (Williams, "An approach to the non-linear behaviour of the members of a rigid jointed plane
+// framework with finite deflections", Q. J. Mech. Appl. Math. 17, 1964): half-span 12.943,
+// rise 0.386, E = 10.3e6, rectangular 0.753 × 0.243 (inches, lb). The reference here is the exact
+// solution of the same problem, computed by shooting: by symmetry the apex neither rotates nor
+// moves sideways, so one bar is an extensible elastica clamped at both ends, its far end lowered
+// by w and carrying P/2 (EI θ' = m, m' = −r' × F, r' = (1 + N/EA) t, N = F·t). Williams' paper
+// solved the same continuum problem; its printed limit load could not be checked here, so the test
+// compares with an exact solution instead of a quoted number.
+
+struct ToggleElastica {
+  static constexpr double E = 10.3e6, b = 0.753, d = 0.243, half_span = 12.943, rise = 0.386;
+  static constexpr int rk4_steps = 2000;
+  const double EA = E * b * d, EI = E * b * d * d * d / 12.0;
+  const double length = std::hypot(half_span, rise), angle = std::atan2(rise, half_span);
+  Eigen::Vector3d unknowns = Eigen::Vector3d::Zero();  // (m at the support, F_x, F_y at the apex)
+
+  // (x, y, θ) at the apex for the given unknowns.
+  Eigen::Vector3d shoot(const Eigen::Vector3d& u) const {
+    const double Fx = u[1], Fy = u[2];
+    auto rate = [&](const Eigen::Vector4d& q) {  // q = (x, y, θ, m)
+      const double c = std::cos(q[2]), s = std::sin(q[2]), stretch = 1.0 + (Fx * c + Fy * s) / EA;
+      return Eigen::Vector4d(stretch * c, stretch * s, q[3] / EI, -stretch * (c * Fy - s * Fx));
+    };
+    Eigen::Vector4d q(0.0, 0.0, angle, u[0]);
+    const double h = length / rk4_steps;
+    for (int i = 0; i < rk4_steps; ++i) {
+      const Eigen::Vector4d k1 = rate(q), k2 = rate(q + 0.5 * h * k1), k3 = rate(q + 0.5 * h * k2), k4 = rate(q + h * k3);
+      q += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    }
+    return q.head<3>();
+  }
+
+  // Apex load P for an apex drop w (Newton on the three end conditions, warm-started).
+  double load(double w) {
+    const Eigen::Vector3d target(half_span, rise - w, angle);
+    for (int iteration = 0; iteration < 50; ++iteration) {
+      const Eigen::Vector3d r = shoot(unknowns) - target;
+      if (r.cwiseAbs().maxCoeff() < 1e-12) return -2.0 * unknowns[2];
+      Eigen::Matrix3d J;
+      for (int j = 0; j < 3; ++j) {
+        Eigen::Vector3d du = Eigen::Vector3d::Zero();
+        du[j] = 1e-6 * std::max(1.0, std::abs(unknowns[j]));
+        J.col(j) = (shoot(unknowns + du) - target - r) / du[j];
+      }
+      unknowns -= J.partialPivLu().solve(r);
+    }
+    ADD_FAILURE() << "shooting did not converge at w = " << w;
+    return 0.0;
+  }
+
+  // Largest (sign = +1) or smallest (sign = −1) load over [lo, hi] by golden-section search.
+  double extreme_load(double lo, double hi, double sign) {
+    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+    while (hi - lo > 1e-7) {
+      const double a = hi - g * (hi - lo), c = lo + g * (hi - lo);
+      if (sign * load(a) > sign * load(c)) hi = c;
+      else lo = a;
+    }
+    return load(0.5 * (lo + hi));
+  }
+};
+
+TEST(ArcLength, WilliamsToggleAgainstTheExactElastica) {
+  using T = ToggleElastica;
+  const int divisions = 40;  // per bar; the limit load converges as 1/n² (34.15, 33.94, 33.89, 33.875 for 10…80)
+  const json m = {
+      {"materials", {{"al", {{"E", T::E}}}}},
+      {"sections", {{"bar", {{"A", T::b * T::d}, {"I", T::b * T::d * T::d * T::d / 12.0}}}}},
+      {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", T::half_span}, {"y", T::rise}},
+                             {{"id", 3}, {"x", 2.0 * T::half_span}, {"y", 0.0}}})},
+      {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", divisions}, {"material", "al"}, {"section", "bar"}},
+                               {{"from", 2}, {"to", 3}, {"divisions", divisions}, {"material", "al"}, {"section", "bar"}}})},
+      {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 3}, {"type", "fixed"}}})},
+      {"loads", json::array({{{"node", 2}, {"fy", -1.0}}})},
+      {"analysis", {{"control", {{"type", "arc-length"}, {"initial_increment", 0.01}, {"max_increment", 0.01},
+                                 {"max_steps", 2000}, {"until", {{"node", 2}, {"dof", "uy"}, {"value", -0.5}}}}},
+                    {"output", "all"}}},
+  };
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+
+  T exact;
+  // The path, every 20th step: load against the exact load at the same apex drop; symmetric.
+  for (size_t k = 0; k < r.steps.size(); k += 20) {
+    const Eigen::Vector3d apex = node_displacement(model, r.steps[k], 2);
+    EXPECT_NEAR(r.steps[k].load_factor, exact.load(-apex[1]), 1e-3 * 33.9) << "step " << r.steps[k].step;
+    EXPECT_LT(std::abs(apex[0]) + std::abs(apex[2]), 1e-12);
+  }
+  // Both limit points: the snap-through maximum and the minimum after it.
+  ASSERT_EQ(r.limit_points.size(), 2u);
+  ASSERT_TRUE(r.limit_points[0].maximum);
+  ASSERT_FALSE(r.limit_points[1].maximum);
+  exact.load(0.2);  // warm start near the maximum
+  const double p_max = exact.extreme_load(0.15, 0.30, +1.0);
+  const double p_min = exact.extreme_load(0.32, 0.46, -1.0);
+  std::printf("[figure] Williams' toggle: limit loads %.3f / %.3f (exact elastica %.3f / %.3f)\n",
+              r.limit_points[0].load_factor, r.limit_points[1].load_factor, p_max, p_min);
+  EXPECT_NEAR(r.limit_points[0].load_factor, p_max, 1e-3 * p_max);
+  EXPECT_NEAR(r.limit_points[1].load_factor, p_min, 1e-3 * p_min);
 }
 
 // ---- A contact point slipping off a cantilever's free end ----
