@@ -211,8 +211,8 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
   out.internal_force.setZero(model_.dof_count());
   out.element_forces.resize(3 * n_elements);
   out.chord_rotations.resize(n_elements);
-  if (has_prescribed_ || out.prescribed_coupling.size() != dofs_.free_count())
-    out.prescribed_coupling.setZero(dofs_.free_count());
+  if (has_prescribed_) out.prescribed_coupling.setZero(dofs_.free_count());
+  else out.prescribed_coupling.resize(0);  // nothing prescribed moves: no coupling to carry
   if (with_tangent)
     for (solver::Block& b : tangent_.value) b.setZero();
 

@@ -26,7 +26,8 @@ struct Evaluation {
   Eigen::VectorXd element_forces;        ///< (N, M_i, M_j) per element, stacked
   std::vector<double> chord_rotations;   ///< β per element at this state
   /// K_fp · D_p,ref over the free equations: how the tangent couples free dofs to the
-  /// prescribed displacements (for the tangent predictor, FORMULATION §4).
+  /// prescribed displacements (for the tangent predictor, FORMULATION §4). Empty when the model
+  /// prescribes no displacement.
   Eigen::VectorXd prescribed_coupling;
   /// One entry per active contact, in the order they were given.
   std::vector<contact::ContactEvaluation> contacts;

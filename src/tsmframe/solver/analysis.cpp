@@ -58,15 +58,16 @@ class Recorder {
     record.monitored.resize(dofs_per_node * static_cast<int>(settings.monitor.size()));
     for (size_t m = 0; m < settings.monitor.size(); ++m)
       record.monitored.segment<3>(dofs_per_node * m) = state.displacements.segment<3>(dofs_per_node * settings.monitor[m]);
-    record.displacements = state.displacements;
-    record.element_forces = newton_.element_forces();
-    record.reactions = newton_.reactions(state.load_factor);
-    record.contacts = newton_.contact_points(state);
+    // The previous step's state goes first (unless the output keeps it): the peak memory holds one state, not two.
     if (last_with_state_ >= 0 && !keeps_state(settings.output, result_.steps[last_with_state_].step)) {
       StepRecord& previous = result_.steps[last_with_state_];
       previous.has_state = false;
       previous.displacements = previous.element_forces = previous.reactions = Eigen::VectorXd();
     }
+    record.displacements = state.displacements;
+    record.element_forces = newton_.element_forces();
+    record.reactions = newton_.reactions(state.load_factor);
+    record.contacts = newton_.contact_points(state);
     last_with_state_ = static_cast<int>(result_.steps.size());
     result_.steps.push_back(std::move(record));
     if (observer_) observer_(result_.steps.back());
@@ -157,6 +158,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   RunResult result;
   Recorder recorder(model, newton, observer, result);
 
+  State saved;  // the start of the step being tried (reused: no allocation per step)
   while (grid_index < grid_steps) {
     const double next_grid = static_cast<double>(grid_index + 1) / control.steps;
     double dt = std::min(increment, next_grid - t);
@@ -166,7 +168,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     if (by_displacement) constraint.target = value(t_end) * control.target;
     else constraint.load_increment = value(t_end) - state.load_factor;
 
-    const State saved = state;
+    saved = state;
     const NewtonOutcome outcome = newton.step(constraint, state);
     StepRecord record = recorder.start(outcome, halvings);
     record.increment = (value(t_end) - value(t)) * (by_displacement ? control.target : 1.0);
@@ -229,8 +231,9 @@ RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, Newto
   int halvings = 0, converged_steps = 0;
   const bool watching = control.until != Control::Until::steps;
 
+  State saved;  // the start of the step being tried (reused: no allocation per step)
   while (converged_steps < control.max_steps) {
-    const State saved = state;
+    saved = state;
     constraint.arc_length = arc;
     const NewtonOutcome outcome = newton.step(constraint, state);
     StepRecord record = recorder.start(outcome, halvings);

@@ -35,7 +35,9 @@ bool LinearSolver::factorize(const BlockMatrix& matrix, const std::vector<RankOn
       u[eq] += rank_one[k].u[a];
       woodbury_v_(eq, k) += rank_one[k].v[a];
     }
-    woodbury_z_.col(k) = solve_symmetric(u);
+    Eigen::VectorXd z;
+    solve_symmetric(u, z);
+    woodbury_z_.col(k) = z;
   }
   const Eigen::MatrixXd capacitance = Eigen::MatrixXd::Identity(q, q) + woodbury_v_.transpose() * woodbury_z_;
   if (!capacitance.allFinite()) return false;
@@ -82,22 +84,29 @@ bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vecto
 }
 
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& rhs) const {
-  if (general_) return lu_->solve(rhs);
-  Eigen::VectorXd x = solve_symmetric(rhs);
-  if (woodbury_z_.cols() == 0) return x;
-  // (A + U Vᵀ)⁻¹ b = y − Z (I + Vᵀ Z)⁻¹ Vᵀ y,  y = A⁻¹ b,  Z = A⁻¹ U
-  const Eigen::VectorXd w = woodbury_capacitance_.solve(woodbury_v_.transpose() * x);
-  x.noalias() -= woodbury_z_ * w;
+  Eigen::VectorXd x;
+  solve(rhs, x);
   return x;
 }
 
-Eigen::VectorXd LinearSolver::solve_symmetric(const Eigen::VectorXd& rhs) const {
-  Eigen::VectorXd padded = Eigen::VectorXd::Zero(padded_size_);
-  for (Eigen::Index eq = 0; eq < rhs.size(); ++eq) padded[padded_[eq]] = rhs[eq];
-  ldlt_.solve_in_place(padded);
-  Eigen::VectorXd x(rhs.size());
-  for (Eigen::Index eq = 0; eq < rhs.size(); ++eq) x[eq] = padded[padded_[eq]];
-  return x;
+void LinearSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const {
+  if (general_) {
+    x = lu_->solve(rhs);
+    return;
+  }
+  solve_symmetric(rhs, x);
+  if (woodbury_z_.cols() == 0) return;
+  // (A + U Vᵀ)⁻¹ b = y − Z (I + Vᵀ Z)⁻¹ Vᵀ y,  y = A⁻¹ b,  Z = A⁻¹ U
+  const Eigen::VectorXd w = woodbury_capacitance_.solve(woodbury_v_.transpose() * x);
+  x.noalias() -= woodbury_z_ * w;
+}
+
+void LinearSolver::solve_symmetric(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const {
+  padded_work_.setZero(padded_size_);  // constrained dofs of a block carry 0 (no allocation after the first)
+  for (Eigen::Index eq = 0; eq < rhs.size(); ++eq) padded_work_[padded_[eq]] = rhs[eq];
+  ldlt_.solve_in_place(padded_work_);
+  x.resize(rhs.size());
+  for (Eigen::Index eq = 0; eq < rhs.size(); ++eq) x[eq] = padded_work_[padded_[eq]];
 }
 
 }  // namespace tsm::solver

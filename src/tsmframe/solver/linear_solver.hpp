@@ -33,10 +33,12 @@ class LinearSolver {
   bool factorize(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one = {});
   /// Solves with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
+  /// The same into `x` (resized if needed; may not alias `rhs`): no allocation per solve.
+  void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const;
 
  private:
   bool factorize_general(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one);
-  Eigen::VectorXd solve_symmetric(const Eigen::VectorXd& rhs) const;
+  void solve_symmetric(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const;
 
   BlockLDLT ldlt_;
   const assembly::DofMap* dofs_ = nullptr;
@@ -48,6 +50,7 @@ class LinearSolver {
   Eigen::PartialPivLU<Eigen::MatrixXd> woodbury_capacitance_;
   std::vector<int> padded_;  ///< per free equation: its place in the block-padded vector
   int padded_size_ = 0;
+  mutable Eigen::VectorXd padded_work_;  ///< the block-padded right-hand side, reused by every solve
 };
 
 }  // namespace tsm::solver

@@ -1,5 +1,6 @@
 #include "tsmframe/solver/newton.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -13,6 +14,26 @@ constexpr double runaway_ratio = 1e6;      // |u| > 1e6 · (size + prescribed) i
 constexpr double floor_ratio = 10.0;       // ‖R‖ ≤ 10 × the estimated rounding floor …
 constexpr double stagnation = 0.5;         // … ends a step once Newton no longer halves it
 constexpr double floor_check_below = 1e-3; // the floor (a pass of its own) is only worth checking below this
+
+/// Σ over [0, n) in fixed chunks (the same chunks whatever the number of threads), the chunk
+/// sums added in order: bit-identical for any number of threads. body(begin, end, sums) adds its
+/// range into sums.
+template <int K, class Body>
+std::array<double, K> chunked_sum(Eigen::Index n, const Body& body) {
+  constexpr Eigen::Index chunk = 16384;
+  const Eigen::Index chunks = (n + chunk - 1) / chunk;
+  std::vector<std::array<double, K>> partial(chunks);
+#pragma omp parallel for schedule(static) if (chunks >= 4)
+  for (Eigen::Index c = 0; c < chunks; ++c) {
+    std::array<double, K> sums{};
+    body(c * chunk, std::min(n, (c + 1) * chunk), sums);
+    partial[c] = sums;
+  }
+  std::array<double, K> total{};
+  for (const std::array<double, K>& p : partial)
+    for (int k = 0; k < K; ++k) total[k] += p[k];
+  return total;
+}
 
 std::string iterate_text(const char* what, int iteration) {
   std::ostringstream os;
@@ -52,7 +73,7 @@ bool NewtonSolver::evaluate(State& state) {
     const std::vector<contact::ActiveContact> active =
         contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
     system_.evaluate(state.displacements, state.chord_rotations, true, eval_, active);
-    state.chord_rotations = eval_.chord_rotations;
+    std::swap(state.chord_rotations, eval_.chord_rotations);  // eval_'s copy is rewritten next time
     if (!contacts_) return false;
     if (pass == max_passes) break;
     const contact::ContactChanges changes =
@@ -95,14 +116,6 @@ std::vector<ContactPoint> NewtonSolver::contact_points(const State& state) const
   return points;
 }
 
-Eigen::VectorXd NewtonSolver::unbalanced_force(double load_factor) const {
-  const assembly::DofMap& dofs = system_.dofs();
-  Eigen::VectorXd R(dofs.free_count());
-  for (int eq = 0; eq < dofs.free_count(); ++eq)
-    R[eq] = load_factor * load_free_[eq] - eval_.internal_force[dofs.dof(eq)];
-  return R;
-}
-
 Eigen::VectorXd NewtonSolver::reactions(double load_factor) const {
   const Model& model = system_.model();
   Eigen::VectorXd reactions = Eigen::VectorXd::Zero(model.dof_count());
@@ -111,19 +124,36 @@ Eigen::VectorXd NewtonSolver::reactions(double load_factor) const {
 }
 
 ResidualScale NewtonSolver::scale(double load_factor) const {
-  // Squared sums per kind: applied loads on free dofs, reactions, internal forces on all dofs.
+  // As in update_residual, without writing R (the scale at a λ other than the state's).
+  const assembly::DofMap& dofs = system_.dofs();
   const Model& model = system_.model();
   const double* F = eval_.internal_force.data();
   const double* P = model.reference_load.data();
-  double load[2] = {0, 0}, reaction[2] = {0, 0}, internal[2] = {0, 0};
-  for (int node = 0; node < model.node_count(); ++node) {
-    for (int d = 0; d < dofs_per_node; ++d) {
-      const int dof = dofs_per_node * node + d, kind = d == rz ? 1 : 0;
-      const double f = F[dof], p = load_factor * P[dof];
-      internal[kind] += f * f;
-      if (constrained_[dof]) reaction[kind] += (f - p) * (f - p);
-      else load[kind] += p * p;
-    }
+  const int* free_dof = dofs.free_dofs().data();
+  const std::array<double, 4> free =
+      chunked_sum<4>(dofs.free_count(), [&](Eigen::Index begin, Eigen::Index end, std::array<double, 4>& sum) {
+        for (Eigen::Index eq = begin; eq < end; ++eq) {
+          const int dof = free_dof[eq], kind = is_moment_[eq];
+          const double f = F[dof], p = load_factor * P[dof];
+          sum[kind] += p * p;
+          sum[2 + kind] += f * f;
+        }
+      });
+  return scale_from({free[0], free[1]}, {free[2], free[3]}, load_factor);
+}
+
+ResidualScale NewtonSolver::scale_from(std::array<double, 2> load, std::array<double, 2> internal, double load_factor) const {
+  // Squared sums per kind: applied loads on free dofs (given), reactions, internal forces on all
+  // dofs (given over the free ones; the constrained ones are added here).
+  const Model& model = system_.model();
+  const double* F = eval_.internal_force.data();
+  const double* P = model.reference_load.data();
+  double reaction[2] = {0, 0};
+  for (const int dof : constrained_dofs_) {
+    const int kind = dof % dofs_per_node == rz ? 1 : 0;
+    const double f = F[dof], p = load_factor * P[dof];
+    internal[kind] += f * f;
+    reaction[kind] += (f - p) * (f - p);
   }
   ResidualScale s;
   s.force = std::sqrt(std::max({load[0], reaction[0], internal[0]}));
@@ -133,6 +163,35 @@ ResidualScale NewtonSolver::scale(double load_factor) const {
   s.force = std::max(s.force, s.moment / model.size);
   s.moment = std::max(s.moment, force * model.size);
   return s;
+}
+
+NewtonSolver::ResidualPass NewtonSolver::update_residual(double load_factor) {
+  const assembly::DofMap& dofs = system_.dofs();
+  const Model& model = system_.model();
+  const Eigen::Index n = dofs.free_count();
+  residual_.resize(n);
+  const double* F = eval_.internal_force.data();
+  const double* P = model.reference_load.data();
+  const int* free_dof = dofs.free_dofs().data();
+  double* R = residual_.data();
+  // Squared sums per kind (forces, moments) over the free equations: R, applied loads, internal forces.
+  const std::array<double, 6> free = chunked_sum<6>(n, [&](Eigen::Index begin, Eigen::Index end, std::array<double, 6>& sum) {
+    for (Eigen::Index eq = begin; eq < end; ++eq) {
+      const int dof = free_dof[eq], kind = is_moment_[eq];
+      const double f = F[dof], p = load_factor * P[dof], r = p - f;
+      R[eq] = r;
+      sum[kind] += r * r;
+      sum[2 + kind] += p * p;
+      sum[4 + kind] += f * f;
+    }
+  });
+  ResidualPass pass;
+  pass.norms = {std::sqrt(free[0]), std::sqrt(free[1])};
+  pass.scale = scale_from({free[2], free[3]}, {free[4], free[5]}, load_factor);
+  double constrained = 0.0;
+  for (const int dof : constrained_dofs_) constrained += F[dof];
+  pass.finite = std::isfinite(free[0] + free[1] + free[4] + free[5] + constrained);
+  return pass;
 }
 
 std::array<double, 2> NewtonSolver::kind_norms(const Eigen::VectorXd& v) const {
@@ -147,17 +206,29 @@ double NewtonSolver::relative_norm(const std::array<double, 2>& norms, const Res
   return std::max(force / s.force, moment / s.moment);
 }
 
-bool NewtonSolver::at_round_off(const Eigen::VectorXd& correction, const State& state) const {
-  double largest[2] = {0, 0}, step[2] = {0, 0};
-  const double* D = state.displacements.data();
-  for (Eigen::Index node = 0; node < state.displacements.size() / dofs_per_node; ++node) {
-    largest[0] = std::max({largest[0], std::abs(D[3 * node]), std::abs(D[3 * node + 1])});
-    largest[1] = std::max(largest[1], std::abs(D[3 * node + 2]));
+std::array<double, 2> NewtonSolver::apply_correction(const Eigen::VectorXd& correction, State& state) const {
+  const int* free_dof = system_.dofs().free_dofs().data();
+  double* D = state.displacements.data();
+  double translation = 0.0, rotation = 0.0;  // maxima: the same whatever the order
+#pragma omp parallel for schedule(static) reduction(max : translation, rotation) if (correction.size() > 65536)
+  for (Eigen::Index eq = 0; eq < correction.size(); ++eq) {
+    D[free_dof[eq]] += correction[eq];
+    if (is_moment_[eq]) rotation = std::max(rotation, std::abs(correction[eq]));
+    else translation = std::max(translation, std::abs(correction[eq]));
   }
-  for (Eigen::Index eq = 0; eq < correction.size(); ++eq)
-    step[is_moment_[eq]] = std::max(step[is_moment_[eq]], std::abs(correction[eq]));
-  return step[0] <= round_off_ratio * std::max(system_.model().size, largest[0]) &&
-         step[1] <= round_off_ratio * std::max(1.0, largest[1]);
+  return {translation, rotation};
+}
+
+std::array<double, 2> NewtonSolver::largest_displacements(const State& state) const {
+  const double* D = state.displacements.data();
+  const Eigen::Index nodes = state.displacements.size() / dofs_per_node;
+  double translation = 0.0, rotation = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : translation, rotation) if (nodes > 32768)
+  for (Eigen::Index node = 0; node < nodes; ++node) {
+    translation = std::max({translation, std::abs(D[3 * node]), std::abs(D[3 * node + 1])});
+    rotation = std::max(rotation, std::abs(D[3 * node + 2]));
+  }
+  return {translation, rotation};
 }
 
 double NewtonSolver::arc_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
@@ -167,11 +238,10 @@ double NewtonSolver::arc_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b)
   return sum;
 }
 
-Eigen::VectorXd NewtonSolver::free_displacements(const State& state) const {
+void NewtonSolver::free_displacements(const State& state, Eigen::VectorXd& v) const {
   const assembly::DofMap& dofs = system_.dofs();
-  Eigen::VectorXd v(dofs.free_count());
+  v.resize(dofs.free_count());
   for (int eq = 0; eq < dofs.free_count(); ++eq) v[eq] = state.displacements[dofs.dof(eq)];
-  return v;
 }
 
 bool NewtonSolver::within_floor(const std::array<double, 2>& norms, const State& state) const {
@@ -187,11 +257,12 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
   const Model& model = system_.model();
   const double prescribed_size = model.reference_prescribed.lpNorm<Eigen::Infinity>();
   NewtonOutcome out;
-  Eigen::VectorXd R = unbalanced_force(state.load_factor);
+  ResidualPass pass = update_residual(state.load_factor);
+  const Eigen::VectorXd& R = residual_;
   ResidualScale start_scale;
   switches_ = reversals_ = 0;
   const bool by_arc = constraint.kind == PathConstraint::Kind::arc_length;
-  const Eigen::VectorXd start = by_arc ? free_displacements(state) : Eigen::VectorXd();
+  if (by_arc) free_displacements(state, start_);
   const double start_load_factor = state.load_factor;
   const int max_switches = 4 + 4 * static_cast<int>(state.contacts.size());
   // A contact point that keeps hopping back and forth between elements within one step is
@@ -212,15 +283,25 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       return out;
     }
     // dR/dλ = F_ref − K_fp D_p,ref: how the load factor drives the free dofs.
-    const Eigen::VectorXd load_direction = load_free_ - eval_.prescribed_coupling;
+    const bool coupled = eval_.prescribed_coupling.size() > 0;
+    if (coupled) load_direction_ = load_free_ - eval_.prescribed_coupling;
+    const Eigen::VectorXd& load_direction = coupled ? load_direction_ : load_free_;
     double dlambda = 0.0;
-    Eigen::VectorXd correction;
+    Eigen::VectorXd& correction = correction_;
     if (constraint.kind == PathConstraint::Kind::load_increment) {
-      if (it == 1) dlambda = constraint.load_increment;
-      correction = solver_.solve(R + dlambda * load_direction);
+      if (it == 1) {
+        dlambda = constraint.load_increment;
+        trial_ = R + dlambda * load_direction;
+        solver_.solve(trial_, correction);
+      } else {
+        solver_.solve(R, correction);
+      }
     } else if (by_arc) {
       // δD = δD_R + δλ δD_F; δλ from the arc-length constraint (Crisfield's cylindrical form).
-      const Eigen::VectorXd a = solver_.solve(load_direction), b = solver_.solve(R);
+      const Eigen::VectorXd& a = along_load_;
+      const Eigen::VectorXd& b = along_residual_;
+      solver_.solve(load_direction, along_load_);
+      solver_.solve(R, along_residual_);
       const double P2 = prescribed_squared_, s2 = constraint.arc_length * constraint.arc_length;
       const double qa = arc_dot(a, a) + P2;
       if (!(qa > 0.0) || !std::isfinite(qa)) {
@@ -236,9 +317,12 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
         }
         dlambda = direction * constraint.arc_length / std::sqrt(qa);
       } else {
-        const Eigen::VectorXd increment = free_displacements(state) - start;
+        free_displacements(state, increment_);
+        increment_ -= start_;
+        const Eigen::VectorXd& increment = increment_;
         const double dl = state.load_factor - start_load_factor;
-        const Eigen::VectorXd u = increment + b;
+        trial_ = increment + b;
+        const Eigen::VectorXd& u = trial_;
         const double qb = 2.0 * (arc_dot(u, a) + dl * P2);
         const double qc = arc_dot(u, u) + dl * dl * P2 - s2;
         const double disc = qb * qb - 4.0 * qa * qc;
@@ -250,12 +334,15 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
         const double q = -0.5 * (qb + std::copysign(std::sqrt(disc), qb));
         const double r1 = q / qa, r2 = q != 0.0 ? qc / q : -r1;
         // The root whose new increment turns least from the current one: no doubling back.
-        auto turn = [&](double r) { return arc_dot(increment, u + r * a) + dl * (dl + r) * P2; };
+        auto turn = [&](double r) { return arc_dot(increment, u) + r * arc_dot(increment, a) + dl * (dl + r) * P2; };
         dlambda = turn(r1) >= turn(r2) ? r1 : r2;
       }
       correction = b + dlambda * a;
     } else {
-      const Eigen::VectorXd a = solver_.solve(load_direction), b = solver_.solve(R);
+      const Eigen::VectorXd& a = along_load_;
+      const Eigen::VectorXd& b = along_residual_;
+      solver_.solve(load_direction, along_load_);
+      solver_.solve(R, along_residual_);
       const int k = constraint.equation;
       if (!(std::abs(a[k]) > 0.0) || !std::isfinite(a[k])) {
         out.status = Status::singular;
@@ -265,9 +352,10 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       dlambda = (constraint.target - state.displacements[dofs.dof(k)] - b[k]) / a[k];
       correction = b + dlambda * a;
     }
-    if (it == 1) {  // iterate 0: the out-of-balance force that drives the step
-      start_scale = scale(state.load_factor + dlambda);
-      out.residual_norms.push_back(relative_norm(kind_norms(R + dlambda * load_direction), start_scale));
+    if (it == 1) {  // iterate 0: the out-of-balance force that drives the step, at the target λ
+      start_scale = dlambda == 0.0 ? pass.scale : scale(state.load_factor + dlambda);
+      trial_ = R + dlambda * load_direction;
+      out.residual_norms.push_back(relative_norm(kind_norms(trial_), start_scale));
     }
     out.iterations = it;
     if (!correction.allFinite() || !std::isfinite(dlambda)) {
@@ -275,7 +363,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       out.message = iterate_text("the Newton correction is not finite", it);
       return out;
     }
-    for (int eq = 0; eq < dofs.free_count(); ++eq) state.displacements[dofs.dof(eq)] += correction[eq];
+    const std::array<double, 2> step_size = apply_correction(correction, state);
     state.load_factor += dlambda;
     const bool contacts_changed = evaluate(state);
     if (contacts_) out.contact_iterates.push_back(contact_points(state));
@@ -286,23 +374,25 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       return out;
     }
 
-    R = unbalanced_force(state.load_factor);
-    const std::array<double, 2> norms = kind_norms(R);
-    const double relative = relative_norm(norms, scale(state.load_factor));
+    pass = update_residual(state.load_factor);
+    const double relative = relative_norm(pass.norms, pass.scale);
     out.residual_norms.push_back(std::isfinite(relative) ? relative : INFINITY);
-    if (!std::isfinite(relative) || !eval_.internal_force.allFinite()) {
+    if (!std::isfinite(relative) || !pass.finite) {
       out.status = Status::diverged;
       out.message = iterate_text("the unbalanced force is not finite", it);
       return out;
     }
+    const std::array<double, 2> largest = largest_displacements(state);
+    const bool at_round_off = step_size[0] <= round_off_ratio * std::max(model.size, largest[0]) &&
+                              step_size[1] <= round_off_ratio * std::max(1.0, largest[1]);
     const bool stagnating = relative >= stagnation * out.residual_norms[out.residual_norms.size() - 2];
     const char* criterion = relative <= settings_.tolerance ? "force"
-                            : !contacts_changed && (at_round_off(correction, state) || (stagnating && relative < floor_check_below && within_floor(norms, state)))
+                            : !contacts_changed && (at_round_off || (stagnating && relative < floor_check_below && within_floor(pass.norms, state)))
                                 ? "round-off"
                                 : nullptr;
     if (criterion) {
       if (release_pulling_contacts(state)) {  // converged with a contact pulling: iterate on without it
-        R = unbalanced_force(state.load_factor);
+        pass = update_residual(state.load_factor);
         out.contact_iterates.back() = contact_points(state);
         if (switches_ > max_switches) {
           out.status = Status::contact_chatter;
@@ -321,16 +411,12 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       return out;
     }
     if (contacts_changed) {  // a new contact brings its own force level into the step
-      const ResidualScale now = scale(state.load_factor);
-      start_scale.force = std::max(start_scale.force, now.force);
-      start_scale.moment = std::max(start_scale.moment, now.moment);
+      start_scale.force = std::max(start_scale.force, pass.scale.force);
+      start_scale.moment = std::max(start_scale.moment, pass.scale.moment);
     }
-    const double blow_up = relative_norm(norms, start_scale);
-    double largest = 0.0;
-    for (int dof = 0; dof < model.dof_count(); dof += dofs_per_node)
-      largest = std::max({largest, std::abs(state.displacements[dof]), std::abs(state.displacements[dof + 1])});
+    const double blow_up = relative_norm(pass.norms, start_scale);
     if (blow_up > blow_up_ratio ||
-        largest > runaway_ratio * (model.size + std::abs(state.load_factor) * prescribed_size)) {
+        largest[0] > runaway_ratio * (model.size + std::abs(state.load_factor) * prescribed_size)) {
       out.status = Status::diverged;
       out.message = iterate_text("the unbalanced force blew up", it);
       return out;

@@ -81,16 +81,31 @@ class NewtonSolver {
   bool evaluate(State& state);
   /// At a converged iterate: releases contacts that pull and re-evaluates. Returns whether any was.
   bool release_pulling_contacts(State& state);
-  Eigen::VectorXd unbalanced_force(double load_factor) const;  // over the free equations
+  /// What one pass over the unbalanced force yields.
+  struct ResidualPass {
+    std::array<double, 2> norms{};  ///< 2-norms of R per kind: forces, moments
+    ResidualScale scale;             ///< the scale at this λ
+    bool finite = true;              ///< R and the internal forces (constrained dofs too) are finite
+  };
+  /// R = λ F_ref − F(D) over the free equations into residual_, with its norms and the scale,
+  /// in one pass (fixed chunks, bit-identical for any number of threads).
+  ResidualPass update_residual(double load_factor);
+  /// The scale alone at any λ (the state's internal forces).
   ResidualScale scale(double load_factor) const;
+  /// The scale from squared sums per kind over the free equations (applied loads, internal
+  /// forces); adds the constrained dofs' reactions and internal forces.
+  ResidualScale scale_from(std::array<double, 2> load, std::array<double, 2> internal, double load_factor) const;
   std::array<double, 2> kind_norms(const Eigen::VectorXd& free_vector) const;  // 2-norms: forces, moments
   double relative_norm(const std::array<double, 2>& norms, const ResidualScale& scale) const;
-  bool at_round_off(const Eigen::VectorXd& correction, const State& state) const;
+  /// Adds the correction to the free dofs; returns its largest entries per kind (translations, rotations).
+  std::array<double, 2> apply_correction(const Eigen::VectorXd& correction, State& state) const;
+  /// Largest |translation| and |rotation| over all dofs of `state`.
+  std::array<double, 2> largest_displacements(const State& state) const;
   /// ‖R‖ per kind within a small multiple of the rounding floor of the internal forces.
   bool within_floor(const std::array<double, 2>& residual_norms, const State& state) const;
   /// Translational part of dot products for the arc-length constraint.
   double arc_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const;
-  Eigen::VectorXd free_displacements(const State& state) const;
+  void free_displacements(const State& state, Eigen::VectorXd& out) const;
 
   assembly::GlobalSystem& system_;
   NewtonSettings settings_;
@@ -100,6 +115,8 @@ class NewtonSolver {
   LinearSolver solver_;
   assembly::Evaluation eval_;
   Eigen::VectorXd load_free_;        ///< F_ref over the free equations
+  // Workspace of step(), kept between iterations and steps: no allocation per iteration.
+  Eigen::VectorXd residual_, load_direction_, correction_, along_load_, along_residual_, start_, increment_, trial_;
   std::vector<unsigned char> is_moment_;    ///< per free equation: 1 for a rotation dof
   std::vector<unsigned char> constrained_;  ///< per dof: fixed or prescribed
   std::vector<int> constrained_dofs_;
