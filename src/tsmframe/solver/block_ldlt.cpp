@@ -65,7 +65,9 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   l_value_.resize(l_column_[n]);
   d_inverse_.resize(n);
   fill_.resize(n);
-  work_.assign(n, Block::Zero());
+  slot_.assign(n, -1);
+  longest_row_ = 0;
+  for (int k = 0; k < n; ++k) longest_row_ = std::max(longest_row_, row_start_[k + 1] - row_start_[k]);
 
   // Tasks: the largest subtrees of at most n / 16 blocks (parents come after children, so one
   // ascending pass sums subtree sizes and one descending pass hands every block to its task).
@@ -92,20 +94,25 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   }
 }
 
-bool BlockLDLT::factorize_row(const BlockMatrix& a, int k) {
-  // Scatter the upper column k of A into the workspace.
+bool BlockLDLT::factorize_row(const BlockMatrix& a, int k, Block* work) {
+  // The row's pattern gets places 0 … len−1 in `work`, zeroed; then the upper column k of A is
+  // scattered in (its rows above k are all in the pattern).
+  const int first = row_start_[k], len = row_start_[k + 1] - first;
+  for (int t = 0; t < len; ++t) {
+    slot_[row_pattern_[first + t]] = t;
+    work[t].setZero();
+  }
   Block diagonal = Block::Zero();
   for (int p = a.column[k]; p < a.column[k + 1]; ++p) {
     if (a.row[p] == k) diagonal = a.value[p];
-    else work_[a.row[p]] = a.value[p];
+    else work[slot_[a.row[p]]] = a.value[p];
   }
-  for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) {
-    const int i = row_pattern_[t];
-    const Block y = work_[i];  // = D_i L(k, i)ᵀ once the earlier columns are subtracted
-    work_[i].setZero();
+  for (int t = 0; t < len; ++t) {
+    const int i = row_pattern_[first + t];
+    const Block y = work[t];  // = D_i L(k, i)ᵀ once the earlier columns are subtracted
     const Block lki = y.transpose() * d_inverse_[i];  // L(k, i) = yᵀ D_i⁻¹
     diagonal.noalias() -= lki * y;
-    for (int p = l_column_[i]; p < fill_[i]; ++p) work_[l_row_[p]].noalias() -= l_value_[p] * y;
+    for (int p = l_column_[i]; p < fill_[i]; ++p) work[slot_[l_row_[p]]].noalias() -= l_value_[p] * y;
     l_row_[fill_[i]] = k;
     l_value_[fill_[i]++] = lki;
   }
@@ -123,12 +130,17 @@ bool BlockLDLT::factorize(const BlockMatrix& a) {
   // descendants): the tasks run concurrently, each in ascending order.
   const int tasks = static_cast<int>(task_start_.size()) - 1;
   bool ok = true;
-#pragma omp parallel for schedule(dynamic, 1) reduction(&& : ok) if (tasks > 1)
-  for (int t = 0; t < tasks; ++t)
-    for (int r = task_start_[t]; r < task_start_[t + 1] && ok; ++r) ok = factorize_row(a, task_rows_[r]);
+#pragma omp parallel reduction(&& : ok) if (tasks > 1)
+  {
+    std::vector<Block> work(longest_row_);
+#pragma omp for schedule(dynamic, 1)
+    for (int t = 0; t < tasks; ++t)
+      for (int r = task_start_[t]; r < task_start_[t + 1] && ok; ++r) ok = factorize_row(a, task_rows_[r], work.data());
+  }
   if (!ok) return false;
+  std::vector<Block> work(longest_row_);
   for (const int k : top_rows_)
-    if (!factorize_row(a, k)) return false;
+    if (!factorize_row(a, k, work.data())) return false;
   return true;
 }
 

@@ -47,9 +47,12 @@ class BlockLDLT {
   std::vector<Block> d_inverse_;   ///< D_i⁻¹
   std::vector<int> row_start_;     ///< row k of L: row_pattern_[row_start_[k] .. row_start_[k+1])
   std::vector<int> row_pattern_;   ///< its columns, in a topological order of the elimination tree
-  // Workspace for factorize (kept to avoid allocation per iteration).
+  // Workspace for factorize. Row k touches only the blocks of its own pattern, so its running
+  // sums live in a compact buffer of the row's length (one per concurrent task), addressed
+  // through slot_ (block → place in the current row; subtrees own disjoint blocks).
   std::vector<int> fill_;
-  std::vector<Block> work_;
+  std::vector<int> slot_;
+  int longest_row_ = 0;
   // Parallel factorisation: disjoint subtrees of the elimination tree touch disjoint rows,
   // columns and workspace entries, so they are factorised concurrently; the blocks above them
   // follow serially. Every row is computed with the same arithmetic in the same order whatever
@@ -58,7 +61,7 @@ class BlockLDLT {
   std::vector<int> task_rows_;
   std::vector<int> top_rows_;    ///< rows in no task, ascending
 
-  bool factorize_row(const BlockMatrix& a, int k);
+  bool factorize_row(const BlockMatrix& a, int k, Block* work);
 };
 
 }  // namespace tsm::solver
