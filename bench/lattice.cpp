@@ -15,6 +15,9 @@ tsm::Model lattice(int bays, int divisions, double force) {
   const tsm::element::SectionStiffness section{.EA = E * A, .EI = E * I, .shear_flexibility = E * I / (G * 5.0 / 6.0 * A)};
   const int n = bays + 1;
   auto joint = [n](int x, int y) { return y * n + x; };
+  const size_t members = 2 * static_cast<size_t>(n) * bays;  // as a user's model would be read: no growth slack
+  m.nodes.reserve(static_cast<size_t>(n) * n + members * (divisions - 1));
+  m.elements.reserve(members * divisions);
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) m.nodes.push_back({joint(x, y) + 1, {double(x), double(y)}});
   auto member = [&](int a, int b) {

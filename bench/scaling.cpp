@@ -19,6 +19,8 @@ tsm::Model rolled_cantilevers(int chains, int per_chain, double turns, int steps
   tsm::Model m;
   const double L = 10.0, E = 2.05e11, h = 0.1, A = h * h, I = h * h * h * h / 12.0, G = 7.9e10;
   const int nodes_per_chain = per_chain + 1;
+  m.nodes.reserve(static_cast<size_t>(chains) * nodes_per_chain);
+  m.elements.reserve(static_cast<size_t>(chains) * per_chain);
   for (int c = 0; c < chains; ++c) {
     const int first = c * nodes_per_chain;
     for (int k = 0; k <= per_chain; ++k) m.nodes.push_back({first + k + 1, {L * k / per_chain, 2.0 * L * c}});

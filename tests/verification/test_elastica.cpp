@@ -114,9 +114,11 @@ TEST(Elastica, ScaledModelGivesTheSameNormalisedAnswer) {
   for (size_t s = 0; s < a.steps.size(); ++s) {
     EXPECT_EQ(a.steps[s].iterations, b.steps[s].iterations);
     const Eigen::Vector3d ta = node_displacement(unit, a.steps[s], 2), tb = node_displacement(scaled, b.steps[s], 2);
-    EXPECT_NEAR(tb[0] / 1e3, ta[0], 1e-10);
-    EXPECT_NEAR(tb[1] / 1e3, ta[1], 1e-10);
-    EXPECT_NEAR(tb[2], ta[2], 1e-10);
+    // Same iterates in exact arithmetic; the roundings differ between the scalings and Newton
+    // stops at a relative residual of 1e-8, so the answers agree to about 1e-9 (EA/EI ~ 1e5 here).
+    EXPECT_NEAR(tb[0] / 1e3, ta[0], 1e-9);
+    EXPECT_NEAR(tb[1] / 1e3, ta[1], 1e-9);
+    EXPECT_NEAR(tb[2], ta[2], 1e-9);
   }
 }
 

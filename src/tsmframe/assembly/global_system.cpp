@@ -22,7 +22,7 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
   stiffness_.reserve(n_elements);
   for (const Element& e : model.elements) {
     initial_.push_back(element::initial_chord(model.nodes[e.start].position, model.nodes[e.end].position));
-    stiffness_.push_back(element::basic_stiffness(e.section, initial_.back().length));
+    stiffness_.push_back(element::basic_stiffness_terms(e.section, initial_.back().length));
   }
 
   build_pattern();
@@ -139,7 +139,7 @@ void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
   const auto g = element_dofs(e);
   element::Vector6 d;
   for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
-  const element::BeamResponse r = element::beam_response(initial_[k], stiffness_[k], d, previous_rotations[k], with_tangent);
+  const element::BeamResponse r = element::beam_response(initial_[k], stiffness_[k].matrix(), d, previous_rotations[k], with_tangent);
   out.element_forces.segment<3>(3 * k) = r.forces;
   out.chord_rotations[k] = r.chord.rotation;
   for (int a = 0; a < 6; ++a) out.internal_force[g[a]] += r.nodal_forces[a];
@@ -242,8 +242,9 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
     const auto g = element_dofs(model_.elements[k]);
     element::Vector6 d;
     for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
-    const element::BeamResponse r = element::beam_response(initial_[k], stiffness_[k], d, rotations[k], false);
-    const element::RoundOffFloor f = element::round_off_floor(initial_[k], stiffness_[k], d, r);
+    const element::Matrix3 k0 = stiffness_[k].matrix();
+    const element::BeamResponse r = element::beam_response(initial_[k], k0, d, rotations[k], false);
+    const element::RoundOffFloor f = element::round_off_floor(initial_[k], k0, d, r);
     force += 4.0 * f.force * f.force;  // two nodes, two translations each
     moment += 2.0 * f.moment * f.moment;
   }

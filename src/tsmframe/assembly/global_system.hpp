@@ -81,7 +81,7 @@ class GlobalSystem {
   const Model& model_;
   const DofMap& dofs_;
   std::vector<element::InitialChord> initial_;
-  std::vector<element::Matrix3> stiffness_;  ///< k0 of each element (Eq. 3 / 4), fixed
+  std::vector<element::BasicStiffness> stiffness_;  ///< k0 of each element (Eq. 3 / 4), fixed
   BlockMatrix tangent_;
   /// Per element: entry of its (i,i), (j,j) and (i,j) blocks in tangent_ (−1: node not a block).
   /// The (i,j) entry is stored as K_ji = K_ijᵀ when j's block comes first.

@@ -20,6 +20,19 @@ using Matrix3 = Eigen::Matrix3d;
 /// Bending-shear factor q = 12 Ψ / l0² (Eq. 5, with the square the OCR text lacks).
 double shear_factor(const SectionStiffness& section, double l0);
 
+/// k0 in the three numbers it holds (k0 is symmetric and k_ii = k_jj): what an element keeps.
+struct BasicStiffness {
+  double axial = 0.0;   ///< EA / l0
+  double direct = 0.0;  ///< k_ii = k_jj
+  double cross = 0.0;   ///< k_ij
+  Matrix3 matrix() const {
+    Matrix3 k;
+    k << axial, 0.0, 0.0, 0.0, direct, cross, 0.0, cross, direct;
+    return k;
+  }
+};
+BasicStiffness basic_stiffness_terms(const SectionStiffness& section, double l0);
+
 /// k0 of Eq. 4 (Timoshenko); with Ψ = 0 it is exactly Eq. 3 (Euler–Bernoulli).
 Matrix3 basic_stiffness(const SectionStiffness& section, double l0);
 

@@ -326,6 +326,8 @@ class Reader {
       }
     }
     model_.member_count = static_cast<int>(members.size());
+    model_.nodes.shrink_to_fit();  // no growth slack kept through the analysis
+    model_.elements.shrink_to_fit();
   }
 
   element::SectionStiffness section_stiffness(const json& m, const std::string& path, BeamTheory theory) const {

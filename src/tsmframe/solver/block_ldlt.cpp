@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 
 namespace tsm::solver {
 namespace {
@@ -102,26 +103,44 @@ bool BlockLDLT::factorize_row(const BlockMatrix& a, int k, Block* work) {
     slot_[row_pattern_[first + t]] = t;
     work[t].setZero();
   }
-  Block diagonal = Block::Zero();
+  // D_k is symmetric: only its upper triangle is formed (d00 d01 d02 d11 d12 d22).
+  double d00 = 0, d01 = 0, d02 = 0, d11 = 0, d12 = 0, d22 = 0;
   for (int p = a.column[k]; p < a.column[k + 1]; ++p) {
-    if (a.row[p] == k) diagonal = a.value[p];
-    else work[slot_[a.row[p]]] = a.value[p];
+    if (a.row[p] == k) {
+      const Block& b = a.value[p];
+      d00 = b(0, 0), d01 = b(0, 1), d02 = b(0, 2), d11 = b(1, 1), d12 = b(1, 2), d22 = b(2, 2);
+    } else {
+      work[slot_[a.row[p]]] = a.value[p];
+    }
   }
   for (int t = 0; t < len; ++t) {
     const int i = row_pattern_[first + t];
-    const Block y = work[t];  // = D_i L(k, i)ᵀ once the earlier columns are subtracted
-    const Block lki = y.transpose() * d_inverse_[i];  // L(k, i) = yᵀ D_i⁻¹
-    diagonal.noalias() -= lki * y;
+    const Block& y = work[t];  // = D_i L(k, i)ᵀ once the earlier columns are subtracted
+    Block lki;
+    lki.noalias() = y.transpose() * d_inverse_[i];  // L(k, i) = yᵀ D_i⁻¹
+    // D_k −= L(k, i) y (= yᵀ D_i⁻¹ y, symmetric): the upper triangle only.
+    d00 -= lki.row(0).dot(y.col(0));
+    d01 -= lki.row(0).dot(y.col(1));
+    d02 -= lki.row(0).dot(y.col(2));
+    d11 -= lki.row(1).dot(y.col(1));
+    d12 -= lki.row(1).dot(y.col(2));
+    d22 -= lki.row(2).dot(y.col(2));
     for (int p = l_column_[i]; p < fill_[i]; ++p) work[slot_[l_row_[p]]].noalias() -= l_value_[p] * y;
     l_row_[fill_[i]] = k;
     l_value_[fill_[i]++] = lki;
   }
-  // D_k is symmetric; symmetrise away rounding before inverting it.
-  diagonal = 0.5 * (diagonal + diagonal.transpose()).eval();
-  const double det = diagonal.determinant();
+  // D_k⁻¹ by cofactors of the symmetric block.
+  const double c00 = d11 * d22 - d12 * d12, c01 = d02 * d12 - d01 * d22, c02 = d01 * d12 - d02 * d11;
+  const double c11 = d00 * d22 - d02 * d02, c12 = d01 * d02 - d00 * d12, c22 = d00 * d11 - d01 * d01;
+  const double det = d00 * c00 + d01 * c01 + d02 * c02;
   if (!(det != 0.0) || !std::isfinite(det)) return false;
-  d_inverse_[k] = diagonal.inverse();
-  return d_inverse_[k].allFinite();
+  const double r = 1.0 / det;
+  Block& inverse = d_inverse_[k];
+  inverse << c00 * r, c01 * r, c02 * r,  //
+      c01 * r, c11 * r, c12 * r,         //
+      c02 * r, c12 * r, c22 * r;
+  return std::isfinite(r) && std::isfinite(c00 * r) && std::isfinite(c01 * r) && std::isfinite(c02 * r) &&
+         std::isfinite(c11 * r) && std::isfinite(c12 * r) && std::isfinite(c22 * r);
 }
 
 bool BlockLDLT::factorize(const BlockMatrix& a) {

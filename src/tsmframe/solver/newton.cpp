@@ -291,8 +291,8 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     if (constraint.kind == PathConstraint::Kind::load_increment) {
       if (it == 1) {
         dlambda = constraint.load_increment;
-        trial_ = R + dlambda * load_direction;
-        solver_.solve(trial_, correction);
+        along_residual_ = R + dlambda * load_direction;  // the drive (this buffer is free under load control)
+        solver_.solve(along_residual_, correction);
       } else {
         solver_.solve(R, correction);
       }
@@ -354,8 +354,8 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     }
     if (it == 1) {  // iterate 0: the out-of-balance force that drives the step, at the target λ
       start_scale = dlambda == 0.0 ? pass.scale : scale(state.load_factor + dlambda);
-      trial_ = R + dlambda * load_direction;
-      out.residual_norms.push_back(relative_norm(kind_norms(trial_), start_scale));
+      along_residual_ = R + dlambda * load_direction;  // used up by now: the correction is formed
+      out.residual_norms.push_back(relative_norm(kind_norms(along_residual_), start_scale));
     }
     out.iterations = it;
     if (!correction.allFinite() || !std::isfinite(dlambda)) {
