@@ -274,21 +274,25 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
 }
 
 void GlobalSystem::mask_constrained_dofs() {
-  for (int c = 0; c < tangent_.size; ++c) {
-    const unsigned column_mask = block_mask_[c];
-    for (int p = tangent_.column[c]; p < tangent_.column[c + 1]; ++p) {
-      const int r = tangent_.row[p];
-      const unsigned row_mask = block_mask_[r];
-      if ((row_mask | column_mask) == 0) continue;
-      solver::Block& b = tangent_.value[p];
-      for (int d = 0; d < dofs_per_node; ++d) {
-        if (row_mask >> d & 1u) b.row(d).setZero();
-        if (column_mask >> d & 1u) b.col(d).setZero();
-      }
-      if (r == c)
-        for (int d = 0; d < dofs_per_node; ++d)
-          if (row_mask >> d & 1u) b(d, d) = 1.0;
+  // The entries that touch a constrained dof are few (supports): listed once per pattern.
+  if (masked_version_ != pattern_version_) {
+    masked_entries_.clear();
+    for (int c = 0; c < tangent_.size; ++c)
+      for (int p = tangent_.column[c]; p < tangent_.column[c + 1]; ++p)
+        if ((block_mask_[tangent_.row[p]] | block_mask_[c]) != 0) masked_entries_.push_back({p, c});
+    masked_version_ = pattern_version_;
+  }
+  for (const auto& [p, c] : masked_entries_) {
+    const int r = tangent_.row[p];
+    const unsigned row_mask = block_mask_[r], column_mask = block_mask_[c];
+    solver::Block& b = tangent_.value[p];
+    for (int d = 0; d < dofs_per_node; ++d) {
+      if (row_mask >> d & 1u) b.row(d).setZero();
+      if (column_mask >> d & 1u) b.col(d).setZero();
     }
+    if (r == c)
+      for (int d = 0; d < dofs_per_node; ++d)
+        if (row_mask >> d & 1u) b(d, d) = 1.0;
   }
 }
 

@@ -98,6 +98,8 @@ class GlobalSystem {
   std::vector<solver::RankOne> contact_rank_one_;
   std::vector<std::pair<int, int>> contact_pairs_;  ///< node pairs joined only by contact elements
   int pattern_version_ = 0;
+  std::vector<std::pair<int, int>> masked_entries_;  ///< (entry, block column) touching a constrained dof
+  int masked_version_ = -1;                          ///< pattern version masked_entries_ was listed for
 };
 
 }  // namespace tsm::assembly
