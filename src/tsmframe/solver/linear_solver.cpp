@@ -10,6 +10,8 @@ void LinearSolver::analyze(const assembly::DofMap& dofs, const BlockMatrix& matr
     padded_[eq] = dofs_per_node * dofs.block(dof / dofs_per_node) + dof % dofs_per_node;
   }
   padded_size_ = dofs_per_node * dofs.block_count();
+  padding_needed_ = padded_size_ != dofs.free_count();
+  for (int eq = 0; eq < dofs.free_count() && !padding_needed_; ++eq) padding_needed_ = padded_[eq] != eq;
   ldlt_.analyze(matrix);
 }
 
@@ -35,9 +37,8 @@ bool LinearSolver::factorize(const BlockMatrix& matrix, const std::vector<RankOn
       u[eq] += rank_one[k].u[a];
       woodbury_v_(eq, k) += rank_one[k].v[a];
     }
-    Eigen::VectorXd z;
-    solve_symmetric(u, z);
-    woodbury_z_.col(k) = z;
+    solve_symmetric_in_place(u);
+    woodbury_z_.col(k) = u;
   }
   const Eigen::MatrixXd capacitance = Eigen::MatrixXd::Identity(q, q) + woodbury_v_.transpose() * woodbury_z_;
   if (!capacitance.allFinite()) return false;
@@ -84,29 +85,38 @@ bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vecto
 }
 
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& rhs) const {
-  Eigen::VectorXd x;
-  solve(rhs, x);
+  Eigen::VectorXd x = rhs;
+  solve_in_place(x);
   return x;
 }
 
 void LinearSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const {
+  x = rhs;
+  solve_in_place(x);
+}
+
+void LinearSolver::solve_in_place(Eigen::VectorXd& x) const {
   if (general_) {
+    const Eigen::VectorXd rhs = x;
     x = lu_->solve(rhs);
     return;
   }
-  solve_symmetric(rhs, x);
+  solve_symmetric_in_place(x);
   if (woodbury_z_.cols() == 0) return;
   // (A + U Vᵀ)⁻¹ b = y − Z (I + Vᵀ Z)⁻¹ Vᵀ y,  y = A⁻¹ b,  Z = A⁻¹ U
   const Eigen::VectorXd w = woodbury_capacitance_.solve(woodbury_v_.transpose() * x);
   x.noalias() -= woodbury_z_ * w;
 }
 
-void LinearSolver::solve_symmetric(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const {
+void LinearSolver::solve_symmetric_in_place(Eigen::VectorXd& x) const {
+  if (!padding_needed_) {  // every block is a whole node: the equations are the padded places
+    ldlt_.solve_in_place(x);
+    return;
+  }
   padded_work_.setZero(padded_size_);  // constrained dofs of a block carry 0 (no allocation after the first)
-  for (Eigen::Index eq = 0; eq < rhs.size(); ++eq) padded_work_[padded_[eq]] = rhs[eq];
+  for (Eigen::Index eq = 0; eq < x.size(); ++eq) padded_work_[padded_[eq]] = x[eq];
   ldlt_.solve_in_place(padded_work_);
-  x.resize(rhs.size());
-  for (Eigen::Index eq = 0; eq < rhs.size(); ++eq) x[eq] = padded_work_[padded_[eq]];
+  for (Eigen::Index eq = 0; eq < x.size(); ++eq) x[eq] = padded_work_[padded_[eq]];
 }
 
 }  // namespace tsm::solver

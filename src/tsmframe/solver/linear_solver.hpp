@@ -35,10 +35,12 @@ class LinearSolver {
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
   /// The same into `x` (resized if needed; may not alias `rhs`): no allocation per solve.
   void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const;
+  /// Solves in place: `x` holds the right-hand side and receives the solution.
+  void solve_in_place(Eigen::VectorXd& x) const;
 
  private:
   bool factorize_general(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one);
-  void solve_symmetric(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const;
+  void solve_symmetric_in_place(Eigen::VectorXd& x) const;
 
   BlockLDLT ldlt_;
   const assembly::DofMap* dofs_ = nullptr;
@@ -50,6 +52,7 @@ class LinearSolver {
   Eigen::PartialPivLU<Eigen::MatrixXd> woodbury_capacitance_;
   std::vector<int> padded_;  ///< per free equation: its place in the block-padded vector
   int padded_size_ = 0;
+  bool padding_needed_ = true;  ///< some block has a constrained dof (else equations = padded places)
   mutable Eigen::VectorXd padded_work_;  ///< the block-padded right-hand side, reused by every solve
 };
 

@@ -194,9 +194,12 @@ NewtonSolver::ResidualPass NewtonSolver::update_residual(double load_factor) {
   return pass;
 }
 
-std::array<double, 2> NewtonSolver::kind_norms(const Eigen::VectorXd& v) const {
+std::array<double, 2> NewtonSolver::drive_norms(double dlambda, const Eigen::VectorXd& load_direction) const {
   double sum[2] = {0, 0};
-  for (Eigen::Index eq = 0; eq < v.size(); ++eq) sum[is_moment_[eq]] += v[eq] * v[eq];
+  for (Eigen::Index eq = 0; eq < residual_.size(); ++eq) {
+    const double r = residual_[eq] + dlambda * load_direction[eq];
+    sum[is_moment_[eq]] += r * r;
+  }
   return {std::sqrt(sum[0]), std::sqrt(sum[1])};
 }
 
@@ -289,19 +292,18 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     double dlambda = 0.0;
     Eigen::VectorXd& correction = correction_;
     if (constraint.kind == PathConstraint::Kind::load_increment) {
-      if (it == 1) {
-        dlambda = constraint.load_increment;
-        along_residual_ = R + dlambda * load_direction;  // the drive (this buffer is free under load control)
-        solver_.solve(along_residual_, correction);
-      } else {
-        solver_.solve(R, correction);
-      }
+      if (it == 1) dlambda = constraint.load_increment;
+      if (dlambda != 0.0) correction = R + dlambda * load_direction;
+      else correction = R;
+      solver_.solve_in_place(correction);
     } else if (by_arc) {
       // δD = δD_R + δλ δD_F; δλ from the arc-length constraint (Crisfield's cylindrical form).
       const Eigen::VectorXd& a = along_load_;
       const Eigen::VectorXd& b = along_residual_;
-      solver_.solve(load_direction, along_load_);
-      solver_.solve(R, along_residual_);
+      along_load_ = load_direction;
+      solver_.solve_in_place(along_load_);
+      along_residual_ = R;
+      solver_.solve_in_place(along_residual_);
       const double P2 = prescribed_squared_, s2 = constraint.arc_length * constraint.arc_length;
       const double qa = arc_dot(a, a) + P2;
       if (!(qa > 0.0) || !std::isfinite(qa)) {
@@ -341,8 +343,10 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     } else {
       const Eigen::VectorXd& a = along_load_;
       const Eigen::VectorXd& b = along_residual_;
-      solver_.solve(load_direction, along_load_);
-      solver_.solve(R, along_residual_);
+      along_load_ = load_direction;
+      solver_.solve_in_place(along_load_);
+      along_residual_ = R;
+      solver_.solve_in_place(along_residual_);
       const int k = constraint.equation;
       if (!(std::abs(a[k]) > 0.0) || !std::isfinite(a[k])) {
         out.status = Status::singular;
@@ -354,8 +358,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     }
     if (it == 1) {  // iterate 0: the out-of-balance force that drives the step, at the target λ
       start_scale = dlambda == 0.0 ? pass.scale : scale(state.load_factor + dlambda);
-      along_residual_ = R + dlambda * load_direction;  // used up by now: the correction is formed
-      out.residual_norms.push_back(relative_norm(kind_norms(along_residual_), start_scale));
+      out.residual_norms.push_back(relative_norm(drive_norms(dlambda, load_direction), start_scale));
     }
     out.iterations = it;
     if (!correction.allFinite() || !std::isfinite(dlambda)) {

@@ -95,7 +95,8 @@ class NewtonSolver {
   /// The scale from squared sums per kind over the free equations (applied loads, internal
   /// forces); adds the constrained dofs' reactions and internal forces.
   ResidualScale scale_from(std::array<double, 2> load, std::array<double, 2> internal, double load_factor) const;
-  std::array<double, 2> kind_norms(const Eigen::VectorXd& free_vector) const;  // 2-norms: forces, moments
+  /// 2-norms per kind (forces, moments) of R + Δλ F_dir, without forming it: what drives a step.
+  std::array<double, 2> drive_norms(double dlambda, const Eigen::VectorXd& load_direction) const;
   double relative_norm(const std::array<double, 2>& norms, const ResidualScale& scale) const;
   /// Adds the correction to the free dofs; returns its largest entries per kind (translations, rotations).
   std::array<double, 2> apply_correction(const Eigen::VectorXd& correction, State& state) const;
