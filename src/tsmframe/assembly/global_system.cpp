@@ -60,7 +60,7 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
 }
 
 void GlobalSystem::build_pattern() {
-  // Block pattern, upper triangle: column c holds the blocks ≤ c of the nodes joined to c's node
+  // Block pattern, lower triangle: column c holds the blocks ≥ c of the nodes joined to c's node
   // by an element, or by a contact element that has been active (contact_pairs_).
   const NodeGraph graph = node_graph(model_);
   const int n_blocks = dofs_.block_count();
@@ -68,7 +68,7 @@ void GlobalSystem::build_pattern() {
   for (const auto& [a, b] : contact_pairs_) {
     const int ba = dofs_.block(a), bb = dofs_.block(b);
     if (ba < 0 || bb < 0 || ba == bb) continue;
-    extra[std::max(ba, bb)].push_back(std::min(ba, bb));
+    extra[std::min(ba, bb)].push_back(std::max(ba, bb));
   }
   tangent_.size = n_blocks;
   tangent_.column.assign(n_blocks + 1, 0);
@@ -78,14 +78,14 @@ void GlobalSystem::build_pattern() {
     const size_t first = tangent_.row.size();
     for (int p = graph.start[node]; p < graph.start[node + 1]; ++p) {
       const int r = dofs_.block(graph.neighbours[p]);
-      if (r >= 0 && r <= c) tangent_.row.push_back(r);
+      if (r >= c) tangent_.row.push_back(r);
     }
     tangent_.row.insert(tangent_.row.end(), extra[c].begin(), extra[c].end());
     std::sort(tangent_.row.begin() + first, tangent_.row.end());
     tangent_.row.erase(std::unique(tangent_.row.begin() + first, tangent_.row.end()), tangent_.row.end());
     tangent_.column[c + 1] = static_cast<int>(tangent_.row.size());
   }
-  tangent_.value.assign(tangent_.row.size(), solver::Block::Zero());
+  solver::add_fill(tangent_);  // the factor overwrites the tangent in place
   const int n_elements = static_cast<int>(model_.elements.size());
   slots_.resize(n_elements);
   for (int k = 0; k < n_elements; ++k) {
@@ -95,7 +95,7 @@ void GlobalSystem::build_pattern() {
     if (bi >= 0) s.ii = entry(bi, bi);
     if (bj >= 0) s.jj = entry(bj, bj);
     if (bi >= 0 && bj >= 0 && bi != bj) {
-      s.transposed = bj < bi;
+      s.transposed = bi < bj;  // the lower triangle stores K(max, min): K_ji when j's block is the larger
       s.ij = s.transposed ? entry(bj, bi) : entry(bi, bj);
     }
   }
@@ -115,7 +115,7 @@ void GlobalSystem::ensure_contact_pattern(const std::vector<contact::ActiveConta
     for (const int node : {e.start, e.end}) {
       const int bc = dofs_.block(a.node), bn = dofs_.block(node);
       if (bc < 0 || bn < 0 || bc == bn) continue;
-      if (entry(std::min(bc, bn), std::max(bc, bn)) >= 0) continue;
+      if (entry(std::max(bc, bn), std::min(bc, bn)) >= 0) continue;
       contact_pairs_.emplace_back(a.node, node);
       missing = true;
     }
@@ -124,11 +124,11 @@ void GlobalSystem::ensure_contact_pattern(const std::vector<contact::ActiveConta
 }
 
 void GlobalSystem::add_block(int a, int b, const Eigen::Matrix3d& value) {
-  // K(a, b) for nodes a, b (both with blocks); the upper triangle stores K(min, max).
+  // K(a, b) for nodes a, b (both with blocks); the lower triangle stores K(max, min).
   const int ba = dofs_.block(a), bb = dofs_.block(b);
   if (ba < 0 || bb < 0) return;
-  if (ba <= bb) tangent_.value[entry(ba, bb)] += value;
-  else if (ba > bb) tangent_.value[entry(bb, ba)] += value.transpose();
+  if (ba >= bb) tangent_.value[entry(ba, bb)] += value;
+  else tangent_.value[entry(bb, ba)] += value.transpose();
 }
 
 void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
@@ -179,7 +179,7 @@ void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen
   out.contacts.push_back({r.alpha, r.forces[3]});
   for (int k = 0; k < 9; ++k) out.internal_force[g[k]] += r.nodal_forces[k];
   if (!with_tangent) return;
-  // The symmetric part joins the node blocks (i, j, c; each node pair once, the upper triangle);
+  // The symmetric part joins the node blocks (i, j, c; each node pair once, the lower triangle);
   // the sliding term stays a rank-one term for the linear solver.
   const int nodes[3] = {e.start, e.end, a.node};
   for (int p = 0; p < 3; ++p)

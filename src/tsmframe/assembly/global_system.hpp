@@ -1,6 +1,6 @@
 #pragma once
 // Global internal force vector and tangent of the whole structure at a given displacement
-// state. The tangent is kept as 3×3 node blocks (upper triangle, blocks in the DofMap's
+// state. The tangent is kept as 3×3 node blocks (lower triangle, blocks in the DofMap's
 // fill-reducing order) whose pattern is built once; every evaluation only writes values.
 // Elements are evaluated in colour groups (no two elements of a group share a node), each group
 // in parallel: every sum is formed in the same order whatever the number of threads, so
@@ -54,8 +54,12 @@ class GlobalSystem {
                 bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts = {});
 
   /// K_ff from the last evaluation with tangent, as node blocks; the rows and columns of a
-  /// block's constrained dofs are zero with 1 on the diagonal (they carry no equation).
+  /// block's constrained dofs are zero with 1 on the diagonal (they carry no equation). The
+  /// pattern holds the fill of its LDLᵀ factor (zero blocks where no element couples).
   const BlockMatrix& tangent() const { return tangent_; }
+  /// The same storage, for the linear solver to factorise in place: after that it holds the
+  /// factor, not K_ff, until the next evaluation with tangent.
+  BlockMatrix& tangent_for_factorisation() { return tangent_; }
   /// The rounding floor at a state (chord rotations of that state's evaluation): a pass over the
   /// elements of its own, asked for only when Newton stagnates.
   RoundingFloor rounding_floor(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
@@ -72,7 +76,7 @@ class GlobalSystem {
                         bool with_tangent, Evaluation& out);
   void mask_constrained_dofs();
   void build_pattern();
-  int entry(int block_row, int block_column) const;  ///< index in tangent_ of an upper entry, −1 if absent
+  int entry(int block_row, int block_column) const;  ///< index in tangent_ of a lower entry (row ≥ column), −1 if absent
   void ensure_contact_pattern(const std::vector<contact::ActiveContact>& contacts);
   void add_block(int node_a, int node_b, const Eigen::Matrix3d& value);
   void evaluate_contact(const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
@@ -84,7 +88,7 @@ class GlobalSystem {
   std::vector<element::BasicStiffness> stiffness_;  ///< k0 of each element (Eq. 3 / 4), fixed
   BlockMatrix tangent_;
   /// Per element: entry of its (i,i), (j,j) and (i,j) blocks in tangent_ (−1: node not a block).
-  /// The (i,j) entry is stored as K_ji = K_ijᵀ when j's block comes first.
+  /// The (i,j) entry is stored as K_ji = K_ijᵀ when j's block is the larger (lower triangle).
   struct Slots {
     int ii = -1, jj = -1, ij = -1;
     bool transposed = false;

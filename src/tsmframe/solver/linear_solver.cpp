@@ -15,14 +15,18 @@ void LinearSolver::analyze(const assembly::DofMap& dofs, const BlockMatrix& matr
   ldlt_.analyze(matrix);
 }
 
-bool LinearSolver::factorize(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one) {
+bool LinearSolver::factorize(BlockMatrix& matrix, const std::vector<RankOne>& rank_one) {
   constexpr size_t most_rank_one = 32;  // beyond: one sparse LU is cheaper than that many extra solves
   woodbury_z_.resize(0, 0);
   general_ = rank_one.size() > most_rank_one;
   if (general_) return factorize_general(matrix, rank_one);
+  // With contacts, A alone may be singular while A + Σ u vᵀ is not: keep A for the fallback
+  // (the in-place factorisation overwrites it).
+  if (!rank_one.empty()) kept_values_ = matrix.value;
   if (!ldlt_.factorize(matrix)) {
     if (rank_one.empty()) return false;
-    general_ = true;  // A alone is singular; A + Σ u vᵀ may not be
+    matrix.value = kept_values_;
+    general_ = true;
     return factorize_general(matrix, rank_one);
   }
   if (rank_one.empty()) return true;

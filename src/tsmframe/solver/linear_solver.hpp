@@ -29,8 +29,9 @@ class LinearSolver {
  public:
   /// Symbolic analysis of the tangent's block pattern (values ignored); done once.
   void analyze(const assembly::DofMap& dofs, const BlockMatrix& matrix);
-  /// Numeric factorisation of `matrix` + Σ u vᵀ; false if singular or not finite.
-  bool factorize(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one = {});
+  /// Numeric factorisation of `matrix` + Σ u vᵀ; false if singular or not finite. The block
+  /// LDLᵀ overwrites `matrix` with its factor (solves use it until the next factorisation).
+  bool factorize(BlockMatrix& matrix, const std::vector<RankOne>& rank_one = {});
   /// Solves with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
   /// The same into `x` (resized if needed; may not alias `rhs`): no allocation per solve.
@@ -47,6 +48,7 @@ class LinearSolver {
   bool general_ = false;  ///< the last factorisation is the SparseLU one
   Eigen::SparseMatrix<double> general_matrix_;
   std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>> lu_;
+  std::vector<Block> kept_values_;  ///< the tangent's blocks while contacts may need the SparseLU fallback
   // Woodbury: Z = A⁻¹ U (one column per contact), V (dense), and the LU of I + Vᵀ Z.
   Eigen::MatrixXd woodbury_z_, woodbury_v_;
   Eigen::PartialPivLU<Eigen::MatrixXd> woodbury_capacitance_;

@@ -280,7 +280,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       solver_.analyze(system_.dofs(), system_.tangent());
       analysed_pattern_ = system_.pattern_version();
     }
-    if (!solver_.factorize(system_.tangent(), system_.contact_rank_one())) {
+    if (!solver_.factorize(system_.tangent_for_factorisation(), system_.contact_rank_one())) {
       out.status = Status::singular;
       out.message = iterate_text("the tangent stiffness is singular (a limit or bifurcation point)", it);
       return out;
