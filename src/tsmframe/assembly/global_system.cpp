@@ -18,11 +18,17 @@ std::array<int, 6> element_dofs(const Element& e) {
 
 GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(model), dofs_(dofs) {
   const int n_elements = static_cast<int>(model.elements.size());
-  initial_.reserve(n_elements);
-  stiffness_.reserve(n_elements);
-  for (const Element& e : model.elements) {
-    initial_.push_back(element::initial_chord(model.nodes[e.start].position, model.nodes[e.end].position));
-    stiffness_.push_back(element::basic_stiffness_terms(e.section, initial_.back().length));
+  records_.resize(n_elements);
+  for (int k = 0; k < n_elements; ++k) {
+    const Element& e = model.elements[k];
+    const element::InitialChord chord = element::initial_chord(model.nodes[e.start].position, model.nodes[e.end].position);
+    ElementRecord& r = records_[k];
+    r.start = e.start;
+    r.end = e.end;
+    r.delta0 = chord.end - chord.start;
+    r.length = chord.length;
+    r.angle = chord.angle;
+    r.k0 = element::basic_stiffness_terms(e.section, chord.length);
   }
 
   build_pattern();
@@ -86,12 +92,10 @@ void GlobalSystem::build_pattern() {
     tangent_.column[c + 1] = static_cast<int>(tangent_.row.size());
   }
   solver::add_fill(tangent_);  // the factor overwrites the tangent in place
-  const int n_elements = static_cast<int>(model_.elements.size());
-  slots_.resize(n_elements);
-  for (int k = 0; k < n_elements; ++k) {
-    const int bi = dofs_.block(model_.elements[k].start), bj = dofs_.block(model_.elements[k].end);
-    Slots& s = slots_[k];
-    s = Slots();
+  for (ElementRecord& s : records_) {
+    const int bi = dofs_.block(s.start), bj = dofs_.block(s.end);
+    s.ii = s.jj = s.ij = -1;
+    s.transposed = false;
     if (bi >= 0) s.ii = entry(bi, bi);
     if (bj >= 0) s.jj = entry(bj, bj);
     if (bi >= 0 && bj >= 0 && bi != bj) {
@@ -135,16 +139,16 @@ void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
                                     const std::vector<double>& previous_rotations, bool with_tangent,
                                     Evaluation& out) {
   if (replaced_[k]) return;  // a contact element stands in for it
-  const Element& e = model_.elements[k];
-  const auto g = element_dofs(e);
+  const ElementRecord& slot = records_[k];
+  const int i = dofs_per_node * slot.start, j = dofs_per_node * slot.end;
+  const std::array<int, 6> g{i, i + 1, i + 2, j, j + 1, j + 2};
   element::Vector6 d;
   for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
-  const element::BeamResponse r = element::beam_response(initial_[k], stiffness_[k].matrix(), d, previous_rotations[k], with_tangent);
+  const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0.matrix(), d, previous_rotations[k], with_tangent);
   out.element_forces.segment<3>(3 * k) = r.forces;
   out.chord_rotations[k] = r.chord.rotation;
   for (int a = 0; a < 6; ++a) out.internal_force[g[a]] += r.nodal_forces[a];
   if (!with_tangent) return;
-  const Slots& slot = slots_[k];
   if (slot.ii >= 0) tangent_.value[slot.ii] += r.tangent.topLeftCorner<3, 3>();
   if (slot.jj >= 0) tangent_.value[slot.jj] += r.tangent.bottomRightCorner<3, 3>();
   if (slot.ij >= 0) {
@@ -242,9 +246,10 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
     const auto g = element_dofs(model_.elements[k]);
     element::Vector6 d;
     for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
-    const element::Matrix3 k0 = stiffness_[k].matrix();
-    const element::BeamResponse r = element::beam_response(initial_[k], k0, d, rotations[k], false);
-    const element::RoundOffFloor f = element::round_off_floor(initial_[k], k0, d, r);
+    const element::Matrix3 k0 = records_[k].k0.matrix();
+    const element::InitialChord chord = records_[k].chord();
+    const element::BeamResponse r = element::beam_response(chord, k0, d, rotations[k], false);
+    const element::RoundOffFloor f = element::round_off_floor(chord, k0, d, r);
     force += 4.0 * f.force * f.force;  // two nodes, two translations each
     moment += 2.0 * f.moment * f.moment;
   }

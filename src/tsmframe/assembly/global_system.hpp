@@ -84,16 +84,20 @@ class GlobalSystem {
 
   const Model& model_;
   const DofMap& dofs_;
-  std::vector<element::InitialChord> initial_;
-  std::vector<element::BasicStiffness> stiffness_;  ///< k0 of each element (Eq. 3 / 4), fixed
-  BlockMatrix tangent_;
-  /// Per element: entry of its (i,i), (j,j) and (i,j) blocks in tangent_ (−1: node not a block).
-  /// The (i,j) entry is stored as K_ji = K_ijᵀ when j's block is the larger (lower triangle).
-  struct Slots {
+  /// What the element loop reads of one element, in one record (one stream through memory).
+  struct ElementRecord {
+    int start = 0, end = 0;  ///< node indices
+    /// Entries of its (i,i), (j,j) and (i,j) blocks in tangent_ (−1: node not a block). The
+    /// (i,j) entry is stored as K_ji = K_ijᵀ when j's block is the larger (lower triangle).
     int ii = -1, jj = -1, ij = -1;
     bool transposed = false;
+    element::Vector2 delta0;            ///< X_j − X_i
+    double length = 0.0, angle = 0.0;   ///< l0, φ0
+    element::BasicStiffness k0;         ///< Eq. 3 / 4, fixed
+    element::InitialChord chord() const { return {element::Vector2::Zero(), delta0, length, angle}; }
   };
-  std::vector<Slots> slots_;
+  std::vector<ElementRecord> records_;
+  BlockMatrix tangent_;
   std::vector<unsigned char> block_mask_;  ///< per block: bit d set if dof d of its node is constrained
   std::vector<int> colour_order_;          ///< element indices, grouped by colour
   std::vector<int> colour_start_;          ///< group c: colour_order_[colour_start_[c] .. colour_start_[c+1])
