@@ -198,19 +198,43 @@ bool BlockLDLT::factorize(BlockMatrix& a) {
 }
 
 void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
+  // The factorisation's tasks are whole subtrees: a column of a task reaches only rows of the
+  // same task (up to its root, the task's largest row) and rows above all tasks. So each task
+  // solves on its own, and the rows above them are done serially in between: in the forward
+  // pass row by row after the tasks (gathering from their final columns), in the backward pass
+  // before them. The partition depends only on the pattern: bit-identical for any thread count.
   const BlockMatrix& a = *factor_;
-  const int n = size_;
-  for (int i = 0; i < n; ++i) {  // L y = b, down column i
-    const Eigen::Vector3d bi = b.segment<3>(3 * i);
-    for (int p = a.column[i] + 1; p < a.column[i + 1]; ++p) b.segment<3>(3 * a.row[p]).noalias() -= a.value[p] * bi;
+  const int n = size_, tasks = static_cast<int>(task_start_.size()) - 1;
+  const bool parallel = tasks > 1;
+  // L y = b
+#pragma omp parallel for schedule(dynamic, 1) if (parallel)
+  for (int t = 0; t < tasks; ++t) {
+    const int root = task_rows_[task_start_[t + 1] - 1];
+    for (int q = task_start_[t]; q < task_start_[t + 1]; ++q) {
+      const int i = task_rows_[q];
+      const Eigen::Vector3d bi = b.segment<3>(3 * i);
+      for (int p = a.column[i] + 1; p < a.column[i + 1] && a.row[p] <= root; ++p)
+        b.segment<3>(3 * a.row[p]).noalias() -= a.value[p] * bi;
+    }
   }
-  for (int i = 0; i < n; ++i)  // D z = y
-    b.segment<3>(3 * i) = a.value[a.column[i]] * b.segment<3>(3 * i).eval();
-  for (int i = n - 1; i >= 0; --i) {  // Lᵀ x = z, a dot product down column i
+  for (const int k : top_rows_) {
+    Eigen::Vector3d bk = b.segment<3>(3 * k);
+    for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) bk.noalias() -= a.value[row_position_[t]] * b.segment<3>(3 * row_column_[t]);
+    b.segment<3>(3 * k) = bk;
+  }
+  // D z = y
+#pragma omp parallel for schedule(static) if (parallel && n > 32768)
+  for (int i = 0; i < n; ++i) b.segment<3>(3 * i) = a.value[a.column[i]] * b.segment<3>(3 * i).eval();
+  // Lᵀ x = z: a dot product down each column, the rows above the tasks first.
+  auto backward = [&](int i) {
     Eigen::Vector3d xi = b.segment<3>(3 * i);
     for (int p = a.column[i] + 1; p < a.column[i + 1]; ++p) xi.noalias() -= a.value[p].transpose() * b.segment<3>(3 * a.row[p]);
     b.segment<3>(3 * i) = xi;
-  }
+  };
+  for (auto k = top_rows_.rbegin(); k != top_rows_.rend(); ++k) backward(*k);
+#pragma omp parallel for schedule(dynamic, 1) if (parallel)
+  for (int t = 0; t < tasks; ++t)
+    for (int q = task_start_[t + 1] - 1; q >= task_start_[t]; --q) backward(task_rows_[q]);
 }
 
 }  // namespace tsm::solver

@@ -44,6 +44,10 @@ class BlockLDLT {
   /// Solves A x = b in place with the last factorisation; b has 3 entries per block.
   void solve_in_place(Eigen::VectorXd& b) const;
 
+  /// Subtrees factorised (and solved) as parallel tasks, and the rows above them.
+  int task_count() const { return static_cast<int>(task_start_.size()) - 1; }
+  int rows_above_tasks() const { return static_cast<int>(top_rows_.size()); }
+
  private:
   int size_ = 0;
   const BlockMatrix* factor_ = nullptr;  ///< the matrix holding L and D⁻¹ after factorize
