@@ -212,13 +212,22 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
   out.contacts.clear();
   if (with_tangent) contact_rank_one_.clear();
   const int n_elements = static_cast<int>(model_.elements.size());
-  out.internal_force.setZero(model_.dof_count());
+  // Clearing the big arrays is memory-bound: both cores share it.
+  out.internal_force.resize(model_.dof_count());
+  double* force = out.internal_force.data();
+  const Eigen::Index dof_count = out.internal_force.size();
+#pragma omp parallel for schedule(static) if (dof_count > 200000)
+  for (Eigen::Index dof = 0; dof < dof_count; ++dof) force[dof] = 0.0;
   out.element_forces.resize(3 * n_elements);
   out.chord_rotations.resize(n_elements);
   if (has_prescribed_) out.prescribed_coupling.setZero(dofs_.free_count());
   else out.prescribed_coupling.resize(0);  // nothing prescribed moves: no coupling to carry
-  if (with_tangent)
-    for (solver::Block& b : tangent_.value) b.setZero();
+  if (with_tangent) {
+    const Eigen::Index blocks = static_cast<Eigen::Index>(tangent_.value.size());
+    solver::Block* value = tangent_.value.data();
+#pragma omp parallel for schedule(static) if (blocks > 65536)
+    for (Eigen::Index p = 0; p < blocks; ++p) value[p].setZero();
+  }
 
   for (size_t c = 0; c + 1 < colour_start_.size(); ++c) {
     const int begin = colour_start_[c], end = colour_start_[c + 1];
