@@ -47,10 +47,8 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
                            const contact::ContactTracker* contacts)
     : system_(system), settings_(settings), contacts_(contacts && contacts->contact_count() > 0 ? contacts : nullptr) {
   const assembly::DofMap& dofs = system.dofs();
-  load_free_.resize(dofs.free_count());
   is_moment_.resize(dofs.free_count());
   for (int eq = 0; eq < dofs.free_count(); ++eq) {
-    load_free_[eq] = system.model().reference_load[dofs.dof(eq)];
     is_moment_[eq] = dofs.dof(eq) % dofs_per_node == rz ? 1 : 0;
   }
   const Model& model = system.model();
@@ -194,12 +192,24 @@ NewtonSolver::ResidualPass NewtonSolver::update_residual(double load_factor) {
   return pass;
 }
 
-std::array<double, 2> NewtonSolver::drive_norms(double dlambda, const Eigen::VectorXd& load_direction) const {
+void NewtonSolver::load_direction(Eigen::VectorXd& out) const {
+  const assembly::DofMap& dofs = system_.dofs();
+  const double* P = system_.model().reference_load.data();
+  out.resize(dofs.free_count());
+  for (int eq = 0; eq < dofs.free_count(); ++eq) out[eq] = P[dofs.dof(eq)];
+  if (eval_.prescribed_coupling.size() > 0) out -= eval_.prescribed_coupling;
+}
+
+void NewtonSolver::add_load_direction(double dlambda, Eigen::VectorXd& v) const {
+  const assembly::DofMap& dofs = system_.dofs();
+  const double* P = system_.model().reference_load.data();
+  for (int eq = 0; eq < dofs.free_count(); ++eq) v[eq] += dlambda * P[dofs.dof(eq)];
+  if (eval_.prescribed_coupling.size() > 0) v -= dlambda * eval_.prescribed_coupling;
+}
+
+std::array<double, 2> NewtonSolver::kind_norms(const Eigen::VectorXd& v) const {
   double sum[2] = {0, 0};
-  for (Eigen::Index eq = 0; eq < residual_.size(); ++eq) {
-    const double r = residual_[eq] + dlambda * load_direction[eq];
-    sum[is_moment_[eq]] += r * r;
-  }
+  for (Eigen::Index eq = 0; eq < v.size(); ++eq) sum[is_moment_[eq]] += v[eq] * v[eq];
   return {std::sqrt(sum[0]), std::sqrt(sum[1])};
 }
 
@@ -285,22 +295,21 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       out.message = iterate_text("the tangent stiffness is singular (a limit or bifurcation point)", it);
       return out;
     }
-    // dR/dλ = F_ref − K_fp D_p,ref: how the load factor drives the free dofs.
-    const bool coupled = eval_.prescribed_coupling.size() > 0;
-    if (coupled) load_direction_ = load_free_ - eval_.prescribed_coupling;
-    const Eigen::VectorXd& load_direction = coupled ? load_direction_ : load_free_;
+    // dR/dλ = F_dir = F_ref − K_fp D_p,ref: how the load factor drives the free dofs.
     double dlambda = 0.0;
+    std::array<double, 2> drive{};  // norms of R + Δλ F_dir at iterate 0
     Eigen::VectorXd& correction = correction_;
     if (constraint.kind == PathConstraint::Kind::load_increment) {
       if (it == 1) dlambda = constraint.load_increment;
-      if (dlambda != 0.0) correction = R + dlambda * load_direction;
-      else correction = R;
+      correction = R;
+      if (dlambda != 0.0) add_load_direction(dlambda, correction);
+      if (it == 1) drive = kind_norms(correction);
       solver_.solve_in_place(correction);
     } else if (by_arc) {
       // δD = δD_R + δλ δD_F; δλ from the arc-length constraint (Crisfield's cylindrical form).
       const Eigen::VectorXd& a = along_load_;
       const Eigen::VectorXd& b = along_residual_;
-      along_load_ = load_direction;
+      load_direction(along_load_);
       solver_.solve_in_place(along_load_);
       along_residual_ = R;
       solver_.solve_in_place(along_residual_);
@@ -343,7 +352,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     } else {
       const Eigen::VectorXd& a = along_load_;
       const Eigen::VectorXd& b = along_residual_;
-      along_load_ = load_direction;
+      load_direction(along_load_);
       solver_.solve_in_place(along_load_);
       along_residual_ = R;
       solver_.solve_in_place(along_residual_);
@@ -358,7 +367,12 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     }
     if (it == 1) {  // iterate 0: the out-of-balance force that drives the step, at the target λ
       start_scale = dlambda == 0.0 ? pass.scale : scale(state.load_factor + dlambda);
-      out.residual_norms.push_back(relative_norm(drive_norms(dlambda, load_direction), start_scale));
+      if (constraint.kind != PathConstraint::Kind::load_increment) {  // R is still the step's start
+        drive_ = R;
+        add_load_direction(dlambda, drive_);
+        drive = kind_norms(drive_);
+      }
+      out.residual_norms.push_back(relative_norm(drive, start_scale));
     }
     out.iterations = it;
     if (!correction.allFinite() || !std::isfinite(dlambda)) {

@@ -95,8 +95,11 @@ class NewtonSolver {
   /// The scale from squared sums per kind over the free equations (applied loads, internal
   /// forces); adds the constrained dofs' reactions and internal forces.
   ResidualScale scale_from(std::array<double, 2> load, std::array<double, 2> internal, double load_factor) const;
-  /// 2-norms per kind (forces, moments) of R + Δλ F_dir, without forming it: what drives a step.
-  std::array<double, 2> drive_norms(double dlambda, const Eigen::VectorXd& load_direction) const;
+  std::array<double, 2> kind_norms(const Eigen::VectorXd& free_vector) const;  // 2-norms: forces, moments
+  /// F_dir = F_ref − K_fp D_p,ref over the free equations (dR/dλ), into `out`.
+  void load_direction(Eigen::VectorXd& out) const;
+  /// v += Δλ F_dir, without forming F_dir.
+  void add_load_direction(double dlambda, Eigen::VectorXd& v) const;
   double relative_norm(const std::array<double, 2>& norms, const ResidualScale& scale) const;
   /// Adds the correction to the free dofs; returns its largest entries per kind (translations, rotations).
   std::array<double, 2> apply_correction(const Eigen::VectorXd& correction, State& state) const;
@@ -115,9 +118,9 @@ class NewtonSolver {
   int reversals_ = 0;  ///< contact hand-overs back the way the point came, in the current step
   LinearSolver solver_;
   assembly::Evaluation eval_;
-  Eigen::VectorXd load_free_;        ///< F_ref over the free equations
-  // Workspace of step(), kept between iterations and steps: no allocation per iteration.
-  Eigen::VectorXd residual_, load_direction_, correction_, along_load_, along_residual_, start_, increment_, trial_;
+  // Workspace of step(), kept between iterations and steps: no allocation per iteration. Under
+  // load control only residual_ and correction_ are used.
+  Eigen::VectorXd residual_, correction_, along_load_, along_residual_, start_, increment_, trial_, drive_;
   std::vector<unsigned char> is_moment_;    ///< per free equation: 1 for a rotation dof
   std::vector<unsigned char> constrained_;  ///< per dof: fixed or prescribed
   std::vector<int> constrained_dofs_;
