@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 
 namespace tsm::assembly {
 namespace {
@@ -38,28 +39,49 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
     for (int d = 0; d < dofs_per_node; ++d)
       if (model.constrained[dofs_per_node * dofs.block_node(b) + d]) block_mask_[b] |= 1u << d;
 
-  // Greedy colouring: an element takes the lowest colour its two nodes have not seen yet.
-  // Colours beyond 63 (a node held by very many elements) all share the last group, run serially.
+  // Elements in the tangent's memory order (by the smaller block of their two nodes), cut into
+  // chunks of a fixed size. A chunk sweeps a compact stretch of the tangent once, its elements
+  // in order; chunks that share no node get the same colour (greedy) and a colour's chunks run
+  // in parallel. Colours beyond 63 all share the last group, run serially. Every sum keeps its
+  // order whatever the number of threads.
+  constexpr int chunk_size = 512;
+  element_order_.resize(n_elements);
+  std::iota(element_order_.begin(), element_order_.end(), 0);
+  std::vector<int> key(n_elements);
+  for (int k = 0; k < n_elements; ++k) {
+    const int a = dofs.block(model.elements[k].start), b = dofs.block(model.elements[k].end);
+    key[k] = std::min(a < 0 ? n_blocks : a, b < 0 ? n_blocks : b);
+  }
+  std::stable_sort(element_order_.begin(), element_order_.end(), [&](int x, int y) { return key[x] < key[y]; });
+  const int n_chunks = (n_elements + chunk_size - 1) / chunk_size;
+  chunk_start_.resize(n_chunks + 1);
+  for (int c = 0; c <= n_chunks; ++c) chunk_start_[c] = std::min(n_elements, c * chunk_size);
   constexpr int serial_colour = 63;
   std::vector<std::uint64_t> seen(model.node_count(), 0);
-  std::vector<int> colour(n_elements);
+  std::vector<int> colour(n_chunks);
   int colours = 0;
-  for (int k = 0; k < n_elements; ++k) {
-    const Element& e = model.elements[k];
-    const std::uint64_t used = seen[e.start] | seen[e.end];
+  for (int ch = 0; ch < n_chunks; ++ch) {
+    std::uint64_t used = 0;
+    for (int q = chunk_start_[ch]; q < chunk_start_[ch + 1]; ++q) {
+      const Element& e = model.elements[element_order_[q]];
+      used |= seen[e.start] | seen[e.end];
+    }
     int c = 0;
     while (c < serial_colour && (used >> c & 1u)) ++c;
-    colour[k] = c;
-    seen[e.start] |= std::uint64_t{1} << c;
-    seen[e.end] |= std::uint64_t{1} << c;
+    colour[ch] = c;
+    for (int q = chunk_start_[ch]; q < chunk_start_[ch + 1]; ++q) {
+      const Element& e = model.elements[element_order_[q]];
+      seen[e.start] |= std::uint64_t{1} << c;
+      seen[e.end] |= std::uint64_t{1} << c;
+    }
     colours = std::max(colours, c + 1);
   }
   colour_start_.assign(colours + 1, 0);
-  for (int k = 0; k < n_elements; ++k) ++colour_start_[colour[k] + 1];
+  for (int ch = 0; ch < n_chunks; ++ch) ++colour_start_[colour[ch] + 1];
   for (int c = 0; c < colours; ++c) colour_start_[c + 1] += colour_start_[c];
-  colour_order_.resize(n_elements);
+  colour_chunks_.resize(n_chunks);
   std::vector<int> fill(colour_start_.begin(), colour_start_.end() - 1);
-  for (int k = 0; k < n_elements; ++k) colour_order_[fill[colour[k]]++] = k;
+  for (int ch = 0; ch < n_chunks; ++ch) colour_chunks_[fill[colour[ch]]++] = ch;
 
   replaced_.assign(n_elements, 0);
   has_prescribed_ = model.reference_prescribed.size() > 0 && model.reference_prescribed.any();
@@ -231,10 +253,13 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
 
   for (size_t c = 0; c + 1 < colour_start_.size(); ++c) {
     const int begin = colour_start_[c], end = colour_start_[c + 1];
-    const bool serial = c == 63 || end - begin < 4096;
-#pragma omp parallel for schedule(static) if (!serial)
-    for (int idx = begin; idx < end; ++idx)
-      evaluate_element(colour_order_[idx], displacements, previous_rotations, with_tangent, out);
+    const bool serial = c == 63 || end - begin < 4;
+#pragma omp parallel for schedule(dynamic, 1) if (!serial)
+    for (int idx = begin; idx < end; ++idx) {
+      const int chunk = colour_chunks_[idx];
+      for (int q = chunk_start_[chunk]; q < chunk_start_[chunk + 1]; ++q)
+        evaluate_element(element_order_[q], displacements, previous_rotations, with_tangent, out);
+    }
   }
   for (const contact::ActiveContact& a : contacts) {
     evaluate_contact(a, displacements, previous_rotations, with_tangent, out);

@@ -2,9 +2,9 @@
 // Global internal force vector and tangent of the whole structure at a given displacement
 // state. The tangent is kept as 3×3 node blocks (lower triangle, blocks in the DofMap's
 // fill-reducing order) whose pattern is built once; every evaluation only writes values.
-// Elements are evaluated in colour groups (no two elements of a group share a node), each group
-// in parallel: every sum is formed in the same order whatever the number of threads, so
-// results are bit-identical with 1 or many threads.
+// Elements are evaluated in chunks along the tangent's memory order, chunks in colour groups
+// (no two chunks of a group share a node), each group in parallel: every sum is formed in the
+// same order whatever the number of threads, so results are bit-identical with 1 or many threads.
 
 #include <Eigen/Core>
 #include <vector>
@@ -99,8 +99,10 @@ class GlobalSystem {
   std::vector<ElementRecord> records_;
   BlockMatrix tangent_;
   std::vector<unsigned char> block_mask_;  ///< per block: bit d set if dof d of its node is constrained
-  std::vector<int> colour_order_;          ///< element indices, grouped by colour
-  std::vector<int> colour_start_;          ///< group c: colour_order_[colour_start_[c] .. colour_start_[c+1])
+  std::vector<int> element_order_;  ///< element indices in the tangent's memory order
+  std::vector<int> chunk_start_;    ///< chunk h: element_order_[chunk_start_[h] .. chunk_start_[h+1])
+  std::vector<int> colour_chunks_;  ///< chunk numbers, grouped by colour
+  std::vector<int> colour_start_;   ///< group c: colour_chunks_[colour_start_[c] .. colour_start_[c+1])
   bool has_prescribed_ = false;
   std::vector<char> replaced_;             ///< per element: carries a contact in this evaluation
   std::vector<solver::RankOne> contact_rank_one_;
