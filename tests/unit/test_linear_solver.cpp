@@ -1,0 +1,152 @@
+// The Newton iteration's linear solver on its own, every path against a dense solve of
+// K_ff = A + Σ u vᵀ: the in-place block LDLᵀ alone; a few sliding terms by Woodbury; more than
+// 32 by SparseLU; and A singular on its own but not with its sliding term (the SparseLU
+// fallback must find the tangent intact after the failed in-place factorisation).
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <random>
+
+#include "support/models.hpp"
+#include "tsmframe/assembly/global_system.hpp"
+#include "tsmframe/solver/linear_solver.hpp"
+
+namespace {
+
+using namespace tsm::test;
+using tsm::solver::Block;
+using tsm::solver::BlockMatrix;
+using tsm::solver::RankOne;
+
+struct Setup {
+  tsm::Model model;
+  std::unique_ptr<tsm::assembly::DofMap> dofs;
+  BlockMatrix tangent;  // the pattern of a 30-element cantilever (with its fill), random values
+};
+
+std::unique_ptr<Setup> setup(unsigned seed, double shift) {
+  auto s = std::make_unique<Setup>();
+  BeamSpec b;
+  b.divisions = 30;
+  json m = beam_model(b);
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}});
+  s->model = tsm::io::read_model(m);
+  s->dofs = std::make_unique<tsm::assembly::DofMap>(s->model);
+  tsm::assembly::GlobalSystem system(s->model, *s->dofs);
+  s->tangent = system.tangent();
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  for (int c = 0; c < s->tangent.size; ++c)
+    for (int p = s->tangent.column[c]; p < s->tangent.column[c + 1]; ++p) {
+      Block v;
+      for (int i = 0; i < 9; ++i) v(i / 3, i % 3) = value(random);
+      if (s->tangent.row[p] == c) v = (v + v.transpose()).eval() + shift * Block::Identity();
+      s->tangent.value[p] = v;
+    }
+  return s;
+}
+
+std::vector<RankOne> rank_ones(const tsm::assembly::DofMap& dofs, int count, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> value(-0.3, 0.3);
+  std::uniform_int_distribution<int> equation(0, dofs.free_count() - 1);
+  std::vector<RankOne> terms(count);
+  for (RankOne& t : terms) {
+    for (int a = 0; a < 9; ++a) {
+      t.equation[a] = a == 8 ? -1 : equation(random);  // one entry on a constrained dof
+      t.u[a] = value(random);
+      t.v[a] = value(random);
+    }
+  }
+  return terms;
+}
+
+Eigen::MatrixXd dense(const Setup& s, const BlockMatrix& a, const std::vector<RankOne>& terms) {
+  const tsm::assembly::DofMap& dofs = *s.dofs;
+  const int n = dofs.free_count();
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
+  for (int c = 0; c < a.size; ++c)
+    for (int p = a.column[c]; p < a.column[c + 1]; ++p)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          const int r = dofs.equation(3 * dofs.block_node(a.row[p]) + i), q = dofs.equation(3 * dofs.block_node(c) + j);
+          if (r < 0 || q < 0) continue;
+          K(r, q) += a.value[p](i, j);
+          if (a.row[p] != c) K(q, r) += a.value[p](i, j);
+        }
+  for (const RankOne& t : terms)
+    for (int i = 0; i < 9; ++i)
+      for (int j = 0; j < 9; ++j)
+        if (t.equation[i] >= 0 && t.equation[j] >= 0) K(t.equation[i], t.equation[j]) += t.u[i] * t.v[j];
+  return K;
+}
+
+void expect_solves(const Setup& s, BlockMatrix a, const std::vector<RankOne>& terms) {
+  const Eigen::MatrixXd K = dense(s, a, terms);
+  const BlockMatrix original = a;
+  tsm::solver::LinearSolver solver;
+  solver.analyze(*s.dofs, a);
+  ASSERT_TRUE(solver.factorize(a, terms));
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.rows(), -1.0, 2.0);
+  const Eigen::VectorXd expected = K.fullPivLu().solve(b);
+  EXPECT_LT((solver.solve(b) - expected).norm(), 1e-10 * expected.norm());
+  Eigen::VectorXd x = b;
+  solver.solve_in_place(x);
+  EXPECT_LT((x - expected).norm(), 1e-10 * expected.norm());
+  if (terms.size() > 32) {  // SparseLU reads the tangent: it must be untouched
+    for (size_t p = 0; p < a.value.size(); ++p) ASSERT_EQ(a.value[p], original.value[p]);
+  }
+}
+
+TEST(LinearSolver, BlockLDLTAlone) {
+  const auto s = setup(1, 12.0);
+  expect_solves(*s, s->tangent, {});
+}
+
+TEST(LinearSolver, FewSlidingTermsByWoodbury) {
+  const auto s = setup(2, 12.0);
+  expect_solves(*s, s->tangent, rank_ones(*s->dofs, 3, 7));
+}
+
+TEST(LinearSolver, ManySlidingTermsBySparseLU) {
+  const auto s = setup(3, 12.0);
+  expect_solves(*s, s->tangent, rank_ones(*s->dofs, 40, 8));
+}
+
+TEST(LinearSolver, SingularSymmetricPartFallsBackToSparseLUWithTheTangentIntact) {
+  // A block-diagonal tangent whose last block is singular in its u direction: the in-place LDLᵀ
+  // fails on that pivot; the sliding term u vᵀ on that dof makes K_ff regular.
+  const auto s = setup(4, 12.0);
+  BlockMatrix a = s->tangent;
+  int last = -1;
+  for (int c = 0; c < a.size; ++c)
+    for (int p = a.column[c]; p < a.column[c + 1]; ++p) {
+      a.value[p] = a.row[p] == c ? Block(2.0 * Block::Identity()) : Block(Block::Zero());  // D⁻¹ differs from D
+      if (a.row[p] == c) last = p;
+    }
+  a.value[last](0, 0) = 0.0;
+  const int block = a.size - 1;
+  RankOne t;
+  t.equation.fill(-1);
+  t.u.setZero();
+  t.v.setZero();
+  t.equation[0] = s->dofs->equation(3 * s->dofs->block_node(block));
+  ASSERT_GE(t.equation[0], 0);
+  t.u[0] = 2.0;
+  t.v[0] = 1.5;
+  const Eigen::MatrixXd K = dense(*s, a, {t});
+  const BlockMatrix original = a;
+  tsm::solver::LinearSolver solver;
+  solver.analyze(*s->dofs, a);
+  ASSERT_TRUE(solver.factorize(a, {t}));
+  for (size_t p = 0; p < a.value.size(); ++p) ASSERT_EQ(a.value[p], original.value[p]);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.rows(), 1.0, 3.0);
+  EXPECT_LT((solver.solve(b) - K.fullPivLu().solve(b)).norm(), 1e-12 * b.norm());
+  // Without the sliding term the same tangent is reported singular.
+  BlockMatrix alone = original;
+  tsm::solver::LinearSolver plain;
+  plain.analyze(*s->dofs, alone);
+  EXPECT_FALSE(plain.factorize(alone, {}));
+}
+
+}  // namespace
