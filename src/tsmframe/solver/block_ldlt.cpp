@@ -7,6 +7,8 @@
 namespace tsm::solver {
 namespace {
 
+constexpr size_t parallel_rows_above = 256;  // fewer rows above the tasks: run them serially
+
 /// Rows of the lower triangle: row k lists the columns i < k with an entry (k, i), ascending,
 /// and where that entry is stored.
 struct Rows {
@@ -132,12 +134,29 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
     if (task[k] >= 0) ++task_start_[task[k] + 1];
   for (int t = 0; t < tasks; ++t) task_start_[t + 1] += task_start_[t];
   task_rows_.resize(task_start_[tasks]);
-  top_rows_.clear();
   std::vector<int> next(task_start_.begin(), task_start_.end() - 1);
-  for (int k = 0; k < n; ++k) {
+  for (int k = 0; k < n; ++k)
     if (task[k] >= 0) task_rows_[next[task[k]]++] = k;
-    else top_rows_.push_back(k);
+
+  // The rows above the tasks, by level: one more than the highest level among a row's children
+  // above the tasks (1 if none). Rows of one level are not ancestors of one another, so their
+  // patterns — and the columns they read and write — are disjoint: they run concurrently.
+  std::vector<int> level(n, 0);
+  int levels = 0;
+  for (int k = 0; k < n; ++k) {  // ascending: children first
+    if (task[k] >= 0) continue;
+    level[k] = std::max(level[k], 1);
+    levels = std::max(levels, level[k]);
+    if (parent[k] >= 0) level[parent[k]] = std::max(level[parent[k]], level[k] + 1);
   }
+  level_start_.assign(levels + 1, 0);
+  for (int k = 0; k < n; ++k)
+    if (task[k] < 0) ++level_start_[level[k]];
+  for (int l = 0; l < levels; ++l) level_start_[l + 1] += level_start_[l];
+  top_rows_.resize(level_start_[levels]);
+  std::vector<int> place(level_start_.begin(), level_start_.end() - 1);
+  for (int k = 0; k < n; ++k)
+    if (task[k] < 0) top_rows_[place[level[k] - 1]++] = k;
 }
 
 bool BlockLDLT::factorize_row(BlockMatrix& a, int k) {
@@ -192,16 +211,20 @@ bool BlockLDLT::factorize(BlockMatrix& a) {
   for (int t = 0; t < tasks; ++t)
     for (int r = task_start_[t]; r < task_start_[t + 1] && ok; ++r) ok = factorize_row(a, task_rows_[r]);
   if (!ok) return false;
-  for (const int k : top_rows_)
-    if (!factorize_row(a, k)) return false;
-  return true;
+  const int levels = static_cast<int>(level_start_.size()) - 1;
+#pragma omp parallel if (top_rows_.size() >= parallel_rows_above)
+  for (int l = 0; l < levels && ok; ++l) {
+#pragma omp for schedule(dynamic, 1) reduction(&& : ok)
+    for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) ok = factorize_row(a, top_rows_[q]) && ok;
+  }
+  return ok;
 }
 
 void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
   // The factorisation's tasks are whole subtrees: a column of a task reaches only rows of the
   // same task (up to its root, the task's largest row) and rows above all tasks. So each task
-  // solves on its own, and the rows above them are done serially in between: in the forward
-  // pass row by row after the tasks (gathering from their final columns), in the backward pass
+  // solves on its own, and the rows above them are done in between, level by level: in the
+  // forward pass after the tasks (each row gathering from final columns), in the backward pass
   // before them. The partition depends only on the pattern: bit-identical for any thread count.
   const BlockMatrix& a = *factor_;
   const int n = size_, tasks = static_cast<int>(task_start_.size()) - 1;
@@ -217,10 +240,17 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
         b.segment<3>(3 * a.row[p]).noalias() -= a.value[p] * bi;
     }
   }
-  for (const int k : top_rows_) {
-    Eigen::Vector3d bk = b.segment<3>(3 * k);
-    for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) bk.noalias() -= a.value[row_position_[t]] * b.segment<3>(3 * row_column_[t]);
-    b.segment<3>(3 * k) = bk;
+  const int levels = static_cast<int>(level_start_.size()) - 1;
+  const bool parallel_top = top_rows_.size() >= parallel_rows_above;
+#pragma omp parallel if (parallel_top)
+  for (int l = 0; l < levels; ++l) {
+#pragma omp for schedule(dynamic, 1)
+    for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) {
+      const int k = top_rows_[q];
+      Eigen::Vector3d bk = b.segment<3>(3 * k);
+      for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) bk.noalias() -= a.value[row_position_[t]] * b.segment<3>(3 * row_column_[t]);
+      b.segment<3>(3 * k) = bk;
+    }
   }
   // D z = y
 #pragma omp parallel for schedule(static) if (parallel && n > 32768)
@@ -231,7 +261,11 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
     for (int p = a.column[i] + 1; p < a.column[i + 1]; ++p) xi.noalias() -= a.value[p].transpose() * b.segment<3>(3 * a.row[p]);
     b.segment<3>(3 * i) = xi;
   };
-  for (auto k = top_rows_.rbegin(); k != top_rows_.rend(); ++k) backward(*k);
+#pragma omp parallel if (parallel_top)
+  for (int l = levels - 1; l >= 0; --l) {
+#pragma omp for schedule(dynamic, 1)
+    for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) backward(top_rows_[q]);
+  }
 #pragma omp parallel for schedule(dynamic, 1) if (parallel)
   for (int t = 0; t < tasks; ++t)
     for (int q = task_start_[t + 1] - 1; q >= task_start_[t]; --q) backward(task_rows_[q]);

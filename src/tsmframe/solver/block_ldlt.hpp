@@ -65,7 +65,8 @@ class BlockLDLT {
   // results are bit-identical.
   std::vector<int> task_start_;  ///< task t: rows task_rows_[task_start_[t] .. task_start_[t+1]), ascending
   std::vector<int> task_rows_;
-  std::vector<int> top_rows_;    ///< rows in no task, ascending
+  std::vector<int> top_rows_;    ///< rows in no task, level by level (ascending within a level)
+  std::vector<int> level_start_; ///< level l: top_rows_[level_start_[l] .. level_start_[l+1])
 
   bool factorize_row(BlockMatrix& a, int k);
 };
