@@ -117,18 +117,37 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   fill_.resize(n);
   slot_.assign(n, -1);
 
-  // Tasks: the largest subtrees of at most n / 16 blocks (parents come after children, so one
-  // ascending pass sums subtree sizes and one descending pass hands every block to its task).
+  // Tasks: the largest subtrees of at most `limit` blocks (and at least 64). The limit is the
+  // largest that still gives 8 tasks — enough to keep two or more cores busy, as large as
+  // possible so that few rows are left above them — and n / 16 if none does. It depends on the
+  // pattern only (the solves' arithmetic follows the partition), never on the thread count.
+  // Parents come after children, so one ascending pass sums subtree sizes and one descending
+  // pass hands every block to its task.
   std::vector<int> size(n, 1), task(n, -1);
   for (int k = 0; k < n; ++k)
     if (parent[k] >= 0) size[parent[k]] += size[k];
-  const int limit = std::max(1, n / 16);
-  int tasks = 0;
-  for (int k = n - 1; k >= 0; --k) {
-    const int p = parent[k];
-    if (p >= 0 && task[p] >= 0) task[k] = task[p];
-    else if (size[k] <= limit && size[k] >= 64) task[k] = tasks++;
+  auto assign_tasks = [&](int limit) {
+    int tasks = 0;
+    for (int k = n - 1; k >= 0; --k) {
+      const int p = parent[k];
+      if (p >= 0 && task[p] >= 0) task[k] = task[p];
+      else if (size[k] <= limit && size[k] >= 64) task[k] = tasks++;
+      else task[k] = -1;
+    }
+    return tasks;
+  };
+  constexpr int wanted_tasks = 8;
+  int limit = std::max(1, n / 16);
+  if (assign_tasks(limit) >= wanted_tasks) {
+    int lo = limit, hi = n;  // assign_tasks(lo) >= wanted; find the largest such limit
+    while (lo < hi) {
+      const int mid = lo + (hi - lo + 1) / 2;
+      if (assign_tasks(mid) >= wanted_tasks) lo = mid;
+      else hi = mid - 1;
+    }
+    limit = lo;
   }
+  const int tasks = assign_tasks(limit);
   task_start_.assign(tasks + 1, 0);
   for (int k = 0; k < n; ++k)
     if (task[k] >= 0) ++task_start_[task[k] + 1];
@@ -157,6 +176,12 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   std::vector<int> place(level_start_.begin(), level_start_.end() - 1);
   for (int k = 0; k < n; ++k)
     if (task[k] < 0) top_rows_[place[level[k] - 1]++] = k;
+  // Level by level in parallel only where levels hold several rows: a path (one row per level)
+  // would pay a barrier per row for nothing.
+  int shared = 0;  // rows in levels of two or more
+  for (int l = 0; l < levels; ++l)
+    if (level_start_[l + 1] - level_start_[l] > 1) shared += level_start_[l + 1] - level_start_[l];
+  parallel_top_ = top_rows_.size() >= parallel_rows_above && 2 * shared >= static_cast<int>(top_rows_.size());
 }
 
 bool BlockLDLT::factorize_row(BlockMatrix& a, int k) {
@@ -211,8 +236,13 @@ bool BlockLDLT::factorize(BlockMatrix& a) {
   for (int t = 0; t < tasks; ++t)
     for (int r = task_start_[t]; r < task_start_[t + 1] && ok; ++r) ok = factorize_row(a, task_rows_[r]);
   if (!ok) return false;
+  if (!parallel_top_) {  // no OpenMP construct per level: a path of rows pays nothing
+    for (const int k : top_rows_)
+      if (!factorize_row(a, k)) return false;
+    return true;
+  }
   const int levels = static_cast<int>(level_start_.size()) - 1;
-#pragma omp parallel if (top_rows_.size() >= parallel_rows_above)
+#pragma omp parallel
   for (int l = 0; l < levels && ok; ++l) {
 #pragma omp for schedule(dynamic, 1) reduction(&& : ok)
     for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) ok = factorize_row(a, top_rows_[q]) && ok;
@@ -241,15 +271,18 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
     }
   }
   const int levels = static_cast<int>(level_start_.size()) - 1;
-  const bool parallel_top = top_rows_.size() >= parallel_rows_above;
-#pragma omp parallel if (parallel_top)
-  for (int l = 0; l < levels; ++l) {
+  auto forward = [&](int k) {
+    Eigen::Vector3d bk = b.segment<3>(3 * k);
+    for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) bk.noalias() -= a.value[row_position_[t]] * b.segment<3>(3 * row_column_[t]);
+    b.segment<3>(3 * k) = bk;
+  };
+  if (!parallel_top_) {
+    for (const int k : top_rows_) forward(k);
+  } else {
+#pragma omp parallel
+    for (int l = 0; l < levels; ++l) {
 #pragma omp for schedule(dynamic, 1)
-    for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) {
-      const int k = top_rows_[q];
-      Eigen::Vector3d bk = b.segment<3>(3 * k);
-      for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) bk.noalias() -= a.value[row_position_[t]] * b.segment<3>(3 * row_column_[t]);
-      b.segment<3>(3 * k) = bk;
+      for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) forward(top_rows_[q]);
     }
   }
   // D z = y
@@ -261,10 +294,14 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
     for (int p = a.column[i] + 1; p < a.column[i + 1]; ++p) xi.noalias() -= a.value[p].transpose() * b.segment<3>(3 * a.row[p]);
     b.segment<3>(3 * i) = xi;
   };
-#pragma omp parallel if (parallel_top)
-  for (int l = levels - 1; l >= 0; --l) {
+  if (!parallel_top_) {
+    for (auto k = top_rows_.rbegin(); k != top_rows_.rend(); ++k) backward(*k);
+  } else {
+#pragma omp parallel
+    for (int l = levels - 1; l >= 0; --l) {
 #pragma omp for schedule(dynamic, 1)
-    for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) backward(top_rows_[q]);
+      for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) backward(top_rows_[q]);
+    }
   }
 #pragma omp parallel for schedule(dynamic, 1) if (parallel)
   for (int t = 0; t < tasks; ++t)

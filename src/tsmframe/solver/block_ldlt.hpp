@@ -67,6 +67,7 @@ class BlockLDLT {
   std::vector<int> task_rows_;
   std::vector<int> top_rows_;    ///< rows in no task, level by level (ascending within a level)
   std::vector<int> level_start_; ///< level l: top_rows_[level_start_[l] .. level_start_[l+1])
+  bool parallel_top_ = false;    ///< the levels hold enough rows side by side to run them in parallel
 
   bool factorize_row(BlockMatrix& a, int k);
 };
