@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Issue 5's targets against what this machine measures now, as one table. Every bench is run
+# RUNS times (default 3) and the best and the worst are shown: wall clock on a shared machine
+# varies by ±15 % and more, so a range says more than one number.
+# Usage: bash bench/targets.sh            (about a minute on 2 cores)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+[ -x build/bench/tsmframe_scaling ] || bash scripts/setup.sh >/dev/null
+runs=${RUNS:-3}
+
+# A bench row's columns: 1 elements, 2 steps, 3 iterations, 4 ms/iteration,
+# 5 ns/element/iteration, 6 total s, 7 peak MB, 8 status.
+repeat() { for _ in $(seq "$runs"); do "$@"; done; }
+range() {  # range COLUMN <<< rows -> "best worst"
+  awk -v c="$1" '{print $c}' | sort -g | sed -n '1p;$p' | paste -sd' ' -
+}
+row() {  # row TARGET LIMIT UNIT "best worst"
+  local best worst verdict
+  read -r best worst <<<"$4"
+  verdict=$(awk -v b="$best" -v w="$worst" -v l="$2" 'BEGIN {print (w <= l ? "met" : (b <= l ? "in some runs" : "not met"))}')
+  printf '%-50s %8s %-3s %9s – %-9s %s\n' "$1" "≤ $2" "$3" "$best" "$worst" "$verdict"
+}
+
+small=$(repeat build/bench/tsmframe_scaling 1 1000)
+chains=$(repeat build/bench/tsmframe_scaling 100 1000)
+huge=$(repeat build/bench/tsmframe_scaling 1000 1000)
+lattice=$(repeat build/bench/tsmframe_lattice 70 10 1e6)
+circle=$(build/bench/tsmframe_scaling 1 10000 1.0 1)
+
+printf '%-50s %12s %21s %s\n' target limit "measured (best – worst)" verdict
+row "10^5 elements: cost per element per iteration" 100 ns "$(range 5 <<<"$chains")"
+row "10^5 elements: whole run" 1.5 s "$(range 6 <<<"$chains")"
+row "10^5 elements: peak memory" 60 MB "$(range 7 <<<"$chains")"
+# Spread of the per-element cost over 10^3, 10^5, 10^6: best with best, worst with worst.
+spread=$(printf '%s\n%s\n%s\n' "$small" "$chains" "$huge" | awk '
+  {v = $5; n = $1; if (!(n in lo) || v < lo[n]) lo[n] = v; if (!(n in hi) || v > hi[n]) hi[n] = v}
+  END {a = 1e30; b = 0; c = 1e30; d = 0
+       for (n in lo) {if (lo[n] < a) a = lo[n]; if (lo[n] > b) b = lo[n]; if (hi[n] < c) c = hi[n]; if (hi[n] > d) d = hi[n]}
+       r1 = b / a; r2 = d / c; printf "%.2f %.2f", (r1 < r2 ? r1 : r2), (r1 < r2 ? r2 : r1)}')
+row "per-element cost, 10^3 … 10^6 (largest / smallest)" 1.5 × "$spread"
+ratio=$(printf '%s\n' "$(range 5 <<<"$lattice") $(range 5 <<<"$chains")" | awk '{printf "%.2f %.2f", $1 / $4, $2 / $3}')
+row "lattice 70×70×10 per element / the chains'" 2 × "$ratio"
+echo "$circle" | awk '{printf "%-50s %12s %9s step(s), %s iterations, %s s, %s\n", "10^4-element chain rolled into a full circle", "converges", $2, $3, $6, $8}'
