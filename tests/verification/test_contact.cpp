@@ -350,6 +350,70 @@ TEST(ContactDetection, ANodeCrossingTheBeamInOneStepGivesTheSameAnswerAsManyStep
   EXPECT_NEAR(p.force, q.force, 1e-9 * q.force);
 }
 
+// ---- Many posts pressing one beam: the active set ----
+// A 20 m beam, pinned at its ends, pushed up by 40 rigid posts to 0.05, 0.10, 0.15 m in turn.
+// The tall posts near the ends lever the beam up and the others lose contact. Releasing every
+// post that pulls at once lets some of them through the beam further on; such a post must take
+// part again (before, the step failed at every cutback). Checked: every post is either in
+// contact and pressing, or below the beam's deflected centre line (EB elements: the Hermite
+// cubic of each element in its chord frame).
+
+TEST(ContactDetection, ManyPostsFindTheirActiveSetWithoutPassingThroughTheBeam) {
+  const int posts = 40, divisions = 40;
+  const double L = 20.0;
+  json m = {
+      {"materials", {{"steel", {{"E", 2.05e11}}}}},
+      {"sections", {{"box", {{"A", 1e-2}, {"I", 1e-4}}}}},
+      {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", L}, {"y", 0.0}}})},
+      {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", divisions}, {"material", "steel"}, {"section", "box"}}})},
+      {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"fix", {"uy"}}}})},
+      {"prescribed", json::array()},
+      {"contacts", json::array()},
+      {"analysis", {{"control", {{"type", "load"}, {"steps", 10}}}, {"output", "last"}}},
+  };
+  for (int k = 0; k < posts; ++k) {
+    const int id = 100 + k;
+    m["nodes"].push_back({{"id", id}, {"x", 0.3 + k * 19.4 / (posts - 1) + 0.013}, {"y", 0.0}});
+    m["supports"].push_back({{"node", id}, {"fix", {"ux", "rz"}}});
+    m["prescribed"].push_back({{"node", id}, {"uy", 0.05 * (1 + k % 3)}});
+    m["contacts"].push_back({{"node", id}, {"members", "all"}});
+  }
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const StepRecord& last = r.steps.back();
+  ASSERT_EQ(last.load_factor, 1.0);
+  int pressing = 0;
+  for (int k = 0; k < posts; ++k) {
+    const tsm::solver::ContactPoint& c = contact_of(last, k);
+    if (c.element >= 0) {
+      ++pressing;
+      EXPECT_GE(c.force, 0.0) << "post " << k;
+      continue;
+    }
+    // A released post: find the element below it and its deflected centre line there.
+    const Eigen::Vector2d post = node_position(model, last, 100 + k);
+    bool found = false;
+    for (const tsm::Element& e : model.elements) {
+      const Eigen::Vector2d a = model.nodes[e.start].position + last.displacements.segment<2>(3 * e.start);
+      const Eigen::Vector2d b = model.nodes[e.end].position + last.displacements.segment<2>(3 * e.end);
+      const Eigen::Vector2d t = (b - a).normalized(), n(-t.y(), t.x());
+      const double l = (b - a).norm(), xi = (post - a).dot(t) / l;
+      if (xi < 0.0 || xi > 1.0) continue;
+      const double beta = std::atan2(b.y() - a.y(), b.x() - a.x()) - std::atan2(model.nodes[e.end].position.y() - model.nodes[e.start].position.y(),
+                                                                               model.nodes[e.end].position.x() - model.nodes[e.start].position.x());
+      const double ti = last.displacements[3 * e.start + 2] - beta, tj = last.displacements[3 * e.end + 2] - beta;
+      const double w = l * (ti * (xi - 2 * xi * xi + xi * xi * xi) + tj * (xi * xi * xi - xi * xi));
+      EXPECT_LE((post - a).dot(n), w + 1e-9 * L) << "post " << k << " is through the beam";
+      found = true;
+      break;
+    }
+    EXPECT_TRUE(found) << "post " << k << " beyond the beam";
+  }
+  EXPECT_GE(pressing, 2);
+  EXPECT_LT(pressing, posts);  // most posts have let go
+}
+
 TEST(ContactDetection, TwoContactsAtOnceMatchTheLinearFlexibility) {
   BeamSpec b;
   b.divisions = 40;

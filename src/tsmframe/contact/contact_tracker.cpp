@@ -277,23 +277,38 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
   return changes;
 }
 
-bool ContactTracker::passed_through(const Eigen::VectorXd& D, const std::vector<double>& rotations,
-                                    const std::vector<ContactState>& states) const {
-  for (size_t k = 0; k < specs_.size(); ++k) {
-    const ContactState& state = states[k];
-    if (state.active || !state.released_in_step) continue;
-    const Eigen::Vector2d released_normal(state.released_normal[0], state.released_normal[1]);
-    for (size_t ci = 0; ci < specs_[k].candidates.size(); ++ci) {
-      if (!state.released_within[ci]) continue;
-      const int f = specs_[k].candidates[ci];
-      const NodeOnElement where = locate(specs_[k], f, D, rotations);
-      if (where.alpha < 0.0 || where.alpha > 1.0) continue;
-      const Eigen::Vector2d n = chord_normal(initial_[f], element_displacements(model_.elements[f], D), rotations[f]);
-      const int expected = n.dot(released_normal) >= 0.0 ? state.released_side : -state.released_side;
-      if (expected * where.gap < -touch_tolerance_) return true;
-    }
+bool ContactTracker::node_passed_through(size_t k, const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                         const ContactState& state) const {
+  if (state.active || !state.released_in_step) return false;
+  const Eigen::Vector2d released_normal(state.released_normal[0], state.released_normal[1]);
+  for (size_t ci = 0; ci < specs_[k].candidates.size(); ++ci) {
+    if (!state.released_within[ci]) continue;
+    const int f = specs_[k].candidates[ci];
+    const NodeOnElement where = locate(specs_[k], f, D, rotations);
+    if (where.alpha < 0.0 || where.alpha > 1.0) continue;
+    const Eigen::Vector2d n = chord_normal(initial_[f], element_displacements(model_.elements[f], D), rotations[f]);
+    const int expected = n.dot(released_normal) >= 0.0 ? state.released_side : -state.released_side;
+    if (expected * where.gap < -touch_tolerance_) return true;
   }
   return false;
+}
+
+bool ContactTracker::passed_through(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                    const std::vector<ContactState>& states) const {
+  for (size_t k = 0; k < specs_.size(); ++k)
+    if (node_passed_through(k, D, rotations, states[k])) return true;
+  return false;
+}
+
+int ContactTracker::allow_touching_again(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                         std::vector<ContactState>& states) const {
+  int count = 0;
+  for (size_t k = 0; k < specs_.size(); ++k)
+    if (node_passed_through(k, D, rotations, states[k])) {
+      states[k].released_in_step = false;
+      ++count;
+    }
+  return count;
 }
 
 void ContactTracker::accept(const Eigen::VectorXd& D, const std::vector<double>& rotations,

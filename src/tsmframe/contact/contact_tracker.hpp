@@ -67,11 +67,19 @@ class ContactTracker {
   /// not start again within the step): the converged state is then not acceptable.
   bool passed_through(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
                       const std::vector<ContactState>& states) const;
+  /// Lets every contact released during this step whose node has passed through a beam touch
+  /// again (the next update() starts it from its side at the step's start); returns how many.
+  /// With several contacts pressing one beam, releasing all that pull at once can let another
+  /// node through: the active set then needs that contact back.
+  int allow_touching_again(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
+                           std::vector<ContactState>& states) const;
   /// At a converged state: inactive contacts take their current sides as reference.
   void accept(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
               std::vector<ContactState>& states) const;
 
  private:
+  bool node_passed_through(size_t k, const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
+                           const ContactState& state) const;
   struct Spec {
     int node = 0;
     std::vector<int> candidates;        ///< element indices the node may touch

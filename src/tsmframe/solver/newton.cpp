@@ -419,9 +419,18 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
         continue;
       }
       if (contacts_ && contacts_->passed_through(state.displacements, state.chord_rotations, state.contacts)) {
-        out.status = Status::diverged;
-        out.message = iterate_text("a contact node passed through a beam after its contact was released", it);
-        return out;
+        // A contact released in this step let its node through a beam: it takes part again
+        // (the active set needs it), and Newton iterates on; the switch count bounds the cycling.
+        switches_ += contacts_->allow_touching_again(state.displacements, state.chord_rotations, state.contacts);
+        if (switches_ > max_switches) {
+          out.status = Status::contact_chatter;
+          out.message = iterate_text("a contact node passed through a beam after its contact was released", it);
+          return out;
+        }
+        evaluate(state);
+        pass = update_residual(state.load_factor);
+        if (contacts_) out.contact_iterates.back() = contact_points(state);
+        continue;
       }
       out.criterion = criterion;
       if (contacts_) contacts_->accept(state.displacements, state.chord_rotations, state.contacts);
