@@ -11,8 +11,8 @@
 // D is block diagonal with 3×3 symmetric blocks inverted exactly, so the factorisation also
 // handles indefinite tangents (past a limit point) as long as no 3×3 pivot block is singular.
 // Up-looking algorithm as in CSparse's cs_chol, lifted to blocks. The arithmetic order is
-// fixed: results do not depend on threads. Independent subtrees of the elimination tree are
-// factorised in parallel (OpenMP).
+// fixed: results do not depend on threads. Independent subtrees of the elimination tree, and
+// rows above them that are not ancestors of one another, are factorised in parallel (OpenMP).
 
 #include <Eigen/Core>
 #include <vector>
@@ -61,9 +61,9 @@ class BlockLDLT {
   std::vector<int> fill_;        ///< per column during factorize: its next entry to be formed
   std::vector<int> slot_;        ///< during row k: column i → index in value of the entry (k, i)
   // Parallel factorisation: disjoint subtrees of the elimination tree touch disjoint rows and
-  // columns, so they are factorised concurrently; the blocks above them follow serially. Every
-  // row is computed with the same arithmetic in the same order whatever the number of threads:
-  // results are bit-identical.
+  // columns, so they are factorised concurrently; the rows above them follow level by level, a
+  // level's rows concurrently where levels hold several. Every row is computed with the same
+  // arithmetic in the same order whatever the number of threads: results are bit-identical.
   std::vector<int> task_start_;  ///< task t: rows task_rows_[task_start_[t] .. task_start_[t+1]), ascending
   std::vector<int> task_rows_;
   std::vector<int> top_rows_;    ///< rows in no task, level by level (ascending within a level)
