@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <random>
 
+#include "support/dense.hpp"
 #include "support/models.hpp"
 #include "tsmframe/assembly/global_system.hpp"
 #include "tsmframe/solver/linear_solver.hpp"
@@ -61,28 +62,8 @@ std::vector<RankOne> rank_ones(const tsm::assembly::DofMap& dofs, int count, uns
   return terms;
 }
 
-Eigen::MatrixXd dense(const Setup& s, const BlockMatrix& a, const std::vector<RankOne>& terms) {
-  const tsm::assembly::DofMap& dofs = *s.dofs;
-  const int n = dofs.free_count();
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
-  for (int c = 0; c < a.size; ++c)
-    for (int p = a.column[c]; p < a.column[c + 1]; ++p)
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-          const int r = dofs.equation(3 * dofs.block_node(a.row[p]) + i), q = dofs.equation(3 * dofs.block_node(c) + j);
-          if (r < 0 || q < 0) continue;
-          K(r, q) += a.value[p](i, j);
-          if (a.row[p] != c) K(q, r) += a.value[p](i, j);
-        }
-  for (const RankOne& t : terms)
-    for (int i = 0; i < 9; ++i)
-      for (int j = 0; j < 9; ++j)
-        if (t.equation[i] >= 0 && t.equation[j] >= 0) K(t.equation[i], t.equation[j]) += t.u[i] * t.v[j];
-  return K;
-}
-
 void expect_solves(const Setup& s, BlockMatrix a, const std::vector<RankOne>& terms) {
-  const Eigen::MatrixXd K = dense(s, a, terms);
+  const Eigen::MatrixXd K = dense_tangent(*s.dofs, a, terms);
   const BlockMatrix original = a;
   tsm::solver::LinearSolver solver;
   solver.analyze(*s.dofs, a);
@@ -134,7 +115,7 @@ TEST(LinearSolver, SingularSymmetricPartFallsBackToSparseLUWithTheTangentIntact)
   ASSERT_GE(t.equation[0], 0);
   t.u[0] = 2.0;
   t.v[0] = 1.5;
-  const Eigen::MatrixXd K = dense(*s, a, {t});
+  const Eigen::MatrixXd K = dense_tangent(*s->dofs, a, {t});
   const BlockMatrix original = a;
   tsm::solver::LinearSolver solver;
   solver.analyze(*s->dofs, a);

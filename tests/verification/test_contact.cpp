@@ -12,6 +12,7 @@
 
 #include <Eigen/Dense>
 
+#include "support/dense.hpp"
 #include "support/models.hpp"
 #include "tsmframe/assembly/global_system.hpp"
 #include "tsmframe/contact/contact_tracker.hpp"
@@ -499,22 +500,8 @@ TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
     // Dense K_ff: block part (mirrored; the contact element's symmetric part is in it, the post
     // node joined to the beam's nodes by a pattern the contact added) plus the sliding term.
     const int n = dofs.free_count();
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
-    const auto& T = system.tangent();
-    for (int col = 0; col < T.size; ++col)
-      for (int p = T.column[col]; p < T.column[col + 1]; ++p)
-        for (int a = 0; a < 3; ++a)
-          for (int d = 0; d < 3; ++d) {
-            const int r = dofs.equation(3 * dofs.block_node(T.row[p]) + a), q = dofs.equation(3 * dofs.block_node(col) + d);
-            if (r < 0 || q < 0) continue;
-            K(r, q) += T.value[p](a, d);
-            if (T.row[p] != col) K(q, r) += T.value[p](a, d);
-          }
     ASSERT_EQ(system.contact_rank_one().size(), 1u);  // the sliding term, kept apart for Woodbury
-    for (const auto& t : system.contact_rank_one())
-      for (int a = 0; a < 9; ++a)
-        for (int d = 0; d < 9; ++d)
-          if (t.equation[a] >= 0 && t.equation[d] >= 0) K(t.equation[a], t.equation[d]) += t.u[a] * t.v[d];
+    const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent(), system.contact_rank_one());
     Eigen::MatrixXd fd(n, n);
     for (int q = 0; q < n; ++q) {
       Eigen::VectorXd plus = D, minus = D;

@@ -12,6 +12,16 @@ namespace {
 
 using namespace tsm::test;
 
+void expect_bit_identical(const tsm::solver::RunResult& one, const tsm::solver::RunResult& two) {
+  ASSERT_EQ(one.steps.size(), two.steps.size());
+  for (size_t s = 0; s < one.steps.size(); ++s) {
+    EXPECT_EQ(one.steps[s].iterations, two.steps[s].iterations);
+    EXPECT_EQ(one.steps[s].residual_norms, two.steps[s].residual_norms);
+    EXPECT_TRUE((one.steps[s].displacements.array() == two.steps[s].displacements.array()).all()) << "step " << s;
+    EXPECT_TRUE((one.steps[s].element_forces.array() == two.steps[s].element_forces.array()).all()) << "step " << s;
+  }
+}
+
 TEST(Threads, OneAndTwoThreadsGiveBitIdenticalResults) {
   // Big enough for the parallel paths (colour groups of ≥ 4096 elements; subtrees of 64 … n/16
   // blocks, here one per chain): 3 cantilevers of 3000.
@@ -34,13 +44,7 @@ TEST(Threads, OneAndTwoThreadsGiveBitIdenticalResults) {
   omp_set_num_threads(2);
   const auto two = tsm::solver::run_analysis(model);
   ASSERT_EQ(one.status, tsm::solver::Status::converged) << one.message;
-  ASSERT_EQ(one.steps.size(), two.steps.size());
-  for (size_t s = 0; s < one.steps.size(); ++s) {
-    EXPECT_EQ(one.steps[s].iterations, two.steps[s].iterations);
-    EXPECT_EQ(one.steps[s].residual_norms, two.steps[s].residual_norms);
-    EXPECT_TRUE((one.steps[s].displacements.array() == two.steps[s].displacements.array()).all()) << "step " << s;
-    EXPECT_TRUE((one.steps[s].element_forces.array() == two.steps[s].element_forces.array()).all()) << "step " << s;
-  }
+  expect_bit_identical(one, two);
   // And the answer is the right one: the first cantilever is bent by M to the arc of angle M L/EI.
   const Eigen::Vector3d tip = node_displacement(model, one.steps.back(), 2);
   EXPECT_NEAR(tip[2], M * 10.0 / (2e11 * 1e-5), 1e-8);
@@ -76,14 +80,8 @@ TEST(Threads, AGridFrameGivesBitIdenticalResults) {
   const auto two = tsm::solver::run_analysis(model);
   omp_set_num_threads(omp_get_num_procs());
   ASSERT_EQ(one.status, tsm::solver::Status::converged) << one.message;
-  ASSERT_EQ(one.steps.size(), two.steps.size());
-  for (size_t s = 0; s < one.steps.size(); ++s) {
-    EXPECT_EQ(one.steps[s].iterations, two.steps[s].iterations);
-    EXPECT_EQ(one.steps[s].residual_norms, two.steps[s].residual_norms);
-    EXPECT_TRUE((one.steps[s].displacements.array() == two.steps[s].displacements.array()).all()) << "step " << s;
-    EXPECT_TRUE((one.steps[s].element_forces.array() == two.steps[s].element_forces.array()).all()) << "step " << s;
-    expect_global_equilibrium(model, one.steps[s]);
-  }
+  expect_bit_identical(one, two);
+  for (const auto& step : one.steps) expect_global_equilibrium(model, step);
   EXPECT_GT(node_displacement(model, one.steps.back(), id(bays, bays))[0], 0.1);  // it sways far
 }
 

@@ -10,8 +10,8 @@
 namespace tsm::assembly {
 namespace {
 
-std::array<int, 6> element_dofs(const Element& e) {
-  const int i = dofs_per_node * e.start, j = dofs_per_node * e.end;
+std::array<int, 6> element_dofs(int start, int end) {
+  const int i = dofs_per_node * start, j = dofs_per_node * end;
   return {i, i + 1, i + 2, j, j + 1, j + 2};
 }
 
@@ -162,8 +162,7 @@ void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
                                     Evaluation& out) {
   if (replaced_[k]) return;  // a contact element stands in for it
   const ElementRecord& slot = records_[k];
-  const int i = dofs_per_node * slot.start, j = dofs_per_node * slot.end;
-  const std::array<int, 6> g{i, i + 1, i + 2, j, j + 1, j + 2};
+  const auto g = element_dofs(slot.start, slot.end);
   element::Vector6 d;
   for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
   const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0.matrix(), d, previous_rotations[k], with_tangent);
@@ -277,7 +276,7 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
   double force = 0.0, moment = 0.0;
   for (size_t k = 0; k < model_.elements.size(); ++k) {
     if (replaced[k]) continue;
-    const auto g = element_dofs(model_.elements[k]);
+    const auto g = element_dofs(records_[k].start, records_[k].end);
     element::Vector6 d;
     for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
     const element::Matrix3 k0 = records_[k].k0.matrix();

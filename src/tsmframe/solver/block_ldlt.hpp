@@ -47,7 +47,6 @@ class BlockLDLT {
   /// Subtrees factorised (and solved) as parallel tasks, and the rows above them.
   int task_count() const { return static_cast<int>(task_start_.size()) - 1; }
   int rows_above_tasks() const { return static_cast<int>(top_rows_.size()); }
-  bool rows_above_in_parallel() const { return parallel_top_; }
 
  private:
   int size_ = 0;

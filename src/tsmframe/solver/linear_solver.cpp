@@ -94,11 +94,6 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& rhs) const {
   return x;
 }
 
-void LinearSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const {
-  x = rhs;
-  solve_in_place(x);
-}
-
 void LinearSolver::solve_in_place(Eigen::VectorXd& x) const {
   if (general_) {
     const Eigen::VectorXd rhs = x;

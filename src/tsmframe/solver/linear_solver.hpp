@@ -34,8 +34,6 @@ class LinearSolver {
   bool factorize(BlockMatrix& matrix, const std::vector<RankOne>& rank_one = {});
   /// Solves with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
-  /// The same into `x` (resized if needed; may not alias `rhs`): no allocation per solve.
-  void solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const;
   /// Solves in place: `x` holds the right-hand side and receives the solution.
   void solve_in_place(Eigen::VectorXd& x) const;
 

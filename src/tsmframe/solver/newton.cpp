@@ -200,6 +200,13 @@ void NewtonSolver::load_direction(Eigen::VectorXd& out) const {
   if (eval_.prescribed_coupling.size() > 0) out -= eval_.prescribed_coupling;
 }
 
+void NewtonSolver::solve_along_load_and_residual() {
+  load_direction(along_load_);
+  solver_.solve_in_place(along_load_);
+  along_residual_ = residual_;
+  solver_.solve_in_place(along_residual_);
+}
+
 void NewtonSolver::add_load_direction(double dlambda, Eigen::VectorXd& v) const {
   const assembly::DofMap& dofs = system_.dofs();
   const double* P = system_.model().reference_load.data();
@@ -309,10 +316,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       // δD = δD_R + δλ δD_F; δλ from the arc-length constraint (Crisfield's cylindrical form).
       const Eigen::VectorXd& a = along_load_;
       const Eigen::VectorXd& b = along_residual_;
-      load_direction(along_load_);
-      solver_.solve_in_place(along_load_);
-      along_residual_ = R;
-      solver_.solve_in_place(along_residual_);
+      solve_along_load_and_residual();
       const double P2 = prescribed_squared_, s2 = constraint.arc_length * constraint.arc_length;
       const double qa = arc_dot(a, a) + P2;
       if (!(qa > 0.0) || !std::isfinite(qa)) {
@@ -352,10 +356,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     } else {
       const Eigen::VectorXd& a = along_load_;
       const Eigen::VectorXd& b = along_residual_;
-      load_direction(along_load_);
-      solver_.solve_in_place(along_load_);
-      along_residual_ = R;
-      solver_.solve_in_place(along_residual_);
+      solve_along_load_and_residual();
       const int k = constraint.equation;
       if (!(std::abs(a[k]) > 0.0) || !std::isfinite(a[k])) {
         out.status = Status::singular;

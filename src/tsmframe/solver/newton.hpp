@@ -98,6 +98,9 @@ class NewtonSolver {
   std::array<double, 2> kind_norms(const Eigen::VectorXd& free_vector) const;  // 2-norms: forces, moments
   /// F_dir = F_ref − K_fp D_p,ref over the free equations (dR/dλ), into `out`.
   void load_direction(Eigen::VectorXd& out) const;
+  /// K_ff⁻¹ F_dir into along_load_ and K_ff⁻¹ R into along_residual_ (arc-length and
+  /// displacement control: δD = δD_R + δλ δD_F).
+  void solve_along_load_and_residual();
   /// v += Δλ F_dir, without forming F_dir.
   void add_load_direction(double dlambda, Eigen::VectorXd& v) const;
   double relative_norm(const std::array<double, 2>& norms, const ResidualScale& scale) const;
