@@ -51,6 +51,9 @@ DofMap::DofMap(const Model& model) : equation_(model.dof_count(), -1), node_bloc
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
   Eigen::AMDOrdering<int>()(pattern, order);
 
+  free_dofs_.reserve(model.dof_count());  // exact sizes below: no growth by doubling
+  block_node_.reserve(n);
+
   for (int k = 0; k < n; ++k) {
     const int node = order.indices()[k];
     bool free = false;
@@ -65,6 +68,8 @@ DofMap::DofMap(const Model& model) : equation_(model.dof_count(), -1), node_bloc
       free_dofs_.push_back(dof);
     }
   }
+  free_dofs_.shrink_to_fit();
+  block_node_.shrink_to_fit();
 }
 
 }  // namespace tsm::assembly

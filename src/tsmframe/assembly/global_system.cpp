@@ -26,7 +26,8 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
     ElementRecord& r = records_[k];
     r.start = e.start;
     r.end = e.end;
-    r.delta0 = chord.end - chord.start;
+    r.delta0[0] = chord.end.x() - chord.start.x();
+    r.delta0[1] = chord.end.y() - chord.start.y();
     r.length = chord.length;
     r.angle = chord.angle;
     r.k0 = element::basic_stiffness_terms(e.section, chord.length);
@@ -166,7 +167,6 @@ void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
   element::Vector6 d;
   for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
   const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0.matrix(), d, previous_rotations[k], with_tangent);
-  out.element_forces.segment<3>(3 * k) = r.forces;
   out.chord_rotations[k] = r.chord.rotation;
   for (int a = 0; a < 6; ++a) out.internal_force[g[a]] += r.nodal_forces[a];
   if (!with_tangent) return;
@@ -199,7 +199,6 @@ void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen
   contact::Vector9 d;
   for (int k = 0; k < 9; ++k) d[k] = displacements[g[k]];
   const contact::ContactResponse r = contact::contact_response(a.data, d, previous_rotations[a.element], with_tangent);
-  out.element_forces.segment<3>(3 * a.element) = r.forces.head<3>();
   out.chord_rotations[a.element] = r.chord.rotation;
   out.contacts.push_back({r.alpha, r.forces[3]});
   for (int k = 0; k < 9; ++k) out.internal_force[g[k]] += r.nodal_forces[k];
@@ -239,7 +238,6 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
   const Eigen::Index dof_count = out.internal_force.size();
 #pragma omp parallel for schedule(static) if (dof_count > 200000)
   for (Eigen::Index dof = 0; dof < dof_count; ++dof) force[dof] = 0.0;
-  out.element_forces.resize(3 * n_elements);
   out.chord_rotations.resize(n_elements);
   if (has_prescribed_) out.prescribed_coupling.setZero(dofs_.free_count());
   else out.prescribed_coupling.resize(0);  // nothing prescribed moves: no coupling to carry
@@ -265,6 +263,31 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
     replaced_[a.element] = 0;
   }
   if (with_tangent) mask_constrained_dofs();
+}
+
+Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+                                             const std::vector<contact::ActiveContact>& contacts) const {
+  const int n_elements = static_cast<int>(records_.size());
+  Eigen::VectorXd forces(3 * n_elements);
+#pragma omp parallel for schedule(static) if (n_elements > 65536)
+  for (int k = 0; k < n_elements; ++k) {
+    const ElementRecord& slot = records_[k];
+    const auto g = element_dofs(slot.start, slot.end);
+    element::Vector6 d;
+    for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
+    forces.segment<3>(3 * k) = element::beam_response(slot.chord(), slot.k0.matrix(), d, rotations[k], false).forces;
+  }
+  for (const contact::ActiveContact& a : contacts) {
+    const Element& e = model_.elements[a.element];
+    contact::Vector9 d;
+    for (int c = 0; c < dofs_per_node; ++c) {
+      d[c] = displacements[dofs_per_node * e.start + c];
+      d[3 + c] = displacements[dofs_per_node * e.end + c];
+      d[6 + c] = displacements[dofs_per_node * a.node + c];
+    }
+    forces.segment<3>(3 * a.element) = contact::contact_response(a.data, d, rotations[a.element], false).forces.head<3>();
+  }
+  return forces;
 }
 
 RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,

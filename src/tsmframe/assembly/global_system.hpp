@@ -23,7 +23,6 @@ using solver::BlockMatrix;
 /// What one evaluation of the structure yields.
 struct Evaluation {
   Eigen::VectorXd internal_force;        ///< F = Σ J S over all dofs
-  Eigen::VectorXd element_forces;        ///< (N, M_i, M_j) per element, stacked
   std::vector<double> chord_rotations;   ///< β per element at this state
   /// K_fp · D_p,ref over the free equations: how the tangent couples free dofs to the
   /// prescribed displacements (for the tangent predictor, FORMULATION §4). Empty when the model
@@ -60,6 +59,11 @@ class GlobalSystem {
   /// The same storage, for the linear solver to factorise in place: after that it holds the
   /// factor, not K_ff, until the next evaluation with tangent.
   BlockMatrix& tangent_for_factorisation() { return tangent_; }
+  /// Element forces (N, M_i, M_j) per element, stacked, at a state (chord rotations of that
+  /// state's evaluation; a contact's element gives its contact element's): a pass of its own,
+  /// for the results only — the Newton iterations never store them.
+  Eigen::VectorXd element_forces(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+                                 const std::vector<contact::ActiveContact>& contacts) const;
   /// The rounding floor at a state (chord rotations of that state's evaluation): a pass over the
   /// elements of its own, asked for only when Newton stagnates.
   RoundingFloor rounding_floor(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
@@ -84,18 +88,22 @@ class GlobalSystem {
 
   const Model& model_;
   const DofMap& dofs_;
-  /// What the element loop reads of one element, in one record (one stream through memory).
+  /// What the element loop reads of one element, in one record (one stream through memory):
+  /// 80 bytes, no alignment padding (the chord's Δ0 is kept as two plain doubles).
   struct ElementRecord {
     int start = 0, end = 0;  ///< node indices
     /// Entries of its (i,i), (j,j) and (i,j) blocks in tangent_ (−1: node not a block). The
     /// (i,j) entry is stored as K_ji = K_ijᵀ when j's block is the larger (lower triangle).
     int ii = -1, jj = -1, ij = -1;
     bool transposed = false;
-    element::Vector2 delta0;            ///< X_j − X_i
+    double delta0[2] = {0.0, 0.0};      ///< X_j − X_i
     double length = 0.0, angle = 0.0;   ///< l0, φ0
     element::BasicStiffness k0;         ///< Eq. 3 / 4, fixed
-    element::InitialChord chord() const { return {element::Vector2::Zero(), delta0, length, angle}; }
+    element::InitialChord chord() const {
+      return {element::Vector2::Zero(), element::Vector2(delta0[0], delta0[1]), length, angle};
+    }
   };
+  static_assert(sizeof(ElementRecord) == 80, "no padding: the element loop streams these records");
   std::vector<ElementRecord> records_;
   BlockMatrix tangent_;
   std::vector<unsigned char> block_mask_;  ///< per block: bit d set if dof d of its node is constrained

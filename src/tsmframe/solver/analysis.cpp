@@ -65,7 +65,7 @@ class Recorder {
       previous.displacements = previous.element_forces = previous.reactions = Eigen::VectorXd();
     }
     record.displacements = state.displacements;
-    record.element_forces = newton_.element_forces();
+    record.element_forces = newton_.element_forces(state);
     record.reactions = newton_.reactions(state.load_factor);
     record.contacts = newton_.contact_points(state);
     last_with_state_ = static_cast<int>(result_.steps.size());

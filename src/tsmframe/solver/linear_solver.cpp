@@ -12,6 +12,7 @@ void LinearSolver::analyze(const assembly::DofMap& dofs, const BlockMatrix& matr
   padded_size_ = dofs_per_node * dofs.block_count();
   padding_needed_ = padded_size_ != dofs.free_count();
   for (int eq = 0; eq < dofs.free_count() && !padding_needed_; ++eq) padding_needed_ = padded_[eq] != eq;
+  if (!padding_needed_) std::vector<int>().swap(padded_);  // the identity: not kept
   ldlt_.analyze(matrix);
 }
 
@@ -30,7 +31,7 @@ bool LinearSolver::factorize(BlockMatrix& matrix, const std::vector<RankOne>& ra
     return factorize_general(matrix, rank_one);
   }
   if (rank_one.empty()) return true;
-  const Eigen::Index n = static_cast<Eigen::Index>(padded_.size()), q = static_cast<Eigen::Index>(rank_one.size());
+  const Eigen::Index n = static_cast<Eigen::Index>(dofs_->free_count()), q = static_cast<Eigen::Index>(rank_one.size());
   woodbury_z_.resize(n, q);
   woodbury_v_.setZero(n, q);
   for (Eigen::Index k = 0; k < q; ++k) {

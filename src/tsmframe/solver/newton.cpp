@@ -52,10 +52,8 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
     is_moment_[eq] = dofs.dof(eq) % dofs_per_node == rz ? 1 : 0;
   }
   const Model& model = system.model();
-  constrained_.resize(model.dof_count());
   for (int dof = 0; dof < model.dof_count(); ++dof) {
-    constrained_[dof] = model.constrained[dof] ? 1 : 0;
-    if (constrained_[dof]) constrained_dofs_.push_back(dof);
+    if (model.constrained[dof]) constrained_dofs_.push_back(dof);
     if (dof % dofs_per_node != rz) prescribed_squared_ += model.reference_prescribed[dof] * model.reference_prescribed[dof];
   }
   solver_.analyze(system.dofs(), system.tangent());
@@ -112,6 +110,12 @@ std::vector<ContactPoint> NewtonSolver::contact_points(const State& state) const
     points.push_back(p);
   }
   return points;
+}
+
+Eigen::VectorXd NewtonSolver::element_forces(const State& state) const {
+  const std::vector<contact::ActiveContact> active =
+      contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
+  return system_.element_forces(state.displacements, state.chord_rotations, active);
 }
 
 Eigen::VectorXd NewtonSolver::reactions(double load_factor) const {
@@ -305,10 +309,11 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     // dR/dλ = F_dir = F_ref − K_fp D_p,ref: how the load factor drives the free dofs.
     double dlambda = 0.0;
     std::array<double, 2> drive{};  // norms of R + Δλ F_dir at iterate 0
-    Eigen::VectorXd& correction = correction_;
+    // Under load control R is not needed after the solve (the next iterate recomputes it): the
+    // correction overwrites it, one vector of the model's size less.
+    Eigen::VectorXd& correction = constraint.kind == PathConstraint::Kind::load_increment ? residual_ : correction_;
     if (constraint.kind == PathConstraint::Kind::load_increment) {
       if (it == 1) dlambda = constraint.load_increment;
-      correction = R;
       if (dlambda != 0.0) add_load_direction(dlambda, correction);
       if (it == 1) drive = kind_norms(correction);
       solver_.solve_in_place(correction);

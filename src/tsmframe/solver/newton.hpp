@@ -70,8 +70,9 @@ class NewtonSolver {
 
   /// The contacts of `state` as reported (element, α, force).
   std::vector<ContactPoint> contact_points(const State& state) const;
-  /// Element forces (N, M_i, M_j) of the last evaluation.
-  const Eigen::VectorXd& element_forces() const { return eval_.element_forces; }
+  /// Element forces (N, M_i, M_j) at `state` (a converged state: its chord rotations are its
+  /// evaluation's).
+  Eigen::VectorXd element_forces(const State& state) const;
   /// Support reactions of the last evaluation: F − λ F_ref on constrained dofs, 0 elsewhere.
   Eigen::VectorXd reactions(double load_factor) const;
 
@@ -122,10 +123,9 @@ class NewtonSolver {
   LinearSolver solver_;
   assembly::Evaluation eval_;
   // Workspace of step(), kept between iterations and steps: no allocation per iteration. Under
-  // load control only residual_ and correction_ are used.
+  // load control only residual_ is used (the correction overwrites it).
   Eigen::VectorXd residual_, correction_, along_load_, along_residual_, start_, increment_, trial_, drive_;
   std::vector<unsigned char> is_moment_;    ///< per free equation: 1 for a rotation dof
-  std::vector<unsigned char> constrained_;  ///< per dof: fixed or prescribed
   std::vector<int> constrained_dofs_;
   double prescribed_squared_ = 0.0;  ///< ‖D_p,ref‖² over prescribed translations
   int analysed_pattern_ = -1;        ///< pattern version the linear solver has analysed
