@@ -47,7 +47,6 @@ inline tsm::Model lattice(int bays, int divisions, double force) {
     for (int x = 0; x < n; ++x) member(joint(x, y), joint(x, y + 1));
   m.constrained.assign(m.dof_count(), false);
   m.reference_load = Eigen::VectorXd::Zero(m.dof_count());
-  m.reference_prescribed = Eigen::VectorXd::Zero(m.dof_count());
   for (int x = 0; x < n; ++x) {
     for (int d = 0; d < 3; ++d) m.constrained[3 * joint(x, 0) + d] = true;
     m.reference_load[3 * joint(x, bays)] = force;

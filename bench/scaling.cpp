@@ -43,7 +43,6 @@ tsm::Model rolled_cantilevers(int chains, int per_chain, double turns, int steps
     m.constrained[root] = m.constrained[root + 1] = m.constrained[root + 2] = true;
     m.reference_load[tip + 2] = turns * 2.0 * std::numbers::pi * E * I / L;
   }
-  m.reference_prescribed = Eigen::VectorXd::Zero(m.dof_count());
   m.analysis.control.steps = steps;
   m.analysis.max_iterations = 200;
   m.analysis.output.kind = tsm::OutputSelection::Kind::last;

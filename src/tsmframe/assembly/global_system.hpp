@@ -47,7 +47,8 @@ class GlobalSystem {
   const DofMap& dofs() const { return dofs_; }
 
   /// Evaluates every element at `displacements` (all dofs), continuing each chord rotation from
-  /// `previous_rotations`. With `with_tangent`, the tangent (see tangent()) is overwritten.
+  /// `previous_rotations` (which may be out.chord_rotations itself: rotations continued in
+  /// place). With `with_tangent`, the tangent (see tangent()) is overwritten.
   /// Each active contact replaces its beam element by the three-node contact element.
   void evaluate(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                 bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts = {});

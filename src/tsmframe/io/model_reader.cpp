@@ -161,6 +161,7 @@ class Reader {
     read_contacts();
     read_analysis();
     if (auto mechanism = find_mechanism(model_)) fail("supports", *mechanism);
+    if (!model_.reference_prescribed.any()) model_.reference_prescribed.resize(0);  // nothing prescribed moves
     return std::move(model_);
   }
 
@@ -544,7 +545,7 @@ class Reader {
         bool loaded = false;
         for (int dof = 0; dof < dofs_per_node; ++dof) {
           const int g = dofs_per_node * k + dof;
-          loaded = loaded || model_.reference_load[g] != 0.0 || model_.reference_prescribed[g] != 0.0;
+          loaded = loaded || model_.reference_load[g] != 0.0 || model_.prescribed(g) != 0.0;
         }
         if (loaded) a.monitor.push_back(k);
       }

@@ -93,7 +93,8 @@ struct Model {
   std::vector<bool> constrained;
   /// Per dof: reference load, multiplied by the load factor λ.
   Eigen::VectorXd reference_load;
-  /// Per dof: prescribed displacement reached at λ = 1 (zero where none).
+  /// Per dof: prescribed displacement reached at λ = 1 (zero where none); empty when no
+  /// displacement is prescribed (a model's worth of zeros saved). Read it through prescribed().
   Eigen::VectorXd reference_prescribed;
   std::vector<ContactSpec> contacts;
   AnalysisSettings analysis;
@@ -102,6 +103,8 @@ struct Model {
 
   int node_count() const { return static_cast<int>(nodes.size()); }
   int dof_count() const { return dofs_per_node * node_count(); }
+  /// Prescribed displacement of a dof at λ = 1 (0 when reference_prescribed is empty).
+  double prescribed(int dof) const { return reference_prescribed.size() > 0 ? reference_prescribed[dof] : 0.0; }
   /// Index of the node with this id, or −1.
   int node_index(int id) const;
 };

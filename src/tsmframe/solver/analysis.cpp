@@ -73,6 +73,12 @@ class Recorder {
     if (observer_) observer_(result_.steps.back());
   }
 
+  /// Displacements of the newest converged step, held in its record until a later step
+  /// converges (null before the first converged step).
+  const Eigen::VectorXd* newest_displacements() const {
+    return last_with_state_ >= 0 ? &result_.steps[last_with_state_].displacements : nullptr;
+  }
+
   /// Replaces the newest converged step (arc-length landing exactly on its `until`).
   void replace_last(StepRecord record, const NewtonOutcome& outcome, const State& state) {
     record.step = result_.steps.back().step;
@@ -97,6 +103,35 @@ class Recorder {
   const StepObserver& observer_;
   RunResult& result_;
   int last_with_state_ = -1;
+};
+
+/// The start of the step being tried under load or displacement control, to go back to when it
+/// fails. Its displacements are the newest converged step's, which that step's record holds
+/// until a later step converges: only λ, the rotations and the contacts are copied (a vector of
+/// the model's size less at 10⁵ elements and up). Before the first step converges, the
+/// displacements are copied too.
+class StepStart {
+ public:
+  void take(const State& state, const Eigen::VectorXd* recorded) {
+    recorded_ = recorded;
+    if (recorded) own_.displacements.resize(0);
+    else own_.displacements = state.displacements;
+    own_.load_factor = state.load_factor;
+    own_.chord_rotations = state.chord_rotations;
+    own_.contacts = state.contacts;
+  }
+  /// Valid until a step converges (the record may then give up its displacements).
+  void restore(State& state) const {
+    state.displacements = recorded_ ? *recorded_ : own_.displacements;
+    state.load_factor = own_.load_factor;
+    state.chord_rotations = own_.chord_rotations;
+    state.contacts = own_.contacts;
+  }
+  double load_factor() const { return own_.load_factor; }
+
+ private:
+  State own_;
+  const Eigen::VectorXd* recorded_ = nullptr;
 };
 
 /// Limit points: converged steps whose λ is a strict local extremum of the path.
@@ -158,7 +193,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   RunResult result;
   Recorder recorder(model, newton, observer, result);
 
-  State saved;  // the start of the step being tried (reused: no allocation per step)
+  StepStart saved;  // reused: no allocation per step
   while (grid_index < grid_steps) {
     const double next_grid = static_cast<double>(grid_index + 1) / control.steps;
     double dt = std::min(increment, next_grid - t);
@@ -168,7 +203,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     if (by_displacement) constraint.target = value(t_end) * control.target;
     else constraint.load_increment = value(t_end) - state.load_factor;
 
-    saved = state;
+    saved.take(state, recorder.newest_displacements());
     const NewtonOutcome outcome = newton.step(constraint, state);
     StepRecord record = recorder.start(outcome, halvings);
     record.increment = (value(t_end) - value(t)) * (by_displacement ? control.target : 1.0);
@@ -182,7 +217,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
       continue;
     }
 
-    state = saved;
+    saved.restore(state);
     // The smallest increment cutback may try: max_cutbacks halvings of the nominal step. Without
     // it, steps that keep converging ever closer to a barrier would never end.
     const double smallest = std::ldexp(nominal, -settings.max_cutbacks);
@@ -192,7 +227,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
       newton.reset(state);
       continue;
     }
-    record.load_factor = by_displacement ? saved.load_factor : value(t_end);
+    record.load_factor = by_displacement ? saved.load_factor() : value(t_end);
     result.status = settings.cutback ? Status::cutback_limit : outcome.status;
     const double from = value(t) * (by_displacement ? control.target : 1.0);
     const double to = value(t_end) * (by_displacement ? control.target : 1.0);

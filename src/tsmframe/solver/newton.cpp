@@ -54,7 +54,7 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
   const Model& model = system.model();
   for (int dof = 0; dof < model.dof_count(); ++dof) {
     if (model.constrained[dof]) constrained_dofs_.push_back(dof);
-    if (dof % dofs_per_node != rz) prescribed_squared_ += model.reference_prescribed[dof] * model.reference_prescribed[dof];
+    if (dof % dofs_per_node != rz) prescribed_squared_ += model.prescribed(dof) * model.prescribed(dof);
   }
   solver_.analyze(system.dofs(), system.tangent());
   analysed_pattern_ = system.pattern_version();
@@ -62,14 +62,16 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
 
 bool NewtonSolver::evaluate(State& state) {
   const Model& model = system_.model();
-  for (int dof : constrained_dofs_) state.displacements[dof] = state.load_factor * model.reference_prescribed[dof];
+  for (int dof : constrained_dofs_) state.displacements[dof] = state.load_factor * model.prescribed(dof);
   constexpr int max_passes = 4;  // contact changes settled per iterate before Newton goes on
   bool changed = false;
   for (int pass = 0;; ++pass) {
     const std::vector<contact::ActiveContact> active =
         contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
-    system_.evaluate(state.displacements, state.chord_rotations, true, eval_, active);
-    std::swap(state.chord_rotations, eval_.chord_rotations);  // eval_'s copy is rewritten next time
+    // The rotations are continued in place (one vector, not two): lent to the evaluation.
+    std::swap(state.chord_rotations, eval_.chord_rotations);
+    system_.evaluate(state.displacements, eval_.chord_rotations, true, eval_, active);
+    std::swap(state.chord_rotations, eval_.chord_rotations);
     if (!contacts_) return false;
     if (pass == max_passes) break;
     const contact::ContactChanges changes =
