@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/assembly/global_system.hpp"
@@ -128,6 +131,9 @@ class StepStart {
     state.contacts = own_.contacts;
   }
   double load_factor() const { return own_.load_factor; }
+  /// The step converged: its start is not needed any more (its own copy goes before the step is
+  /// recorded, so that the two never coexist).
+  void release() { own_.displacements.resize(0); }
 
  private:
   State own_;
@@ -162,6 +168,12 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   assembly::GlobalSystem system(model, dofs);
   const contact::ContactTracker contacts(model);
   NewtonSolver newton(system, {settings.tolerance, settings.max_iterations}, &contacts);
+#if defined(__GLIBC__)
+  // The set-up's temporaries (node graph, ordering, fill, tasks) are freed by now but scattered
+  // through the heap, where the run's vectors do not fill them: hand their pages back (at 10⁵
+  // elements ~3 MB of the peak resident memory, once per run).
+  malloc_trim(0);
+#endif
 
   State state{Eigen::VectorXd::Zero(model.dof_count()), 0.0,
               std::vector<double>(model.elements.size(), 0.0), contacts.initial_states()};
@@ -213,6 +225,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
       if (reaches_grid) ++grid_index;
       halvings = 0;
       increment = std::min(2.0 * increment, nominal);
+      saved.release();
       recorder.converged(std::move(record), outcome, state);
       continue;
     }

@@ -114,7 +114,6 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   row_start_ = rows.start;
   row_column_ = rows.column;
   row_position_ = rows.position;
-  fill_.resize(n);
   slot_.assign(n, -1);
 
   // Tasks: the largest subtrees of at most `limit` blocks (and at least 64). The limit is the
@@ -205,11 +204,10 @@ bool BlockLDLT::factorize_row(BlockMatrix& a, int k) {
     d11 -= lki.row(1).dot(z.row(1));
     d12 -= lki.row(1).dot(z.row(2));
     d22 -= lki.row(2).dot(z.row(2));
-    // Column i's rows r (i < r < k) formed so far update the running sums (k, r), streaming
-    // down the column.
-    const int end = fill_[i];
+    // Column i's rows r (i < r < k) update the running sums (k, r), streaming down the column:
+    // they are the entries above (k, i) itself (rows ascending), all formed before row k.
+    const int end = row_position_[t];
     for (int p = a.column[i] + 1; p < end; ++p) a.value[slot_[a.row[p]]].noalias() -= z * a.value[p].transpose();
-    fill_[i] = end + 1;
     z = lki;
   }
   // D_k⁻¹ by cofactors of the symmetric block.
@@ -227,7 +225,6 @@ bool BlockLDLT::factorize_row(BlockMatrix& a, int k) {
 
 bool BlockLDLT::factorize(BlockMatrix& a) {
   factor_ = &a;
-  for (int i = 0; i < size_; ++i) fill_[i] = a.column[i] + 1;  // below the diagonal
   // Rows of one subtree touch only that subtree's columns (their patterns are descendants):
   // the tasks run concurrently, each in ascending order.
   const int tasks = static_cast<int>(task_start_.size()) - 1;

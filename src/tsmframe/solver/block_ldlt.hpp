@@ -57,7 +57,6 @@ class BlockLDLT {
   std::vector<int> row_start_;
   std::vector<int> row_position_;
   std::vector<int> row_column_;  ///< i of each entry
-  std::vector<int> fill_;        ///< per column during factorize: its next entry to be formed
   std::vector<int> slot_;        ///< during row k: column i → index in value of the entry (k, i)
   // Parallel factorisation: disjoint subtrees of the elimination tree touch disjoint rows and
   // columns, so they are factorised concurrently; the rows above them follow level by level, a
