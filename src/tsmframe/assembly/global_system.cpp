@@ -85,6 +85,7 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
   for (int ch = 0; ch < n_chunks; ++ch) colour_chunks_[fill[colour[ch]]++] = ch;
 
   replaced_.assign(n_elements, 0);
+  mark_first_writers();
   has_prescribed_ = model.reference_prescribed.size() > 0 && model.reference_prescribed.any();
 }
 
@@ -129,6 +130,36 @@ void GlobalSystem::build_pattern() {
   ++pattern_version_;
 }
 
+void GlobalSystem::mark_first_writers() {
+  // The loop's order: colour groups in turn, a group's chunks by index, a chunk's elements in
+  // order. Chunks of one group share no node, so this is also the order in which each block and
+  // each node is written, whatever the number of threads.
+  std::vector<char> entry_written(tangent_.value.size(), 0), node_written(model_.node_count(), 0);
+  for (size_t c = 0; c + 1 < colour_start_.size(); ++c)
+    for (int idx = colour_start_[c]; idx < colour_start_[c + 1]; ++idx) {
+      const int chunk = colour_chunks_[idx];
+      for (int q = chunk_start_[chunk]; q < chunk_start_[chunk + 1]; ++q) {
+        ElementRecord& r = records_[element_order_[q]];
+        auto first = [](int index, std::vector<char>& written) {
+          if (index < 0 || written[index]) return false;
+          written[index] = 1;
+          return true;
+        };
+        r.first_ii = first(r.ii, entry_written);
+        r.first_jj = first(r.jj, entry_written);
+        r.first_ij = first(r.ij, entry_written);
+        r.first_i = first(r.start, node_written);
+        r.first_j = first(r.end, node_written);
+      }
+    }
+  unwritten_entries_.clear();
+  for (size_t p = 0; p < entry_written.size(); ++p)
+    if (!entry_written[p]) unwritten_entries_.push_back(static_cast<int>(p));
+  unwritten_nodes_.clear();
+  for (size_t k = 0; k < node_written.size(); ++k)
+    if (!node_written[k]) unwritten_nodes_.push_back(static_cast<int>(k));
+}
+
 int GlobalSystem::entry(int r, int c) const {
   const auto first = tangent_.row.begin() + tangent_.column[c], last = tangent_.row.begin() + tangent_.column[c + 1];
   const auto it = std::lower_bound(first, last, r);
@@ -147,7 +178,10 @@ void GlobalSystem::ensure_contact_pattern(const std::vector<contact::ActiveConta
       missing = true;
     }
   }
-  if (missing) build_pattern();
+  if (missing) {
+    build_pattern();
+    mark_first_writers();
+  }
 }
 
 void GlobalSystem::add_block(int a, int b, const Eigen::Matrix3d& value) {
@@ -161,20 +195,39 @@ void GlobalSystem::add_block(int a, int b, const Eigen::Matrix3d& value) {
 void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
                                     const std::vector<double>& previous_rotations, bool with_tangent,
                                     Evaluation& out) {
-  if (replaced_[k]) return;  // a contact element stands in for it
   const ElementRecord& slot = records_[k];
   const auto g = element_dofs(slot.start, slot.end);
+  double* force = out.internal_force.data();
+  solver::Block* value = tangent_.value.data();
+  if (replaced_[k]) {  // a contact element stands in for it: it only clears what it would have set first
+    for (int a = 0; a < 3; ++a) {
+      if (slot.first_i) force[g[a]] = 0.0;
+      if (slot.first_j) force[g[3 + a]] = 0.0;
+    }
+    if (!with_tangent) return;
+    if (slot.first_ii) value[slot.ii].setZero();
+    if (slot.first_jj) value[slot.jj].setZero();
+    if (slot.first_ij) value[slot.ij].setZero();
+    return;
+  }
   element::Vector6 d;
   for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
   const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0.matrix(), d, previous_rotations[k], with_tangent);
   out.chord_rotations[k] = r.chord.rotation;
-  for (int a = 0; a < 6; ++a) out.internal_force[g[a]] += r.nodal_forces[a];
+  for (int a = 0; a < 3; ++a) {
+    force[g[a]] = slot.first_i ? r.nodal_forces[a] : force[g[a]] + r.nodal_forces[a];
+    force[g[3 + a]] = slot.first_j ? r.nodal_forces[3 + a] : force[g[3 + a]] + r.nodal_forces[3 + a];
+  }
   if (!with_tangent) return;
-  if (slot.ii >= 0) tangent_.value[slot.ii] += r.tangent.topLeftCorner<3, 3>();
-  if (slot.jj >= 0) tangent_.value[slot.jj] += r.tangent.bottomRightCorner<3, 3>();
+  auto put = [&](int entry, bool first, const auto& block) {
+    if (first) value[entry] = block;
+    else value[entry] += block;
+  };
+  if (slot.ii >= 0) put(slot.ii, slot.first_ii, r.tangent.topLeftCorner<3, 3>());
+  if (slot.jj >= 0) put(slot.jj, slot.first_jj, r.tangent.bottomRightCorner<3, 3>());
   if (slot.ij >= 0) {
-    if (slot.transposed) tangent_.value[slot.ij] += r.tangent.bottomLeftCorner<3, 3>();
-    else tangent_.value[slot.ij] += r.tangent.topRightCorner<3, 3>();
+    if (slot.transposed) put(slot.ij, slot.first_ij, r.tangent.bottomLeftCorner<3, 3>());
+    else put(slot.ij, slot.first_ij, r.tangent.topRightCorner<3, 3>());
   }
   if (!has_prescribed_) return;
   for (int b = 0; b < 6; ++b) {
@@ -232,20 +285,18 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
   out.contacts.clear();
   if (with_tangent) contact_rank_one_.clear();
   const int n_elements = static_cast<int>(model_.elements.size());
-  // Clearing the big arrays is memory-bound: both cores share it.
+  // The elements' first writers assign (mark_first_writers): only what no element writes is cleared.
   out.internal_force.resize(model_.dof_count());
-  double* force = out.internal_force.data();
-  const Eigen::Index dof_count = out.internal_force.size();
-#pragma omp parallel for schedule(static) if (dof_count > 200000)
-  for (Eigen::Index dof = 0; dof < dof_count; ++dof) force[dof] = 0.0;
+  for (const int node : unwritten_nodes_) out.internal_force.segment<dofs_per_node>(dofs_per_node * node).setZero();
   out.chord_rotations.resize(n_elements);
   if (has_prescribed_) out.prescribed_coupling.setZero(dofs_.free_count());
   else out.prescribed_coupling.resize(0);  // nothing prescribed moves: no coupling to carry
   if (with_tangent) {
-    const Eigen::Index blocks = static_cast<Eigen::Index>(tangent_.value.size());
+    const Eigen::Index unwritten = static_cast<Eigen::Index>(unwritten_entries_.size());
+    const int* entry = unwritten_entries_.data();
     solver::Block* value = tangent_.value.data();
-#pragma omp parallel for schedule(static) if (blocks > 65536)
-    for (Eigen::Index p = 0; p < blocks; ++p) value[p].setZero();
+#pragma omp parallel for schedule(static) if (unwritten > 65536)
+    for (Eigen::Index q = 0; q < unwritten; ++q) value[entry[q]].setZero();
   }
 
   for (size_t c = 0; c + 1 < colour_start_.size(); ++c) {

@@ -80,6 +80,9 @@ class GlobalSystem {
   void evaluate_element(int k, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                         bool with_tangent, Evaluation& out);
   void mask_constrained_dofs();
+  /// Marks the first writers (ElementRecord) and lists what no element writes; after every
+  /// change of the pattern or of the loop's order.
+  void mark_first_writers();
   void build_pattern();
   int entry(int block_row, int block_column) const;  ///< index in tangent_ of a lower entry (row ≥ column), −1 if absent
   void ensure_contact_pattern(const std::vector<contact::ActiveContact>& contacts);
@@ -96,7 +99,11 @@ class GlobalSystem {
     /// Entries of its (i,i), (j,j) and (i,j) blocks in tangent_ (−1: node not a block). The
     /// (i,j) entry is stored as K_ji = K_ijᵀ when j's block is the larger (lower triangle).
     int ii = -1, jj = -1, ij = -1;
-    bool transposed = false;
+    bool transposed : 1 = false;
+    /// First writer (in the loop's fixed order) of its (i,i), (j,j), (i,j) block and of node i's
+    /// and j's internal forces: it assigns instead of adding, so nothing is cleared before the
+    /// loop (0 + a = a exactly: the sums are the same as with clearing).
+    bool first_ii : 1 = false, first_jj : 1 = false, first_ij : 1 = false, first_i : 1 = false, first_j : 1 = false;
     double delta0[2] = {0.0, 0.0};      ///< X_j − X_i
     double length = 0.0, angle = 0.0;   ///< l0, φ0
     element::BasicStiffness k0;         ///< Eq. 3 / 4, fixed
@@ -113,6 +120,8 @@ class GlobalSystem {
   std::vector<int> colour_chunks_;  ///< chunk numbers, grouped by colour
   std::vector<int> colour_start_;   ///< group c: colour_chunks_[colour_start_[c] .. colour_start_[c+1])
   bool has_prescribed_ = false;
+  std::vector<int> unwritten_entries_;     ///< tangent entries no element writes (fill, contact-only pairs): cleared
+  std::vector<int> unwritten_nodes_;       ///< nodes no element joins: their internal forces cleared
   std::vector<char> replaced_;             ///< per element: carries a contact in this evaluation
   std::vector<solver::RankOne> contact_rank_one_;
   std::vector<std::pair<int, int>> contact_pairs_;  ///< node pairs joined only by contact elements

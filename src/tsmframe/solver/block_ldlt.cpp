@@ -254,7 +254,7 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
   // forward pass after the tasks (each row gathering from final columns), in the backward pass
   // before them. The partition depends only on the pattern: bit-identical for any thread count.
   const BlockMatrix& a = *factor_;
-  const int n = size_, tasks = static_cast<int>(task_start_.size()) - 1;
+  const int tasks = static_cast<int>(task_start_.size()) - 1;
   const bool parallel = tasks > 1;
   // L y = b
 #pragma omp parallel for schedule(dynamic, 1) if (parallel)
@@ -282,12 +282,10 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
       for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) forward(top_rows_[q]);
     }
   }
-  // D z = y
-#pragma omp parallel for schedule(static) if (parallel && n > 32768)
-  for (int i = 0; i < n; ++i) b.segment<3>(3 * i) = a.value[a.column[i]] * b.segment<3>(3 * i).eval();
-  // Lᵀ x = z: a dot product down each column, the rows above the tasks first.
+  // D z = y and Lᵀ x = z in one pass: x_i = D_i⁻¹ y_i − Σ L(p, i)ᵀ x_p, a dot product down each
+  // column (D_i⁻¹ heads it), the rows above the tasks first.
   auto backward = [&](int i) {
-    Eigen::Vector3d xi = b.segment<3>(3 * i);
+    Eigen::Vector3d xi = a.value[a.column[i]] * b.segment<3>(3 * i);
     for (int p = a.column[i] + 1; p < a.column[i + 1]; ++p) xi.noalias() -= a.value[p].transpose() * b.segment<3>(3 * a.row[p]);
     b.segment<3>(3 * i) = xi;
   };

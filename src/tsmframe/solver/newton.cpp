@@ -49,7 +49,6 @@ std::string iterate_text(const char* what, int iteration) {
 NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings& settings,
                            const contact::ContactTracker* contacts)
     : system_(system), settings_(settings), contacts_(contacts && contacts->contact_count() > 0 ? contacts : nullptr) {
-  const assembly::DofMap& dofs = system.dofs();
   const Model& model = system.model();
   for (int dof = 0; dof < model.dof_count(); ++dof) {
     if (model.constrained[dof]) constrained_dofs_.push_back(dof);
