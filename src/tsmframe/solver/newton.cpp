@@ -35,9 +35,6 @@ std::array<double, K> chunked_sum(Eigen::Index n, const Body& body) {
   return total;
 }
 
-/// 1 for a rotation dof (a moment's equation), 0 for a translation.
-inline int is_rotation(int dof) { return dof % dofs_per_node == rz ? 1 : 0; }
-
 std::string iterate_text(const char* what, int iteration) {
   std::ostringstream os;
   os << what << " at iteration " << iteration;
@@ -49,6 +46,9 @@ std::string iterate_text(const char* what, int iteration) {
 NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings& settings,
                            const contact::ContactTracker* contacts)
     : system_(system), settings_(settings), contacts_(contacts && contacts->contact_count() > 0 ? contacts : nullptr) {
+  const assembly::DofMap& dofs = system.dofs();
+  is_moment_.resize(dofs.free_count());
+  for (int eq = 0; eq < dofs.free_count(); ++eq) is_moment_[eq] = dofs.dof(eq) % dofs_per_node == rz ? 1 : 0;
   const Model& model = system.model();
   for (int dof = 0; dof < model.dof_count(); ++dof) {
     if (model.constrained[dof]) constrained_dofs_.push_back(dof);
@@ -135,7 +135,7 @@ ResidualScale NewtonSolver::scale(double load_factor) const {
   const std::array<double, 4> free =
       chunked_sum<4>(dofs.free_count(), [&](Eigen::Index begin, Eigen::Index end, std::array<double, 4>& sum) {
         for (Eigen::Index eq = begin; eq < end; ++eq) {
-          const int dof = free_dof[eq], kind = is_rotation(dof);
+          const int dof = free_dof[eq], kind = is_moment_[eq];
           const double f = F[dof], p = load_factor * P[dof];
           sum[kind] += p * p;
           sum[2 + kind] += f * f;
@@ -179,7 +179,7 @@ NewtonSolver::ResidualPass NewtonSolver::update_residual(double load_factor) {
   // Squared sums per kind (forces, moments) over the free equations: R, applied loads, internal forces.
   const std::array<double, 6> free = chunked_sum<6>(n, [&](Eigen::Index begin, Eigen::Index end, std::array<double, 6>& sum) {
     for (Eigen::Index eq = begin; eq < end; ++eq) {
-      const int dof = free_dof[eq], kind = is_rotation(dof);
+      const int dof = free_dof[eq], kind = is_moment_[eq];
       const double f = F[dof], p = load_factor * P[dof], r = p - f;
       R[eq] = r;
       sum[kind] += r * r;
@@ -220,8 +220,7 @@ void NewtonSolver::add_load_direction(double dlambda, Eigen::VectorXd& v) const 
 
 std::array<double, 2> NewtonSolver::kind_norms(const Eigen::VectorXd& v) const {
   double sum[2] = {0, 0};
-  const int* free_dof = system_.dofs().free_dofs().data();
-  for (Eigen::Index eq = 0; eq < v.size(); ++eq) sum[is_rotation(free_dof[eq])] += v[eq] * v[eq];
+  for (Eigen::Index eq = 0; eq < v.size(); ++eq) sum[is_moment_[eq]] += v[eq] * v[eq];
   return {std::sqrt(sum[0]), std::sqrt(sum[1])};
 }
 
@@ -238,7 +237,7 @@ std::array<double, 2> NewtonSolver::apply_correction(const Eigen::VectorXd& corr
 #pragma omp parallel for schedule(static) reduction(max : translation, rotation) if (correction.size() > 65536)
   for (Eigen::Index eq = 0; eq < correction.size(); ++eq) {
     D[free_dof[eq]] += correction[eq];
-    if (is_rotation(free_dof[eq])) rotation = std::max(rotation, std::abs(correction[eq]));
+    if (is_moment_[eq]) rotation = std::max(rotation, std::abs(correction[eq]));
     else translation = std::max(translation, std::abs(correction[eq]));
   }
   return {translation, rotation};
@@ -257,10 +256,9 @@ std::array<double, 2> NewtonSolver::largest_displacements(const State& state) co
 }
 
 double NewtonSolver::arc_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
-  const int* free_dof = system_.dofs().free_dofs().data();
   double sum = 0.0;
   for (Eigen::Index eq = 0; eq < a.size(); ++eq)
-    if (!is_rotation(free_dof[eq])) sum += a[eq] * b[eq];
+    if (!is_moment_[eq]) sum += a[eq] * b[eq];
   return sum;
 }
 
