@@ -36,8 +36,12 @@ std::string failure_text(int step, double from, double to, const char* what, con
 /// unless the output selection wants it), every step goes to the observer.
 class Recorder {
  public:
-  Recorder(const Model& model, const NewtonSolver& newton, const StepObserver& observer, RunResult& result)
-      : model_(model), newton_(newton), observer_(observer), result_(result) {}
+  /// With `defer_forces`, a step that the output selection drops again once a later step
+  /// converges gets its element forces (a pass over the elements) only if it stays the newest:
+  /// finish() adds them. Without an observer only: an observer sees every step whole.
+  Recorder(const Model& model, const NewtonSolver& newton, const StepObserver& observer, RunResult& result,
+           bool defer_forces = false)
+      : model_(model), newton_(newton), observer_(observer), result_(result), defer_forces_(defer_forces && !observer) {}
 
   int next_step() const { return static_cast<int>(result_.steps.size()) + 1; }
 
@@ -68,7 +72,8 @@ class Recorder {
       previous.displacements = previous.element_forces = previous.reactions = Eigen::VectorXd();
     }
     record.displacements = state.displacements;
-    record.element_forces = newton_.element_forces(state);
+    forces_pending_ = defer_forces_ && !keeps_state(settings.output, record.step);
+    if (!forces_pending_) record.element_forces = newton_.element_forces(state);
     record.reactions = newton_.reactions(state.load_factor);
     record.contacts = newton_.contact_points(state);
     last_with_state_ = static_cast<int>(result_.steps.size());
@@ -93,6 +98,13 @@ class Recorder {
     converged(std::move(record), outcome, state);
   }
 
+  /// At the end of the run, with `state` the newest converged step's: its deferred element forces.
+  void finish(const State& state) {
+    if (!forces_pending_ || last_with_state_ < 0) return;
+    result_.steps[last_with_state_].element_forces = newton_.element_forces(state);
+    forces_pending_ = false;
+  }
+
   void failed(StepRecord record, const std::string& message) {
     record.converged = false;
     record.message = message;
@@ -106,6 +118,8 @@ class Recorder {
   const StepObserver& observer_;
   RunResult& result_;
   int last_with_state_ = -1;
+  bool defer_forces_ = false;
+  bool forces_pending_ = false;  ///< the newest converged step still lacks its element forces
 };
 
 /// The start of the step being tried under load or displacement control, to go back to when it
@@ -203,7 +217,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   double t = 0.0, increment = nominal;
   int halvings = 0, grid_index = 0;
   RunResult result;
-  Recorder recorder(model, newton, observer, result);
+  Recorder recorder(model, newton, observer, result, true);
 
   StepStart saved;  // reused: no allocation per step
   while (grid_index < grid_steps) {
@@ -246,10 +260,12 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     const double to = value(t_end) * (by_displacement ? control.target : 1.0);
     result.message = failure_text(record.step, from, to, by_displacement ? "controlled displacement" : "load factor",
                                   outcome, halvings);
+    recorder.finish(state);  // state is the newest converged step's again
     recorder.failed(std::move(record), outcome.message);
     result.limit_points = limit_points(result.steps);
     return result;
   }
+  recorder.finish(state);
   result.status = Status::converged;
   result.limit_points = limit_points(result.steps);
   return result;

@@ -234,12 +234,16 @@ std::array<double, 2> NewtonSolver::apply_correction(const Eigen::VectorXd& corr
   const int* free_dof = system_.dofs().free_dofs().data();
   double* D = state.displacements.data();
   double translation = 0.0, rotation = 0.0;  // maxima: the same whatever the order
-#pragma omp parallel for schedule(static) reduction(max : translation, rotation) if (correction.size() > 65536)
+  bool finite = true;
+#pragma omp parallel for schedule(static) reduction(max : translation, rotation) reduction(&& : finite) if (correction.size() > 65536)
   for (Eigen::Index eq = 0; eq < correction.size(); ++eq) {
-    D[free_dof[eq]] += correction[eq];
-    if (is_moment_[eq]) rotation = std::max(rotation, std::abs(correction[eq]));
-    else translation = std::max(translation, std::abs(correction[eq]));
+    const double c = correction[eq];
+    D[free_dof[eq]] += c;
+    finite = finite && std::isfinite(c);
+    if (is_moment_[eq]) rotation = std::max(rotation, std::abs(c));
+    else translation = std::max(translation, std::abs(c));
   }
+  if (!finite) return {NAN, NAN};
   return {translation, rotation};
 }
 
@@ -381,12 +385,13 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       out.residual_norms.push_back(relative_norm(drive, start_scale));
     }
     out.iterations = it;
-    if (!correction.allFinite() || !std::isfinite(dlambda)) {
+    // Applied first, checked after (in the same pass): a failed step's state is restored by the caller.
+    const std::array<double, 2> step_size = apply_correction(correction, state);
+    if (!std::isfinite(step_size[0]) || !std::isfinite(dlambda)) {
       out.status = Status::diverged;
       out.message = iterate_text("the Newton correction is not finite", it);
       return out;
     }
-    const std::array<double, 2> step_size = apply_correction(correction, state);
     state.load_factor += dlambda;
     const bool contacts_changed = evaluate(state);
     if (contacts_) out.contact_iterates.push_back(contact_points(state));

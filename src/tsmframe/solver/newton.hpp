@@ -105,7 +105,8 @@ class NewtonSolver {
   /// v += Δλ F_dir, without forming F_dir.
   void add_load_direction(double dlambda, Eigen::VectorXd& v) const;
   double relative_norm(const std::array<double, 2>& norms, const ResidualScale& scale) const;
-  /// Adds the correction to the free dofs; returns its largest entries per kind (translations, rotations).
+  /// Adds the correction to the free dofs; returns its largest entries per kind (translations,
+  /// rotations), NaN if any entry is not finite.
   std::array<double, 2> apply_correction(const Eigen::VectorXd& correction, State& state) const;
   /// Largest |translation| and |rotation| over all dofs of `state`.
   std::array<double, 2> largest_displacements(const State& state) const;
