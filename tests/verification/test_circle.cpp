@@ -119,4 +119,17 @@ INSTANTIATE_TEST_SUITE_P(Sections, PinRollerCircle,
                                            std::make_tuple("euler-bernoulli", 20, 0.75),
                                            std::make_tuple("timoshenko", 101, 0.5)));
 
+TEST(Circle, AnElementBentPastARightAngleAgainstItsChordIsRefused) {
+  // Three quarters of a circle: one element would have to turn each end by 3π/4 against its
+  // chord, which Eq. 3–4 do not describe: refused (the step fails; cutback off here). Six
+  // elements (π/8 per end) take it in one step and close on the exact arc.
+  tsm::Model model;
+  const auto coarse = run_tip_moment(steel_beam(1, "euler-bernoulli"), 0.75, 1, model);
+  ASSERT_EQ(coarse.status, tsm::solver::Status::diverged) << coarse.message;
+  EXPECT_NE(coarse.message.find("against its chord"), std::string::npos) << coarse.message;
+  const auto fine = run_tip_moment(steel_beam(6, "euler-bernoulli"), 0.75, 1, model);
+  ASSERT_EQ(fine.status, tsm::solver::Status::converged) << fine.message;
+  EXPECT_NEAR(node_displacement(model, fine.steps.back(), 2)[2], 1.5 * pi, 1e-9);
+}
+
 }  // namespace

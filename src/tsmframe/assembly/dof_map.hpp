@@ -1,20 +1,15 @@
 #pragma once
 // Numbering of the free (unknown) dofs. Constrained dofs (fixed or prescribed) get −1. Free
-// dofs are numbered node by node in a fill-reducing order (approximate minimum degree on the
-// node graph, computed once), so the factorisation needs no permutation of its own.
+// dofs are numbered node by node in a fill-reducing order (elimination_order: members' paths
+// from both ends, then the joints by minimum degree; computed once), so the factorisation needs
+// no permutation of its own.
 
 #include <vector>
 
+#include "tsmframe/assembly/node_graph.hpp"
 #include "tsmframe/model/model.hpp"
 
 namespace tsm::assembly {
-
-/// Nodes joined to each node by an element, itself included (CSR, sorted, no duplicates).
-struct NodeGraph {
-  std::vector<int> start;      ///< node k's neighbours are neighbours[start[k] .. start[k+1])
-  std::vector<int> neighbours;
-};
-NodeGraph node_graph(const Model& model);
 
 class DofMap {
  public:

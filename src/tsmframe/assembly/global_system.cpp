@@ -45,7 +45,7 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
   // in order; chunks that share no node get the same colour (greedy) and a colour's chunks run
   // in parallel. Colours beyond 63 all share the last group, run serially. Every sum keeps its
   // order whatever the number of threads.
-  constexpr int chunk_size = 512;
+  const int chunk_size = std::clamp(n_elements / 16, 64, 512);  // 16 chunks or more: two groups of 8 for small models
   element_order_.resize(n_elements);
   std::iota(element_order_.begin(), element_order_.end(), 0);
   std::vector<int> key(n_elements);
@@ -81,6 +81,7 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
   for (int ch = 0; ch < n_chunks; ++ch) ++colour_start_[colour[ch] + 1];
   for (int c = 0; c < colours; ++c) colour_start_[c + 1] += colour_start_[c];
   colour_chunks_.resize(n_chunks);
+  chunk_largest_end_rotation_.assign(n_chunks, 0.0);
   std::vector<int> fill(colour_start_.begin(), colour_start_.end() - 1);
   for (int ch = 0; ch < n_chunks; ++ch) colour_chunks_[fill[colour[ch]]++] = ch;
 
@@ -192,9 +193,9 @@ void GlobalSystem::add_block(int a, int b, const Eigen::Matrix3d& value) {
   else tangent_.value[entry(bb, ba)] += value.transpose();
 }
 
-void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
-                                    const std::vector<double>& previous_rotations, bool with_tangent,
-                                    Evaluation& out) {
+double GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
+                                      const std::vector<double>& previous_rotations, bool with_tangent,
+                                      Evaluation& out) {
   const ElementRecord& slot = records_[k];
   const auto g = element_dofs(slot.start, slot.end);
   double* force = out.internal_force.data();
@@ -204,11 +205,11 @@ void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
       if (slot.first_i) force[g[a]] = 0.0;
       if (slot.first_j) force[g[3 + a]] = 0.0;
     }
-    if (!with_tangent) return;
+    if (!with_tangent) return 0.0;
     if (slot.first_ii) value[slot.ii].setZero();
     if (slot.first_jj) value[slot.jj].setZero();
     if (slot.first_ij) value[slot.ij].setZero();
-    return;
+    return 0.0;
   }
   element::Vector6 d;
   for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
@@ -218,7 +219,8 @@ void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
     force[g[a]] = slot.first_i ? r.nodal_forces[a] : force[g[a]] + r.nodal_forces[a];
     force[g[3 + a]] = slot.first_j ? r.nodal_forces[3 + a] : force[g[3 + a]] + r.nodal_forces[3 + a];
   }
-  if (!with_tangent) return;
+  const double end_rotation = std::max(std::abs(r.deformations[1]), std::abs(r.deformations[2]));
+  if (!with_tangent) return end_rotation;
   auto put = [&](int entry, bool first, const auto& block) {
     if (first) value[entry] = block;
     else value[entry] += block;
@@ -229,7 +231,7 @@ void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
     if (slot.transposed) put(slot.ij, slot.first_ij, r.tangent.bottomLeftCorner<3, 3>());
     else put(slot.ij, slot.first_ij, r.tangent.topRightCorner<3, 3>());
   }
-  if (!has_prescribed_) return;
+  if (!has_prescribed_) return end_rotation;
   for (int b = 0; b < 6; ++b) {
     const double dp = model_.reference_prescribed[g[b]];
     if (dp == 0.0 || dofs_.equation(g[b]) >= 0) continue;
@@ -238,6 +240,7 @@ void GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
       if (row >= 0) out.prescribed_coupling[row] += r.tangent(a, b) * dp;
     }
   }
+  return end_rotation;
 }
 
 void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen::VectorXd& displacements,
@@ -305,10 +308,14 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
 #pragma omp parallel for schedule(dynamic, 1) if (!serial)
     for (int idx = begin; idx < end; ++idx) {
       const int chunk = colour_chunks_[idx];
+      double largest = 0.0;
       for (int q = chunk_start_[chunk]; q < chunk_start_[chunk + 1]; ++q)
-        evaluate_element(element_order_[q], displacements, previous_rotations, with_tangent, out);
+        largest = std::max(largest, evaluate_element(element_order_[q], displacements, previous_rotations, with_tangent, out));
+      chunk_largest_end_rotation_[chunk] = largest;
     }
   }
+  out.largest_end_rotation = 0.0;  // a maximum: the same whatever the order
+  for (const double largest : chunk_largest_end_rotation_) out.largest_end_rotation = std::max(out.largest_end_rotation, largest);
   for (const contact::ActiveContact& a : contacts) {
     evaluate_contact(a, displacements, previous_rotations, with_tangent, out);
     replaced_[a.element] = 0;

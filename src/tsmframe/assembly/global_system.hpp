@@ -30,6 +30,8 @@ struct Evaluation {
   Eigen::VectorXd prescribed_coupling;
   /// One entry per active contact, in the order they were given.
   std::vector<contact::ContactEvaluation> contacts;
+  /// max |θ| over the plain elements' ends: how far an end turns against its chord.
+  double largest_end_rotation = 0.0;
 };
 
 /// Estimated rounding error of the assembled internal forces, per kind (2-norm over dofs):
@@ -77,8 +79,9 @@ class GlobalSystem {
   int pattern_version() const { return pattern_version_; }
 
  private:
-  void evaluate_element(int k, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
-                        bool with_tangent, Evaluation& out);
+  /// Returns the element's max |θ_i|, |θ_j| (0 if a contact element stands in for it).
+  double evaluate_element(int k, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
+                          bool with_tangent, Evaluation& out);
   void mask_constrained_dofs();
   /// Marks the first writers (ElementRecord) and lists what no element writes; after every
   /// change of the pattern or of the loop's order.
@@ -119,6 +122,7 @@ class GlobalSystem {
   std::vector<int> chunk_start_;    ///< chunk h: element_order_[chunk_start_[h] .. chunk_start_[h+1])
   std::vector<int> colour_chunks_;  ///< chunk numbers, grouped by colour
   std::vector<int> colour_start_;   ///< group c: colour_chunks_[colour_start_[c] .. colour_start_[c+1])
+  std::vector<double> chunk_largest_end_rotation_;  ///< per chunk, in the last evaluation
   bool has_prescribed_ = false;
   std::vector<int> unwritten_entries_;     ///< tangent entries no element writes (fill, contact-only pairs): cleared
   std::vector<int> unwritten_nodes_;       ///< nodes no element joins: their internal forces cleared

@@ -118,7 +118,8 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
 
   // Tasks: the largest subtrees of at most `limit` blocks (and at least 64). The limit is the
   // largest that still gives 8 tasks — enough to keep two or more cores busy, as large as
-  // possible so that few rows are left above them — and n / 16 if none does. It depends on the
+  // possible so that few rows are left above them; failing that, the largest that gives 2 (the
+  // two branches of a single long member, elimination_order); else n / 16. It depends on the
   // pattern only (the solves' arithmetic follows the partition), never on the thread count.
   // Parents come after children, so one ascending pass sums subtree sizes and one descending
   // pass hands every block to its task.
@@ -135,17 +136,20 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
     }
     return tasks;
   };
-  constexpr int wanted_tasks = 8;
-  int limit = std::max(1, n / 16);
-  if (assign_tasks(limit) >= wanted_tasks) {
-    int lo = limit, hi = n;  // assign_tasks(lo) >= wanted; find the largest such limit
+  // The largest limit from `lo` up that still gives `wanted` tasks (assign_tasks(lo) does).
+  auto largest_limit = [&](int lo, int wanted) {
+    int hi = n;
     while (lo < hi) {
       const int mid = lo + (hi - lo + 1) / 2;
-      if (assign_tasks(mid) >= wanted_tasks) lo = mid;
+      if (assign_tasks(mid) >= wanted) lo = mid;
       else hi = mid - 1;
     }
-    limit = lo;
-  }
+    return lo;
+  };
+  constexpr int wanted_tasks = 8;
+  int limit = std::max(1, n / 16);
+  if (assign_tasks(limit) >= wanted_tasks) limit = largest_limit(limit, wanted_tasks);
+  else if (const int half = std::max(64, n / 2); assign_tasks(half) >= 2) limit = largest_limit(half, 2);  // a long member's two branches
   const int tasks = assign_tasks(limit);
   task_start_.assign(tasks + 1, 0);
   for (int k = 0; k < n; ++k)

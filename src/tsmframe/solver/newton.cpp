@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 namespace tsm::solver {
@@ -14,6 +15,7 @@ constexpr double runaway_ratio = 1e6;      // |u| > 1e6 · (size + prescribed) i
 constexpr double floor_ratio = 10.0;       // ‖R‖ ≤ 10 × the estimated rounding floor …
 constexpr double stagnation = 0.5;         // … ends a step once Newton no longer halves it
 constexpr double floor_check_below = 1e-3; // the floor (a pass of its own) is only worth checking below this
+constexpr double largest_end_rotation = std::numbers::pi / 2;  // |θ| an element end may turn against its chord
 
 /// Σ over [0, n) in fixed chunks (the same chunks whatever the number of threads), the chunk
 /// sums added in order: bit-identical for any number of threads. body(begin, end, sums) adds its
@@ -442,6 +444,17 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
         pass = update_residual(state.load_factor);
         if (contacts_) out.contact_iterates.back() = contact_points(state);
         continue;
+      }
+      if (eval_.largest_end_rotation > largest_end_rotation) {
+        // Eq. 3–5 describe an element by its chord: an end turned past a right angle against it
+        // is no state of the beam, but a branch the mesh cannot carry (Newton with a large step
+        // can land there, e.g. a beam looped around a contact node). The step fails and is cut back.
+        out.status = Status::diverged;
+        std::ostringstream os;
+        os << "an element end turned " << eval_.largest_end_rotation
+           << " rad against its chord, beyond what an element describes (refine the mesh or take smaller steps)";
+        out.message = iterate_text(os.str().c_str(), it);
+        return out;
       }
       out.criterion = criterion;
       if (contacts_) contacts_->accept(state.displacements, state.chord_rotations, state.contacts);
