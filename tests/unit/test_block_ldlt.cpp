@@ -158,7 +158,7 @@ TEST(BlockLDLT, SolvesWithParallelSubtreesAndRowsAboveThemTheSameWithAnyThreadCo
   std::uniform_real_distribution<double> value(-1.0, 1.0);
   Eigen::VectorXd b(3 * c.matrix.size);
   for (Eigen::Index i = 0; i < b.size(); ++i) b[i] = value(random);
-  Eigen::VectorXd x[2];
+  Eigen::VectorXd x[2], fused[2];
   for (int threads = 1; threads <= 2; ++threads) {
     omp_set_num_threads(threads);
     BlockMatrix m = c.matrix;
@@ -169,12 +169,19 @@ TEST(BlockLDLT, SolvesWithParallelSubtreesAndRowsAboveThemTheSameWithAnyThreadCo
     ASSERT_TRUE(ldlt.factorize(m));
     x[threads - 1] = b;
     ldlt.solve_in_place(x[threads - 1]);
+    // The forward substitution along the factorisation, the rest after it.
+    BlockMatrix n = c.matrix;
+    fused[threads - 1] = b;
+    ASSERT_TRUE(ldlt.factorize(n, &fused[threads - 1]));
+    ldlt.finish_solve(fused[threads - 1]);
   }
   omp_set_num_threads(omp_get_num_procs());
   const double residual = (multiply(c.matrix, x[0]) - b).norm() / b.norm();
   std::printf("[figure] block LDLT, 3600 blocks in parallel subtrees: relative residual %.2e\n", residual);
   EXPECT_LT(residual, 1e-12);
+  EXPECT_LT((multiply(c.matrix, fused[0]) - b).norm() / b.norm(), 1e-12);
   EXPECT_EQ(x[0], x[1]);  // bit for bit
+  EXPECT_EQ(fused[0], fused[1]);
 }
 
 TEST(BlockLDLT, ReportsASingularPivot) {

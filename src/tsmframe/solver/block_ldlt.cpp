@@ -187,7 +187,7 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   parallel_top_ = top_rows_.size() >= parallel_rows_above && 2 * shared >= static_cast<int>(top_rows_.size());
 }
 
-bool BlockLDLT::factorize_row(BlockMatrix& a, int k) {
+bool BlockLDLT::factorize_row(BlockMatrix& a, int k, double* forward) {
   // Row k's entries (k, i), i ascending (a topological order: every dependency runs from a lower
   // to a higher block), hold A(k, i) and serve as the running sums z = A(k, i) − Σ L(k, j) D_j
   // L(i, j)ᵀ; each becomes L(k, i) = z D_i⁻¹. The diagonal block becomes D_k⁻¹.
@@ -214,6 +214,13 @@ bool BlockLDLT::factorize_row(BlockMatrix& a, int k) {
     for (int p = a.column[i] + 1; p < end; ++p) a.value[slot_[a.row[p]]].noalias() -= z * a.value[p].transpose();
     z = lki;
   }
+  if (forward) {  // y_k = b_k − Σ L(k, i) y_i, the rows i < k being final
+    Eigen::Map<Eigen::Vector3d> yk(forward + 3 * k);
+    Eigen::Vector3d sum = yk;
+    for (int t = first; t < last; ++t)
+      sum.noalias() -= a.value[row_position_[t]] * Eigen::Map<const Eigen::Vector3d>(forward + 3 * row_column_[t]);
+    yk = sum;
+  }
   // D_k⁻¹ by cofactors of the symmetric block.
   const double c00 = d11 * d22 - d12 * d12, c01 = d02 * d12 - d01 * d22, c02 = d01 * d12 - d02 * d11;
   const double c11 = d00 * d22 - d02 * d02, c12 = d01 * d02 - d00 * d12, c22 = d00 * d11 - d01 * d01;
@@ -227,26 +234,27 @@ bool BlockLDLT::factorize_row(BlockMatrix& a, int k) {
          std::isfinite(c11 * r) && std::isfinite(c12 * r) && std::isfinite(c22 * r);
 }
 
-bool BlockLDLT::factorize(BlockMatrix& a) {
+bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
   factor_ = &a;
+  double* forward = forward_rhs ? forward_rhs->data() : nullptr;
   // Rows of one subtree touch only that subtree's columns (their patterns are descendants):
   // the tasks run concurrently, each in ascending order.
   const int tasks = static_cast<int>(task_start_.size()) - 1;
   bool ok = true;
 #pragma omp parallel for schedule(dynamic, 1) reduction(&& : ok) if (tasks > 1)
   for (int t = 0; t < tasks; ++t)
-    for (int r = task_start_[t]; r < task_start_[t + 1] && ok; ++r) ok = factorize_row(a, task_rows_[r]);
+    for (int r = task_start_[t]; r < task_start_[t + 1] && ok; ++r) ok = factorize_row(a, task_rows_[r], forward);
   if (!ok) return false;
   if (!parallel_top_) {  // no OpenMP construct per level: a path of rows pays nothing
     for (const int k : top_rows_)
-      if (!factorize_row(a, k)) return false;
+      if (!factorize_row(a, k, forward)) return false;
     return true;
   }
   const int levels = static_cast<int>(level_start_.size()) - 1;
 #pragma omp parallel
   for (int l = 0; l < levels && ok; ++l) {
 #pragma omp for schedule(dynamic, 1) reduction(&& : ok)
-    for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) ok = factorize_row(a, top_rows_[q]) && ok;
+    for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) ok = factorize_row(a, top_rows_[q], forward) && ok;
   }
   return ok;
 }
@@ -286,6 +294,14 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
       for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) forward(top_rows_[q]);
     }
   }
+  finish_solve(b);
+}
+
+void BlockLDLT::finish_solve(Eigen::VectorXd& b) const {
+  const BlockMatrix& a = *factor_;
+  const int tasks = static_cast<int>(task_start_.size()) - 1;
+  const bool parallel = tasks > 1;
+  const int levels = static_cast<int>(level_start_.size()) - 1;
   // D z = y and Lᵀ x = z in one pass: x_i = D_i⁻¹ y_i − Σ L(p, i)ᵀ x_p, a dot product down each
   // column (D_i⁻¹ heads it), the rows above the tasks first.
   auto backward = [&](int i) {

@@ -39,10 +39,14 @@ class BlockLDLT {
   /// already hold its fill (add_fill).
   void analyze(const BlockMatrix& matrix);
   /// Numeric factorisation, overwriting `matrix` (kept by reference for solve_in_place); false if
-  /// a pivot block is singular or not finite.
-  bool factorize(BlockMatrix& matrix);
+  /// a pivot block is singular or not finite. With `forward` (b, 3 entries per block), the
+  /// forward substitution rides along, row by row while the row is in cache: on return it holds
+  /// y = L⁻¹ b, for finish_solve.
+  bool factorize(BlockMatrix& matrix, Eigen::VectorXd* forward = nullptr);
   /// Solves A x = b in place with the last factorisation; b has 3 entries per block.
   void solve_in_place(Eigen::VectorXd& b) const;
+  /// Completes a solve whose forward substitution ran with factorize: x = L⁻ᵀ D⁻¹ y, in place.
+  void finish_solve(Eigen::VectorXd& y) const;
 
   /// Subtrees factorised (and solved) as parallel tasks, and the rows above them.
   int task_count() const { return static_cast<int>(task_start_.size()) - 1; }
@@ -68,7 +72,7 @@ class BlockLDLT {
   std::vector<int> level_start_; ///< level l: top_rows_[level_start_[l] .. level_start_[l+1])
   bool parallel_top_ = false;    ///< the levels hold enough rows side by side to run them in parallel
 
-  bool factorize_row(BlockMatrix& a, int k);
+  bool factorize_row(BlockMatrix& a, int k, double* forward);
 };
 
 }  // namespace tsm::solver

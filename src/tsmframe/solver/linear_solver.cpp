@@ -52,6 +52,27 @@ bool LinearSolver::factorize(BlockMatrix& matrix, const std::vector<RankOne>& ra
   return det != 0.0 && std::isfinite(det);
 }
 
+bool LinearSolver::factorize_and_solve(BlockMatrix& matrix, const std::vector<RankOne>& rank_one, Eigen::VectorXd& x) {
+  if (!rank_one.empty()) {
+    if (!factorize(matrix, rank_one)) return false;
+    solve_in_place(x);
+    return true;
+  }
+  woodbury_z_.resize(0, 0);
+  general_ = false;
+  if (!padding_needed_) {
+    if (!ldlt_.factorize(matrix, &x)) return false;
+    ldlt_.finish_solve(x);
+    return true;
+  }
+  padded_work_.setZero(padded_size_);
+  for (Eigen::Index eq = 0; eq < x.size(); ++eq) padded_work_[padded_[eq]] = x[eq];
+  if (!ldlt_.factorize(matrix, &padded_work_)) return false;
+  ldlt_.finish_solve(padded_work_);
+  for (Eigen::Index eq = 0; eq < x.size(); ++eq) x[eq] = padded_work_[padded_[eq]];
+  return true;
+}
+
 bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one) {
   const assembly::DofMap& dofs = *dofs_;
   std::vector<Eigen::Triplet<double>> entries;

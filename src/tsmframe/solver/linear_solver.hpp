@@ -32,6 +32,9 @@ class LinearSolver {
   /// Numeric factorisation of `matrix` + Σ u vᵀ; false if singular or not finite. The block
   /// LDLᵀ overwrites `matrix` with its factor (solves use it until the next factorisation).
   bool factorize(BlockMatrix& matrix, const std::vector<RankOne>& rank_one = {});
+  /// Factorises as factorize() and solves K x = b (`x` holds b on entry): without contact terms
+  /// the forward substitution rides along the factorisation (one pass over the factor less).
+  bool factorize_and_solve(BlockMatrix& matrix, const std::vector<RankOne>& rank_one, Eigen::VectorXd& x);
   /// Solves with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
   /// Solves in place: `x` holds the right-hand side and receives the solution.

@@ -307,22 +307,26 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       solver_.analyze(system_.dofs(), system_.tangent());
       analysed_pattern_ = system_.pattern_version();
     }
-    if (!solver_.factorize(system_.tangent_for_factorisation(), system_.contact_rank_one())) {
+    const auto singular = [&] {
       out.status = Status::singular;
       out.message = iterate_text("the tangent stiffness is singular (a limit or bifurcation point)", it);
       return out;
-    }
+    };
     // dR/dλ = F_dir = F_ref − K_fp D_p,ref: how the load factor drives the free dofs.
     double dlambda = 0.0;
     std::array<double, 2> drive{};  // norms of R + Δλ F_dir at iterate 0
     // Under load control R is not needed after the solve (the next iterate recomputes it): the
-    // correction overwrites it, one vector of the model's size less.
+    // correction overwrites it, one vector of the model's size less; and the right-hand side is
+    // known before the factorisation, which carries its forward substitution along.
     Eigen::VectorXd& correction = constraint.kind == PathConstraint::Kind::load_increment ? residual_ : correction_;
     if (constraint.kind == PathConstraint::Kind::load_increment) {
       if (it == 1) dlambda = constraint.load_increment;
       if (dlambda != 0.0) add_load_direction(dlambda, correction);
       if (it == 1) drive = kind_norms(correction);
-      solver_.solve_in_place(correction);
+      if (!solver_.factorize_and_solve(system_.tangent_for_factorisation(), system_.contact_rank_one(), correction))
+        return singular();
+    } else if (!solver_.factorize(system_.tangent_for_factorisation(), system_.contact_rank_one())) {
+      return singular();
     } else if (by_arc) {
       // δD = δD_R + δλ δD_F; δλ from the arc-length constraint (Crisfield's cylindrical form).
       const Eigen::VectorXd& a = along_load_;
