@@ -152,7 +152,8 @@ TEST(BlockLDLT, SolvesIndefiniteSystems) {
 
 TEST(BlockLDLT, SolvesWithParallelSubtreesAndRowsAboveThemTheSameWithAnyThreadCount) {
   // 24 chains of 150 blocks: subtrees of 64 … n/16 blocks are factorised and solved as parallel
-  // tasks; the bridges between chains put rows above them.
+  // tasks; the bridges between chains put rows above them, in levels and in paths of the tree
+  // (whose rows are formed in three passes, the first two in parallel).
   const Case c = random_case(3600, 20.0, 3, 24, 60, false);
   std::mt19937 random(5);
   std::uniform_real_distribution<double> value(-1.0, 1.0);
@@ -166,6 +167,7 @@ TEST(BlockLDLT, SolvesWithParallelSubtreesAndRowsAboveThemTheSameWithAnyThreadCo
     ldlt.analyze(m);
     ASSERT_GT(ldlt.task_count(), 4);
     ASSERT_GE(ldlt.rows_above_tasks(), 256);  // enough to run them level by level in parallel
+    ASSERT_GE(ldlt.rows_in_paths(), 256);     // and paths of the tree among them, formed in passes
     ASSERT_TRUE(ldlt.factorize(m));
     x[threads - 1] = b;
     ldlt.solve_in_place(x[threads - 1]);

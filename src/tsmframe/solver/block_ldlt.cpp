@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+
+#include <omp.h>
 
 namespace tsm::solver {
 namespace {
@@ -184,20 +187,59 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   int shared = 0;  // rows in levels of two or more
   for (int l = 0; l < levels; ++l)
     if (level_start_[l + 1] - level_start_[l] > 1) shared += level_start_[l + 1] - level_start_[l];
-  parallel_top_ = top_rows_.size() >= parallel_rows_above && 2 * shared >= static_cast<int>(top_rows_.size());
+  // Stages of the rows above the tasks: each level of several rows, and each run of single-row
+  // levels — a path of the tree, where every row's pattern below the path is final before the
+  // path starts (its other descendants sit in lower levels). A path row's split: its first
+  // entry in a column of the path.
+  stages_.clear();
+  split_.assign(top_rows_.size(), 0);
+  deferred_start_.assign(top_rows_.size(), 0);
+  size_t deferred = 0;
+  for (int l = 0; l < levels;) {
+    if (level_start_[l + 1] - level_start_[l] > 1) {
+      stages_.push_back({level_start_[l], level_start_[l + 1], false});
+      ++l;
+      continue;
+    }
+    int m = l;
+    while (m < levels && level_start_[m + 1] - level_start_[m] == 1) ++m;
+    const int begin = level_start_[l], end = level_start_[m], lowest = top_rows_[begin];
+    for (int q = begin; q < end; ++q) {
+      const int k = top_rows_[q];
+      split_[q] = static_cast<int>(std::lower_bound(row_column_.begin() + row_start_[k], row_column_.begin() + row_start_[k + 1], lowest) -
+                                   row_column_.begin());
+      deferred_start_[q] = static_cast<int>(deferred);
+      deferred += split_[q] - row_start_[k];
+    }
+    stages_.push_back({begin, end, true});
+    l = m;
+  }
+  // In parallel only where the rows above the tasks are many (else a barrier per stage costs
+  // more than it saves).
+  parallel_top_ = top_rows_.size() >= parallel_rows_above;
+  if (parallel_top_) deferred_z_.resize(deferred);  // the path rows' running sums, pass (1) to (2)
+  else std::vector<Block>().swap(deferred_z_);
+  // The solves go level by level (a barrier per level): only where levels hold several rows.
+  parallel_top_levels_ = parallel_top_ && 2 * shared >= static_cast<int>(top_rows_.size());
 }
 
-bool BlockLDLT::factorize_row(BlockMatrix& a, int k, double* forward) {
+bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, int t_end, double* forward, int* slot, bool finish,
+                         int defer_from, Block* deferred) {
   // Row k's entries (k, i), i ascending (a topological order: every dependency runs from a lower
   // to a higher block), hold A(k, i) and serve as the running sums z = A(k, i) − Σ L(k, j) D_j
-  // L(i, j)ᵀ; each becomes L(k, i) = z D_i⁻¹. The diagonal block becomes D_k⁻¹.
+  // L(i, j)ᵀ; each becomes L(k, i) = z D_i⁻¹. The diagonal block becomes D_k⁻¹. Entries
+  // [t_begin, t_end) are formed here; a row may be formed in two calls (a prefix, then the rest
+  // with `finish`): the running D_k and y_k wait in the diagonal block and in `forward`, and the
+  // arithmetic is the same as in one call. With `defer_from`, updates into entries (k, r) of rows
+  // r ≥ defer_from are left out and each entry's running sum z is kept in `deferred` instead
+  // (apply_deferred adds them later, in the same order).
   const int first = row_start_[k], last = row_start_[k + 1];
-  for (int t = first; t < last; ++t) slot_[row_column_[t]] = row_position_[t];
+  for (int t = first; t < last; ++t) slot[row_column_[t]] = row_position_[t];
   // D_k is symmetric: only its upper triangle is formed (d00 d01 d02 d11 d12 d22).
   Block& diagonal = a.value[a.column[k]];
   double d00 = diagonal(0, 0), d01 = diagonal(0, 1), d02 = diagonal(0, 2), d11 = diagonal(1, 1), d12 = diagonal(1, 2),
          d22 = diagonal(2, 2);
-  for (int t = first; t < last; ++t) {
+  for (int t = t_begin; t < t_end; ++t) {
     const int i = row_column_[t];
     Block& z = a.value[row_position_[t]];
     const Block lki = z * a.value[a.column[i]];  // L(k, i) = z D_i⁻¹ (D_i⁻¹ on column i's diagonal)
@@ -211,15 +253,21 @@ bool BlockLDLT::factorize_row(BlockMatrix& a, int k, double* forward) {
     // Column i's rows r (i < r < k) update the running sums (k, r), streaming down the column:
     // they are the entries above (k, i) itself (rows ascending), all formed before row k.
     const int end = row_position_[t];
-    for (int p = a.column[i] + 1; p < end; ++p) a.value[slot_[a.row[p]]].noalias() -= z * a.value[p].transpose();
+    for (int p = a.column[i] + 1; p < end && a.row[p] < defer_from; ++p) a.value[slot[a.row[p]]].noalias() -= z * a.value[p].transpose();
+    if (deferred) deferred[t - t_begin] = z;
     z = lki;
   }
   if (forward) {  // y_k = b_k − Σ L(k, i) y_i, the rows i < k being final
     Eigen::Map<Eigen::Vector3d> yk(forward + 3 * k);
     Eigen::Vector3d sum = yk;
-    for (int t = first; t < last; ++t)
+    for (int t = t_begin; t < t_end; ++t)
       sum.noalias() -= a.value[row_position_[t]] * Eigen::Map<const Eigen::Vector3d>(forward + 3 * row_column_[t]);
     yk = sum;
+  }
+  if (!finish) {
+    diagonal(0, 0) = d00, diagonal(0, 1) = d01, diagonal(0, 2) = d02, diagonal(1, 1) = d11, diagonal(1, 2) = d12,
+    diagonal(2, 2) = d22;
+    return true;
   }
   // D_k⁻¹ by cofactors of the symmetric block.
   const double c00 = d11 * d22 - d12 * d12, c01 = d02 * d12 - d01 * d22, c02 = d01 * d12 - d02 * d11;
@@ -232,6 +280,21 @@ bool BlockLDLT::factorize_row(BlockMatrix& a, int k, double* forward) {
       c02 * r, c12 * r, c22 * r;
   return std::isfinite(r) && std::isfinite(c00 * r) && std::isfinite(c01 * r) && std::isfinite(c02 * r) &&
          std::isfinite(c11 * r) && std::isfinite(c12 * r) && std::isfinite(c22 * r);
+}
+
+void BlockLDLT::apply_deferred(BlockMatrix& a, int k, int t_end, int defer_from, const Block* deferred, int* slot) const {
+  const int first = row_start_[k], last = row_start_[k + 1];
+  for (int t = first; t < last; ++t) slot[row_column_[t]] = row_position_[t];
+  for (int t = first; t < t_end; ++t) {
+    const int i = row_column_[t], end = row_position_[t];
+    int p = end;  // rows ascending: the deferred ones (≥ defer_from) end the stretch above (k, i)
+    while (p > a.column[i] + 1 && a.row[p - 1] >= defer_from) --p;
+    for (; p < end; ++p) a.value[slot[a.row[p]]].noalias() -= deferred[t - first] * a.value[p].transpose();
+  }
+}
+
+bool BlockLDLT::factorize_row(BlockMatrix& a, int k, double* forward) {
+  return form_row(a, k, row_start_[k], row_start_[k + 1], forward, slot_.data(), true, std::numeric_limits<int>::max(), nullptr);
 }
 
 bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
@@ -250,11 +313,36 @@ bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
       if (!factorize_row(a, k, forward)) return false;
     return true;
   }
-  const int levels = static_cast<int>(level_start_.size()) - 1;
+  // The rows above the tasks, stage by stage (analyze): a level's rows concurrently. A path of
+  // single-row levels goes in three passes: (1) every row's prefix, its entries in columns below
+  // the path (final already), leaving out the updates into the path's columns; (2) those updates;
+  // (3) the rest of each row, in order. In (1) and (2) each row reads final entries and writes
+  // only its own: concurrently, one slot map per thread. Every entry receives its updates in the
+  // same order as row by row, so the result is the same bit for bit.
+  const int threads = omp_get_max_threads();
+  if (thread_slot_.size() < static_cast<size_t>(threads) * size_) thread_slot_.resize(static_cast<size_t>(threads) * size_);
 #pragma omp parallel
-  for (int l = 0; l < levels && ok; ++l) {
+  for (const Stage& stage : stages_) {
+    if (!stage.path) {
 #pragma omp for schedule(dynamic, 1) reduction(&& : ok)
-    for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) ok = factorize_row(a, top_rows_[q], forward) && ok;
+      for (int q = stage.begin; q < stage.end; ++q) ok = factorize_row(a, top_rows_[q], forward) && ok;
+      continue;
+    }
+    int* slot = thread_slot_.data() + static_cast<size_t>(omp_get_thread_num()) * size_;
+    const int lowest = top_rows_[stage.begin];
+#pragma omp for schedule(dynamic, 1)
+    for (int q = stage.begin; q < stage.end; ++q) {
+      const int k = top_rows_[q];
+      form_row(a, k, row_start_[k], split_[q], forward, slot, false, lowest, deferred_z_.data() + deferred_start_[q]);
+    }
+#pragma omp for schedule(dynamic, 1)
+    for (int q = stage.begin; q < stage.end; ++q)
+      apply_deferred(a, top_rows_[q], split_[q], lowest, deferred_z_.data() + deferred_start_[q], slot);
+#pragma omp single
+    for (int q = stage.begin; q < stage.end && ok; ++q) {
+      const int k = top_rows_[q];
+      ok = form_row(a, k, split_[q], row_start_[k + 1], forward, slot_.data(), true, std::numeric_limits<int>::max(), nullptr);
+    }
   }
   return ok;
 }
@@ -285,7 +373,7 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
     for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) bk.noalias() -= a.value[row_position_[t]] * b.segment<3>(3 * row_column_[t]);
     b.segment<3>(3 * k) = bk;
   };
-  if (!parallel_top_) {
+  if (!parallel_top_levels_) {
     for (const int k : top_rows_) forward(k);
   } else {
 #pragma omp parallel
@@ -309,7 +397,7 @@ void BlockLDLT::finish_solve(Eigen::VectorXd& b) const {
     for (int p = a.column[i] + 1; p < a.column[i + 1]; ++p) xi.noalias() -= a.value[p].transpose() * b.segment<3>(3 * a.row[p]);
     b.segment<3>(3 * i) = xi;
   };
-  if (!parallel_top_) {
+  if (!parallel_top_levels_) {
     for (auto k = top_rows_.rbegin(); k != top_rows_.rend(); ++k) backward(*k);
   } else {
 #pragma omp parallel

@@ -51,6 +51,12 @@ class BlockLDLT {
   /// Subtrees factorised (and solved) as parallel tasks, and the rows above them.
   int task_count() const { return static_cast<int>(task_start_.size()) - 1; }
   int rows_above_tasks() const { return static_cast<int>(top_rows_.size()); }
+  /// Rows above the tasks formed in passes, as paths of the tree (see factorize).
+  int rows_in_paths() const {
+    int rows = 0;
+    for (const Stage& s : stages_) rows += parallel_top_ && s.path ? s.end - s.begin : 0;
+    return rows;
+  }
 
  private:
   int size_ = 0;
@@ -70,8 +76,24 @@ class BlockLDLT {
   std::vector<int> task_rows_;
   std::vector<int> top_rows_;    ///< rows in no task, level by level (ascending within a level)
   std::vector<int> level_start_; ///< level l: top_rows_[level_start_[l] .. level_start_[l+1])
-  bool parallel_top_ = false;    ///< the levels hold enough rows side by side to run them in parallel
+  bool parallel_top_ = false;    ///< enough rows above the tasks to run their stages in parallel
+  bool parallel_top_levels_ = false;  ///< the solves: the levels hold enough rows side by side
+  /// Stages of top_rows_ [begin, end): a level of several rows, or a path of single-row levels.
+  struct Stage {
+    int begin = 0, end = 0;
+    bool path = false;
+  };
+  std::vector<Stage> stages_;
+  std::vector<int> split_;        ///< per entry of top_rows_ in a path: its first entry (row index t) in a path column
+  std::vector<int> thread_slot_;  ///< one slot map per thread, for the path rows' prefixes
+  std::vector<int> deferred_start_;  ///< per entry of top_rows_ in a path: its prefix's place in deferred_z_
+  std::vector<Block> deferred_z_;    ///< running sums z of the path rows' prefix entries
 
+  /// Forms entries [t_begin, t_end) of row k (see block_ldlt.cpp); `finish` completes the row.
+  bool form_row(BlockMatrix& a, int k, int t_begin, int t_end, double* forward, int* slot, bool finish, int defer_from,
+                Block* deferred);
+  /// Adds to row k the updates form_row left out (into rows ≥ defer_from), from its first t_end entries.
+  void apply_deferred(BlockMatrix& a, int k, int t_end, int defer_from, const Block* deferred, int* slot) const;
   bool factorize_row(BlockMatrix& a, int k, double* forward);
 };
 
