@@ -1,7 +1,7 @@
 // The Newton iteration's linear solver on its own, every path against a dense solve of
 // K_ff = A + Σ u vᵀ: the in-place block LDLᵀ alone; a few sliding terms by Woodbury; more than
 // 32 by SparseLU; and A singular on its own but not with its sliding term (the SparseLU
-// fallback must find the tangent intact after the failed in-place factorisation).
+// fallback asks for the tangent again after the failed in-place factorisation).
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -141,10 +141,24 @@ TEST(LinearSolver, SingularSymmetricPartFallsBackToSparseLUWithTheTangentIntact)
   const BlockMatrix original = a;
   tsm::solver::LinearSolver solver;
   solver.analyze(*s->dofs, a);
-  ASSERT_TRUE(solver.factorize(a, {t}));
-  for (size_t p = 0; p < a.value.size(); ++p) ASSERT_EQ(a.value[p], original.value[p]);
+  int refills = 0;
+  const auto refill = [&](BlockMatrix& m) {
+    ++refills;
+    m.value = original.value;
+  };
+  ASSERT_TRUE(solver.factorize(a, {t}, refill));
+  EXPECT_EQ(refills, 1);
+  for (size_t p = 0; p < a.value.size(); ++p) ASSERT_EQ(a.value[p], original.value[p]);  // SparseLU reads, never writes
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.rows(), 1.0, 3.0);
   EXPECT_LT((solver.solve(b) - K.fullPivLu().solve(b)).norm(), 1e-12 * b.norm());
+  // The same through factorize_and_solve.
+  BlockMatrix again = original;
+  tsm::solver::LinearSolver fused;
+  fused.analyze(*s->dofs, again);
+  Eigen::VectorXd x = b;
+  ASSERT_TRUE(fused.factorize_and_solve(again, {t}, x, refill));
+  EXPECT_EQ(refills, 2);
+  EXPECT_LT((x - K.fullPivLu().solve(b)).norm(), 1e-12 * b.norm());
   // Without the sliding term the same tangent is reported singular.
   BlockMatrix alone = original;
   tsm::solver::LinearSolver plain;

@@ -16,17 +16,16 @@ void LinearSolver::analyze(const assembly::DofMap& dofs, const BlockMatrix& matr
   ldlt_.analyze(matrix);
 }
 
-bool LinearSolver::factorize(BlockMatrix& matrix, const std::vector<RankOne>& rank_one) {
+bool LinearSolver::factorize(BlockMatrix& matrix, const std::vector<RankOne>& rank_one, const Refill& refill) {
   constexpr size_t most_rank_one = 32;  // beyond: one sparse LU is cheaper than that many extra solves
   woodbury_z_.resize(0, 0);
   general_ = rank_one.size() > most_rank_one;
   if (general_) return factorize_general(matrix, rank_one);
-  // With contacts, A alone may be singular while A + Σ u vᵀ is not: keep A for the fallback
-  // (the in-place factorisation overwrites it).
-  if (!rank_one.empty()) kept_values_ = matrix.value;
+  // With contacts, A alone may be singular while A + Σ u vᵀ is not: the fallback needs A again
+  // (the in-place factorisation has overwritten it).
   if (!ldlt_.factorize(matrix)) {
-    if (rank_one.empty()) return false;
-    matrix.value = kept_values_;
+    if (rank_one.empty() || !refill) return false;
+    refill(matrix);
     general_ = true;
     return factorize_general(matrix, rank_one);
   }
@@ -52,9 +51,10 @@ bool LinearSolver::factorize(BlockMatrix& matrix, const std::vector<RankOne>& ra
   return det != 0.0 && std::isfinite(det);
 }
 
-bool LinearSolver::factorize_and_solve(BlockMatrix& matrix, const std::vector<RankOne>& rank_one, Eigen::VectorXd& x) {
+bool LinearSolver::factorize_and_solve(BlockMatrix& matrix, const std::vector<RankOne>& rank_one, Eigen::VectorXd& x,
+                                       const Refill& refill) {
   if (!rank_one.empty()) {
-    if (!factorize(matrix, rank_one)) return false;
+    if (!factorize(matrix, rank_one, refill)) return false;
     solve_in_place(x);
     return true;
   }

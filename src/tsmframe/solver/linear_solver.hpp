@@ -11,6 +11,7 @@
 #include <Eigen/LU>
 #include <Eigen/SparseLU>
 #include <array>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -29,12 +30,18 @@ class LinearSolver {
  public:
   /// Symbolic analysis of the tangent's block pattern (values ignored); done once.
   void analyze(const assembly::DofMap& dofs, const BlockMatrix& matrix);
+  /// Refills `matrix` with the tangent as it was before a failed in-place factorisation (the
+  /// Newton iteration evaluates it again): called only when the block LDLᵀ of A fails while
+  /// sliding terms are present, for the SparseLU of A + Σ u vᵀ. Keeping a copy of A instead would
+  /// cost a copy of the tangent at every factorisation with contacts.
+  using Refill = std::function<void(BlockMatrix&)>;
   /// Numeric factorisation of `matrix` + Σ u vᵀ; false if singular or not finite. The block
   /// LDLᵀ overwrites `matrix` with its factor (solves use it until the next factorisation).
-  bool factorize(BlockMatrix& matrix, const std::vector<RankOne>& rank_one = {});
+  bool factorize(BlockMatrix& matrix, const std::vector<RankOne>& rank_one = {}, const Refill& refill = {});
   /// Factorises as factorize() and solves K x = b (`x` holds b on entry): without contact terms
   /// the forward substitution rides along the factorisation (one pass over the factor less).
-  bool factorize_and_solve(BlockMatrix& matrix, const std::vector<RankOne>& rank_one, Eigen::VectorXd& x);
+  bool factorize_and_solve(BlockMatrix& matrix, const std::vector<RankOne>& rank_one, Eigen::VectorXd& x,
+                           const Refill& refill = {});
   /// Solves with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
   /// Solves in place: `x` holds the right-hand side and receives the solution.
@@ -49,7 +56,6 @@ class LinearSolver {
   bool general_ = false;  ///< the last factorisation is the SparseLU one
   Eigen::SparseMatrix<double> general_matrix_;
   std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>> lu_;
-  std::vector<Block> kept_values_;  ///< the tangent's blocks while contacts may need the SparseLU fallback
   // Woodbury: Z = A⁻¹ U (one column per contact), V (dense), and the LU of I + Vᵀ Z.
   Eigen::MatrixXd woodbury_z_, woodbury_v_;
   Eigen::PartialPivLU<Eigen::MatrixXd> woodbury_capacitance_;

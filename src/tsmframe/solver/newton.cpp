@@ -307,6 +307,14 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       solver_.analyze(system_.dofs(), system_.tangent());
       analysed_pattern_ = system_.pattern_version();
     }
+    // The SparseLU fallback (contacts only) needs the tangent the in-place LDLᵀ overwrote: it is
+    // evaluated again at the same state, which stays as it is (a scratch evaluation).
+    const auto refill = [&](BlockMatrix&) {
+      const std::vector<contact::ActiveContact> active =
+          contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
+      assembly::Evaluation scratch;
+      system_.evaluate(state.displacements, state.chord_rotations, true, scratch, active);
+    };
     const auto singular = [&] {
       out.status = Status::singular;
       out.message = iterate_text("the tangent stiffness is singular (a limit or bifurcation point)", it);
@@ -323,9 +331,9 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       if (it == 1) dlambda = constraint.load_increment;
       if (dlambda != 0.0) add_load_direction(dlambda, correction);
       if (it == 1) drive = kind_norms(correction);
-      if (!solver_.factorize_and_solve(system_.tangent_for_factorisation(), system_.contact_rank_one(), correction))
+      if (!solver_.factorize_and_solve(system_.tangent_for_factorisation(), system_.contact_rank_one(), correction, refill))
         return singular();
-    } else if (!solver_.factorize(system_.tangent_for_factorisation(), system_.contact_rank_one())) {
+    } else if (!solver_.factorize(system_.tangent_for_factorisation(), system_.contact_rank_one(), refill)) {
       return singular();
     } else if (by_arc) {
       // δD = δD_R + δλ δD_F; δλ from the arc-length constraint (Crisfield's cylindrical form).
