@@ -130,9 +130,8 @@ Eigen::VectorXd NewtonSolver::reactions(double load_factor) const {
 ResidualScale NewtonSolver::scale(double load_factor) const {
   // As in update_residual, without writing R (the scale at a λ other than the state's).
   const assembly::DofMap& dofs = system_.dofs();
-  const Model& model = system_.model();
   const double* F = eval_.internal_force.data();
-  const double* P = model.reference_load.data();
+  const double* P = system_.model().reference_load.data();
   const int* free_dof = dofs.free_dofs().data();
   const std::array<double, 4> free =
       chunked_sum<4>(dofs.free_count(), [&](Eigen::Index begin, Eigen::Index end, std::array<double, 4>& sum) {
@@ -171,11 +170,10 @@ ResidualScale NewtonSolver::scale_from(std::array<double, 2> load, std::array<do
 
 NewtonSolver::ResidualPass NewtonSolver::update_residual(double load_factor) {
   const assembly::DofMap& dofs = system_.dofs();
-  const Model& model = system_.model();
   const Eigen::Index n = dofs.free_count();
   residual_.resize(n);
   const double* F = eval_.internal_force.data();
-  const double* P = model.reference_load.data();
+  const double* P = system_.model().reference_load.data();
   const int* free_dof = dofs.free_dofs().data();
   double* R = residual_.data();
   // Squared sums per kind (forces, moments) over the free equations: R, applied loads, internal forces.
@@ -232,33 +230,37 @@ double NewtonSolver::relative_norm(const std::array<double, 2>& norms, const Res
   return std::max(force / s.force, moment / s.moment);
 }
 
-std::array<double, 2> NewtonSolver::apply_correction(const Eigen::VectorXd& correction, State& state) const {
+NewtonSolver::Correction NewtonSolver::apply_correction(const Eigen::VectorXd& correction, State& state) const {
   const int* free_dof = system_.dofs().free_dofs().data();
   double* D = state.displacements.data();
-  double translation = 0.0, rotation = 0.0;  // maxima: the same whatever the order
+  // Maxima: the same whatever the order.
+  double translation = 0.0, rotation = 0.0, largest_translation = 0.0, largest_rotation = 0.0;
   bool finite = true;
-#pragma omp parallel for schedule(static) reduction(max : translation, rotation) reduction(&& : finite) if (correction.size() > 65536)
+#pragma omp parallel for schedule(static) reduction(max : translation, rotation, largest_translation, largest_rotation) \
+    reduction(&& : finite) if (correction.size() > 65536)
   for (Eigen::Index eq = 0; eq < correction.size(); ++eq) {
-    const double c = correction[eq];
-    D[free_dof[eq]] += c;
+    const double c = correction[eq], d = D[free_dof[eq]] + c;
+    D[free_dof[eq]] = d;
     finite = finite && std::isfinite(c);
-    if (is_moment_[eq]) rotation = std::max(rotation, std::abs(c));
-    else translation = std::max(translation, std::abs(c));
+    if (is_moment_[eq]) {
+      rotation = std::max(rotation, std::abs(c));
+      largest_rotation = std::max(largest_rotation, std::abs(d));
+    } else {
+      translation = std::max(translation, std::abs(c));
+      largest_translation = std::max(largest_translation, std::abs(d));
+    }
   }
-  if (!finite) return {NAN, NAN};
-  return {translation, rotation};
+  if (!finite) return {{NAN, NAN}, {NAN, NAN}};
+  return {{translation, rotation}, {largest_translation, largest_rotation}};
 }
 
-std::array<double, 2> NewtonSolver::largest_displacements(const State& state) const {
+std::array<double, 2> NewtonSolver::largest_displacements(const State& state, std::array<double, 2> free) const {
   const double* D = state.displacements.data();
-  const Eigen::Index nodes = state.displacements.size() / dofs_per_node;
-  double translation = 0.0, rotation = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : translation, rotation) if (nodes > 32768)
-  for (Eigen::Index node = 0; node < nodes; ++node) {
-    translation = std::max({translation, std::abs(D[3 * node]), std::abs(D[3 * node + 1])});
-    rotation = std::max(rotation, std::abs(D[3 * node + 2]));
+  for (const int dof : constrained_dofs_) {
+    if (dof % dofs_per_node == rz) free[1] = std::max(free[1], std::abs(D[dof]));
+    else free[0] = std::max(free[0], std::abs(D[dof]));
   }
-  return {translation, rotation};
+  return free;
 }
 
 double NewtonSolver::arc_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
@@ -400,7 +402,8 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     }
     out.iterations = it;
     // Applied first, checked after (in the same pass): a failed step's state is restored by the caller.
-    const std::array<double, 2> step_size = apply_correction(correction, state);
+    const Correction applied = apply_correction(correction, state);
+    const std::array<double, 2>& step_size = applied.size;
     if (!std::isfinite(step_size[0]) || !std::isfinite(dlambda)) {
       out.status = Status::diverged;
       out.message = iterate_text("the Newton correction is not finite", it);
@@ -424,7 +427,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       out.message = iterate_text("the unbalanced force is not finite", it);
       return out;
     }
-    const std::array<double, 2> largest = largest_displacements(state);
+    const std::array<double, 2> largest = largest_displacements(state, applied.largest_free);
     const bool at_round_off = step_size[0] <= round_off_ratio * std::max(model.size, largest[0]) &&
                               step_size[1] <= round_off_ratio * std::max(1.0, largest[1]);
     const bool stagnating = relative >= stagnation * out.residual_norms[out.residual_norms.size() - 2];

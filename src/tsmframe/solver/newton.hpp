@@ -105,11 +105,17 @@ class NewtonSolver {
   /// v += Δλ F_dir, without forming F_dir.
   void add_load_direction(double dlambda, Eigen::VectorXd& v) const;
   double relative_norm(const std::array<double, 2>& norms, const ResidualScale& scale) const;
-  /// Adds the correction to the free dofs; returns its largest entries per kind (translations,
-  /// rotations), NaN if any entry is not finite.
-  std::array<double, 2> apply_correction(const Eigen::VectorXd& correction, State& state) const;
-  /// Largest |translation| and |rotation| over all dofs of `state`.
-  std::array<double, 2> largest_displacements(const State& state) const;
+  /// What adding a correction found, per kind (translations, rotations): its largest entries
+  /// (NaN if any entry is not finite) and the largest free displacements after it.
+  struct Correction {
+    std::array<double, 2> size{};
+    std::array<double, 2> largest_free{};
+  };
+  /// Adds the correction to the free dofs, in one pass with its maxima.
+  Correction apply_correction(const Eigen::VectorXd& correction, State& state) const;
+  /// Largest |translation| and |rotation| over all dofs of `state`, given those over the free
+  /// dofs (apply_correction): the constrained ones are added here.
+  std::array<double, 2> largest_displacements(const State& state, std::array<double, 2> free) const;
   /// ‖R‖ per kind within a small multiple of the rounding floor of the internal forces.
   bool within_floor(const std::array<double, 2>& residual_norms, const State& state) const;
   /// Translational part of dot products for the arc-length constraint.
