@@ -117,13 +117,20 @@ void add_fill(BlockMatrix& a) {
 void BlockLDLT::analyze(const BlockMatrix& a) {
   const int n = size_ = a.size;
   const Rows rows = rows_of(a);
-  const std::vector<int> parent = elimination_tree(rows, n);
-  // The pattern must hold its fill: row k of L (the reach of row k) is row k of A.
-  std::vector<int> flag(n, -1), stack(n, 0);
-  for (int k = 0; k < n; ++k) {
-    const int top = reach(rows, k, parent, flag, stack);
-    if (n - top != rows.start[k + 1] - rows.start[k] || a.row[a.column[k]] != k)
-      throw std::logic_error("BlockLDLT: the block pattern lacks the fill of its factor (add_fill)");
+  // The pattern must hold its fill. Then it is closed under elimination: each column's rows
+  // below its first one (the column's parent in the elimination tree) are rows of the parent's
+  // column too — checked by one merge per column, and the tree read off the pattern.
+  std::vector<int> parent(n, -1);
+  for (int c = 0; c < n; ++c) {
+    if (a.row[a.column[c]] != c) throw std::logic_error("BlockLDLT: a column does not start with its diagonal");
+    if (a.column[c + 1] - a.column[c] < 2) continue;
+    const int p = parent[c] = a.row[a.column[c] + 1];
+    int q = a.column[p];
+    for (int e = a.column[c] + 2; e < a.column[c + 1]; ++e) {
+      while (q < a.column[p + 1] && a.row[q] < a.row[e]) ++q;
+      if (q == a.column[p + 1] || a.row[q] != a.row[e])
+        throw std::logic_error("BlockLDLT: the block pattern lacks the fill of its factor (add_fill)");
+    }
   }
   row_start_ = rows.start;
   row_column_ = rows.column;
