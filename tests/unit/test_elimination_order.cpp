@@ -1,0 +1,174 @@
+// The elimination order by members (assembly/elimination_order): a permutation for any node
+// graph (chains, rings, stars, isolated nodes, repeated elements, a lattice), members' paths
+// from both ends toward their middle with no fill, the joints last.
+#include <gtest/gtest.h>
+
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <numeric>
+#include <vector>
+
+#include "tsmframe/assembly/elimination_order.hpp"
+#include "tsmframe/solver/block_ldlt.hpp"
+
+namespace {
+
+using tsm::assembly::NodeGraph;
+
+// A node graph (each node among its own neighbours, sorted) from an edge list.
+NodeGraph graph(int n, const std::vector<std::pair<int, int>>& edges) {
+  std::vector<std::vector<int>> adjacent(n);
+  for (int k = 0; k < n; ++k) adjacent[k].push_back(k);
+  for (const auto& [a, b] : edges) {
+    adjacent[a].push_back(b);
+    adjacent[b].push_back(a);
+  }
+  NodeGraph g;
+  g.start.push_back(0);
+  for (auto& list : adjacent) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    g.neighbours.insert(g.neighbours.end(), list.begin(), list.end());
+    g.start.push_back(static_cast<int>(g.neighbours.size()));
+  }
+  return g;
+}
+
+std::vector<std::pair<int, int>> chain(int first, int last) {
+  std::vector<std::pair<int, int>> edges;
+  for (int k = first; k < last; ++k) edges.emplace_back(k, k + 1);
+  return edges;
+}
+
+void expect_permutation(const std::vector<int>& order, int n) {
+  ASSERT_EQ(static_cast<int>(order.size()), n);
+  std::vector<int> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  for (int k = 0; k < n; ++k) ASSERT_EQ(sorted[k], k);
+}
+
+// Blocks in the given order, the lower pattern of the graph, with its fill: how many entries
+// elimination adds.
+size_t fill_of(const NodeGraph& g, const std::vector<int>& order) {
+  const int n = static_cast<int>(order.size());
+  std::vector<int> position(n);
+  for (int k = 0; k < n; ++k) position[order[k]] = k;
+  std::vector<std::vector<int>> rows(n);
+  size_t entries = 0;
+  for (int node = 0; node < n; ++node)
+    for (int p = g.start[node]; p < g.start[node + 1]; ++p) {
+      const int a = position[node], b = position[g.neighbours[p]];
+      if (b >= a) rows[a].push_back(b);
+    }
+  tsm::solver::BlockMatrix m;
+  m.size = n;
+  m.column.push_back(0);
+  for (auto& r : rows) {
+    std::sort(r.begin(), r.end());
+    m.row.insert(m.row.end(), r.begin(), r.end());
+    entries += r.size();
+    m.column.push_back(static_cast<int>(m.row.size()));
+  }
+  tsm::solver::add_fill(m);
+  return m.row.size() - entries;
+}
+
+TEST(EliminationOrder, AChainGoesFromBothEndsToItsMiddleWithoutFill) {
+  const int n = 1001;
+  const NodeGraph g = graph(n, chain(0, n - 1));
+  const std::vector<int> order = tsm::assembly::elimination_order(g);
+  expect_permutation(order, n);
+  EXPECT_EQ(order.front(), 0);
+  EXPECT_EQ(order[n / 2], n - 1);  // the second branch starts at the far end
+  EXPECT_EQ(order.back(), n / 2);  // the middle last
+  EXPECT_EQ(fill_of(g, order), 0u);
+  // Its elimination tree has two branches of ~n/2: two parallel tasks.
+  std::vector<int> position(n);
+  for (int k = 0; k < n; ++k) position[order[k]] = k;
+  tsm::solver::BlockMatrix m;
+  m.size = n;
+  m.column.push_back(0);
+  for (int k = 0; k < n; ++k) {
+    const int node = order[k];
+    std::vector<int> r;
+    for (int p = g.start[node]; p < g.start[node + 1]; ++p)
+      if (position[g.neighbours[p]] >= k) r.push_back(position[g.neighbours[p]]);
+    std::sort(r.begin(), r.end());
+    m.row.insert(m.row.end(), r.begin(), r.end());
+    m.column.push_back(static_cast<int>(m.row.size()));
+  }
+  tsm::solver::add_fill(m);
+  tsm::solver::BlockLDLT ldlt;
+  ldlt.analyze(m);
+  EXPECT_EQ(ldlt.task_count(), 2);
+  EXPECT_EQ(ldlt.rows_above_tasks(), 1);
+}
+
+TEST(EliminationOrder, AnyGraphGivesAPermutation) {
+  // A ring (no joint), a star, isolated nodes, two elements between the same nodes, a chain
+  // hanging off a joint, a single element: all in one graph.
+  std::vector<std::pair<int, int>> edges = chain(0, 9);
+  edges.emplace_back(9, 0);                                              // ring 0..9
+  for (int k = 11; k < 16; ++k) edges.emplace_back(10, k);               // star around 10
+  edges.emplace_back(20, 21), edges.emplace_back(21, 20);                // a doubled element
+  for (const auto& e : chain(30, 40)) edges.push_back(e);                // a chain 30..40 …
+  edges.emplace_back(40, 41), edges.emplace_back(40, 42);                // … ending at a joint
+  edges.emplace_back(50, 51);                                            // one element
+  const int n = 55;                                                      // 16..19, 22..29, 43..49, 52..54 isolated
+  const NodeGraph g = graph(n, edges);
+  const std::vector<int> order = tsm::assembly::elimination_order(g);
+  expect_permutation(order, n);
+  // The ring is opened at a node that becomes its joint; each of its other 9 nodes, eliminated
+  // from both ends, joins the joint once — except the two next to it (already joined) and the
+  // middle (whose edge to the joint its neighbour made): 7 fill entries. Nothing else fills.
+  EXPECT_EQ(fill_of(g, order), 7u);
+}
+
+TEST(EliminationOrder, ALatticeKeepsItsJointsLastWithNoMoreFillThanMinimumDegree) {
+  // A 12 × 12-bay grid of members of 5 elements each.
+  const int bays = 12, divisions = 5, joints = (bays + 1) * (bays + 1);
+  std::vector<std::pair<int, int>> edges;
+  int next = joints;
+  auto member = [&](int a, int b) {
+    int previous = a;
+    for (int d = 1; d < divisions; ++d) {
+      edges.emplace_back(previous, next);
+      previous = next++;
+    }
+    edges.emplace_back(previous, b);
+  };
+  for (int y = 0; y <= bays; ++y)
+    for (int x = 0; x < bays; ++x) member(y * (bays + 1) + x, y * (bays + 1) + x + 1);
+  for (int y = 0; y < bays; ++y)
+    for (int x = 0; x <= bays; ++x) member(y * (bays + 1) + x, (y + 1) * (bays + 1) + x);
+  const NodeGraph g = graph(next, edges);
+  const std::vector<int> order = tsm::assembly::elimination_order(g);
+  expect_permutation(order, next);
+  // Corner joints have two neighbours: they lie on paths. Every other joint comes after every
+  // member node.
+  std::vector<int> position(next);
+  for (int k = 0; k < next; ++k) position[order[k]] = k;
+  int last_member_node = 0, first_joint = next;
+  for (int k = 0; k < next; ++k) {
+    const int degree = g.start[k + 1] - g.start[k] - 1;
+    if (degree >= 3) first_joint = std::min(first_joint, position[k]);
+    else last_member_node = std::max(last_member_node, position[k]);
+  }
+  EXPECT_LT(last_member_node, first_joint);
+  // Against minimum degree on the whole node graph (Eigen's AMD, the order before this one).
+  Eigen::SparseMatrix<double, Eigen::ColMajor, int> pattern(next, next);
+  std::vector<Eigen::Triplet<double, int>> entries;
+  for (int k = 0; k < next; ++k)
+    for (int p = g.start[k]; p < g.start[k + 1]; ++p) entries.emplace_back(g.neighbours[p], k, 1.0);
+  pattern.setFromTriplets(entries.begin(), entries.end());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> amd;
+  Eigen::AMDOrdering<int>()(pattern, amd);
+  const std::vector<int> amd_order(amd.indices().data(), amd.indices().data() + next);
+  const size_t fill = fill_of(g, order), amd_fill = fill_of(g, amd_order);
+  std::printf("[figure] 12x12 lattice, 5 elements per member: fill %zu (minimum degree: %zu) for %d nodes\n", fill,
+              amd_fill, next);
+  EXPECT_LE(fill, amd_fill * 11 / 10);
+}
+
+}  // namespace
