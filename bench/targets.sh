@@ -14,6 +14,9 @@ repeat() { for _ in $(seq "$runs"); do "$@"; done; }
 range() {  # range COLUMN <<< rows -> "best worst"
   awk -v c="$1" '{print $c}' | sort -g | sed -n '1p;$p' | paste -sd' ' -
 }
+median() {  # median COLUMN <<< rows
+  awk -v c="$1" '{print $c}' | sort -g | awk '{v[NR] = $1} END {print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2)}'
+}
 row() {  # row TARGET LIMIT UNIT "best worst"
   local best worst verdict
   read -r best worst <<<"$4"
@@ -29,6 +32,7 @@ circle=$(build/bench/tsmframe_scaling 1 10000 1.0 1)
 
 printf '%-50s %12s %21s %s\n' target limit "measured (best – worst)" verdict
 row "10^5 elements: cost per element per iteration" 100 ns "$(range 5 <<<"$chains")"
+printf '%-50s %12s %9s\n' "  (median of the runs)" "" "$(median 5 <<<"$chains")"
 row "10^5 elements: whole run" 1.5 s "$(range 6 <<<"$chains")"
 row "10^5 elements: peak memory" 60 MB "$(range 7 <<<"$chains")"
 # Spread of the per-element cost over 10^3, 10^5, 10^6: best with best, worst with worst.
