@@ -15,6 +15,25 @@ std::array<int, 6> element_dofs(int start, int end) {
   return {i, i + 1, i + 2, j, j + 1, j + 2};
 }
 
+/// A contact element's dofs: the beam element's two nodes, then the contact node.
+std::array<int, 9> contact_dofs(const Element& e, int node) {
+  std::array<int, 9> g;
+  for (int d = 0; d < dofs_per_node; ++d) {
+    g[d] = dofs_per_node * e.start + d;
+    g[3 + d] = dofs_per_node * e.end + d;
+    g[6 + d] = dofs_per_node * node + d;
+  }
+  return g;
+}
+
+/// The displacements of the given dofs.
+template <size_t N>
+Eigen::Matrix<double, N, 1> gather(const Eigen::VectorXd& displacements, const std::array<int, N>& dofs) {
+  Eigen::Matrix<double, N, 1> d;
+  for (size_t a = 0; a < N; ++a) d[a] = displacements[dofs[a]];
+  return d;
+}
+
 }  // namespace
 
 GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(model), dofs_(dofs) {
@@ -211,8 +230,7 @@ double GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacement
     if (slot.first_ij) value[slot.ij].setZero();
     return 0.0;
   }
-  element::Vector6 d;
-  for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
+  const element::Vector6 d = gather(displacements, g);
   const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0.matrix(), d, previous_rotations[k], with_tangent);
   out.chord_rotations[k] = r.chord.rotation;
   for (int a = 0; a < 3; ++a) {
@@ -246,14 +264,8 @@ double GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacement
 void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen::VectorXd& displacements,
                                     const std::vector<double>& previous_rotations, bool with_tangent, Evaluation& out) {
   const Element& e = model_.elements[a.element];
-  std::array<int, 9> g;
-  for (int d = 0; d < dofs_per_node; ++d) {
-    g[d] = dofs_per_node * e.start + d;
-    g[3 + d] = dofs_per_node * e.end + d;
-    g[6 + d] = dofs_per_node * a.node + d;
-  }
-  contact::Vector9 d;
-  for (int k = 0; k < 9; ++k) d[k] = displacements[g[k]];
+  const std::array<int, 9> g = contact_dofs(e, a.node);
+  const contact::Vector9 d = gather(displacements, g);
   const contact::ContactResponse r = contact::contact_response(a.data, d, previous_rotations[a.element], with_tangent);
   out.chord_rotations[a.element] = r.chord.rotation;
   out.contacts.push_back({r.alpha, r.forces[3]});
@@ -330,19 +342,11 @@ Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacement
 #pragma omp parallel for schedule(static) if (n_elements > 65536)
   for (int k = 0; k < n_elements; ++k) {
     const ElementRecord& slot = records_[k];
-    const auto g = element_dofs(slot.start, slot.end);
-    element::Vector6 d;
-    for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
+    const element::Vector6 d = gather(displacements, element_dofs(slot.start, slot.end));
     forces.segment<3>(3 * k) = element::beam_response(slot.chord(), slot.k0.matrix(), d, rotations[k], false).forces;
   }
   for (const contact::ActiveContact& a : contacts) {
-    const Element& e = model_.elements[a.element];
-    contact::Vector9 d;
-    for (int c = 0; c < dofs_per_node; ++c) {
-      d[c] = displacements[dofs_per_node * e.start + c];
-      d[3 + c] = displacements[dofs_per_node * e.end + c];
-      d[6 + c] = displacements[dofs_per_node * a.node + c];
-    }
+    const contact::Vector9 d = gather(displacements, contact_dofs(model_.elements[a.element], a.node));
     forces.segment<3>(3 * a.element) = contact::contact_response(a.data, d, rotations[a.element], false).forces.head<3>();
   }
   return forces;
@@ -357,9 +361,7 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
   double force = 0.0, moment = 0.0;
   for (size_t k = 0; k < model_.elements.size(); ++k) {
     if (replaced[k]) continue;
-    const auto g = element_dofs(records_[k].start, records_[k].end);
-    element::Vector6 d;
-    for (int a = 0; a < 6; ++a) d[a] = displacements[g[a]];
+    const element::Vector6 d = gather(displacements, element_dofs(records_[k].start, records_[k].end));
     const element::Matrix3 k0 = records_[k].k0.matrix();
     const element::InitialChord chord = records_[k].chord();
     const element::BeamResponse r = element::beam_response(chord, k0, d, rotations[k], false);
@@ -370,13 +372,7 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
   for (const contact::ActiveContact& a : contacts) {
     // The beam part as for the plain element, plus Y's: the error of δy_c − w (about ε times the
     // coordinates involved) divided by the compliance.
-    const Element& e = model_.elements[a.element];
-    contact::Vector9 d;
-    for (int c = 0; c < dofs_per_node; ++c) {
-      d[c] = displacements[dofs_per_node * e.start + c];
-      d[3 + c] = displacements[dofs_per_node * e.end + c];
-      d[6 + c] = displacements[dofs_per_node * a.node + c];
-    }
+    const contact::Vector9 d = gather(displacements, contact_dofs(model_.elements[a.element], a.node));
     const contact::ContactResponse r = contact::contact_response(a.data, d, rotations[a.element], false);
     const element::BeamResponse plain = element::beam_response(a.data.initial, a.data.k0, d.head<6>(), rotations[a.element], false);
     const element::RoundOffFloor f = element::round_off_floor(a.data.initial, a.data.k0, d.head<6>(), plain);

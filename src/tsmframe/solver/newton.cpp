@@ -66,8 +66,7 @@ bool NewtonSolver::evaluate(State& state) {
   constexpr int max_passes = 4;  // contact changes settled per iterate before Newton goes on
   bool changed = false;
   for (int pass = 0;; ++pass) {
-    const std::vector<contact::ActiveContact> active =
-        contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
+    const std::vector<contact::ActiveContact> active = active_contacts(state);
     // The rotations are continued in place (one vector, not two): lent to the evaluation.
     std::swap(state.chord_rotations, eval_.chord_rotations);
     system_.evaluate(state.displacements, eval_.chord_rotations, true, eval_, active);
@@ -104,6 +103,10 @@ bool NewtonSolver::release_pulling_contacts(State& state) {
 
 void NewtonSolver::reset(State& state) { evaluate(state); }
 
+std::vector<contact::ActiveContact> NewtonSolver::active_contacts(const State& state) const {
+  return contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
+}
+
 std::vector<ContactPoint> NewtonSolver::contact_points(const State& state) const {
   std::vector<ContactPoint> points;
   for (const contact::ContactState& c : state.contacts) {
@@ -115,8 +118,7 @@ std::vector<ContactPoint> NewtonSolver::contact_points(const State& state) const
 }
 
 Eigen::VectorXd NewtonSolver::element_forces(const State& state) const {
-  const std::vector<contact::ActiveContact> active =
-      contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
+  const std::vector<contact::ActiveContact> active = active_contacts(state);
   return system_.element_forces(state.displacements, state.chord_rotations, active);
 }
 
@@ -278,8 +280,7 @@ void NewtonSolver::free_displacements(const State& state, Eigen::VectorXd& v) co
 
 bool NewtonSolver::within_floor(const std::array<double, 2>& norms, const State& state) const {
   const auto [force, moment] = norms;
-  const std::vector<contact::ActiveContact> active =
-      contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
+  const std::vector<contact::ActiveContact> active = active_contacts(state);
   const assembly::RoundingFloor floor = system_.rounding_floor(state.displacements, state.chord_rotations, active);
   return force <= floor_ratio * floor.force && moment <= floor_ratio * floor.moment;
 }
@@ -312,8 +313,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     // The SparseLU fallback (contacts only) needs the tangent the in-place LDLᵀ overwrote: it is
     // evaluated again at the same state, which stays as it is (a scratch evaluation).
     const auto refill = [&](BlockMatrix&) {
-      const std::vector<contact::ActiveContact> active =
-          contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
+      const std::vector<contact::ActiveContact> active = active_contacts(state);
       assembly::Evaluation scratch;
       system_.evaluate(state.displacements, state.chord_rotations, true, scratch, active);
     };

@@ -80,6 +80,8 @@ class NewtonSolver {
   /// Evaluates at `state` and settles its contacts (detect, release, hand over; re-evaluating
   /// after each change). Returns whether the contact set changed.
   bool evaluate(State& state);
+  /// The contact elements standing in for beam elements at `state` (none without contacts).
+  std::vector<contact::ActiveContact> active_contacts(const State& state) const;
   /// At a converged iterate: releases contacts that pull and re-evaluates. Returns whether any was.
   bool release_pulling_contacts(State& state);
   /// What one pass over the unbalanced force yields.
