@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "support/contact_trial.hpp"
 #include "tsmframe/contact/cantilever_frame_element.hpp"
 
 namespace {
@@ -63,44 +64,18 @@ TEST(CantileverFrameLaw, TendsToThePlainCantileverAsTheContactNearsTheClamp) {
   EXPECT_NEAR(k(1, 1), 4.0, 1e-4);
 }
 
-struct Trial {
-  ContactElementData data;
-  Vector9 d;
-  double previous = 0.0;
-};
+using Trial = tsm::test::ContactTrial;
 
+// The element of tests/support/contact_trial.hpp, shifted by (0.05, −0.02), its contact node
+// 0.03 along the chord from α0 and turned by 0.3, in the cantilever frame or not.
 Trial trial(double psi, double angle, double theta_i, double theta_j, double alpha0, double push, bool cantilever,
             bool sliding = true) {
-  Trial s;
-  s.data.initial = tsm::element::initial_chord({0.3, -0.2}, {1.3, 0.4});
-  s.data.section = {.EA = 400.0, .EI = 3.0, .shear_flexibility = psi};
-  s.data.k0 = tsm::element::basic_stiffness(s.data.section, s.data.initial.length);
-  const Eigen::Vector2d chord = s.data.initial.end - s.data.initial.start;
-  s.data.contact_start = s.data.initial.start + alpha0 * chord;
-  s.data.edge = 1e-3;
-  s.data.sliding_term = sliding;
-  s.data.cantilever_frame = cantilever;
-  const Eigen::Rotation2Dd R(angle);
-  const Eigen::Vector2d end = s.data.initial.start + 1.002 * (R * chord);
-  const Eigen::Vector2d e = (R * chord).normalized(), n(-e.y(), e.x());
-  const Eigen::Vector2d contact = s.data.initial.start + (alpha0 + 0.03) * 1.002 * (R * chord) + push * n;
-  s.d << 0.05, -0.02, angle + theta_i, end.x() - s.data.initial.end.x() + 0.05, end.y() - s.data.initial.end.y() - 0.02,
-      angle + theta_j, contact.x() - s.data.contact_start.x() + 0.05, contact.y() - s.data.contact_start.y() - 0.02, 0.3;
-  s.previous = angle + 0.02;
-  return s;
+  return tsm::test::contact_trial({.psi = psi, .angle = angle, .theta_i = theta_i, .theta_j = theta_j, .alpha0 = alpha0,
+                                   .push = push, .slide = 0.03, .sliding_term = sliding, .cantilever_frame = cantilever,
+                                   .shift = {0.05, -0.02}, .node_rotation = 0.3});
 }
 
-Matrix9 finite_differences(const Trial& s) {
-  Matrix9 K;
-  for (int b = 0; b < 9; ++b) {
-    Vector9 plus = s.d, minus = s.d;
-    plus[b] += 1e-6;
-    minus[b] -= 1e-6;
-    K.col(b) = (contact_response(s.data, plus, s.previous).nodal_forces -
-                contact_response(s.data, minus, s.previous).nodal_forces) / 2e-6;
-  }
-  return K;
-}
+Matrix9 finite_differences(const Trial& s) { return tsm::test::finite_difference_tangent(s); }
 
 struct Case {
   double psi, angle, theta_i, theta_j, alpha0, push;

@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "support/contact_trial.hpp"
 #include "tsmframe/contact/contact_element.hpp"
 
 namespace {
@@ -105,46 +106,14 @@ TEST(ContactForceLaw, ComplianceFloorHoldsWithinTheEdgeZone) {
 
 // ---- The element ----
 
-struct Trial {
-  ContactElementData data;
-  Vector9 d;
-  double previous = 0.0;
-};
+using Trial = tsm::test::ContactTrial;
+using tsm::test::finite_difference_tangent;
 
-/// Beam element from (0.3, −0.2) to (1.3, 0.4) with a contact node drawn at α0 on its axis,
-/// rotated rigidly by `angle` about node i, stretched, bent (θ_i, θ_j) and the node moved off
-/// the chord by `push` along n and by `slide` along e.
+/// The element of tests/support/contact_trial.hpp (unshifted, its contact node turned by 0.7).
 Trial trial(double psi, double angle, double theta_i, double theta_j, double alpha0, double push, double slide,
             bool sliding_term = true) {
-  Trial s;
-  s.data.initial = tsm::element::initial_chord({0.3, -0.2}, {1.3, 0.4});
-  s.data.section = {.EA = 400.0, .EI = 3.0, .shear_flexibility = psi};
-  s.data.k0 = tsm::element::basic_stiffness(s.data.section, s.data.initial.length);
-  const Eigen::Vector2d chord = s.data.initial.end - s.data.initial.start;
-  s.data.contact_start = s.data.initial.start + alpha0 * chord;
-  s.data.edge = 1e-3;
-  s.data.sliding_term = sliding_term;
-  const Eigen::Rotation2Dd R(angle);
-  const Eigen::Vector2d end = s.data.initial.start + 1.002 * (R * chord);
-  const Eigen::Vector2d e = (R * chord).normalized(), n(-e.y(), e.x());
-  const Eigen::Vector2d contact = s.data.initial.start + (alpha0 + slide) * 1.002 * (R * chord) + push * n;
-  s.d << 0.0, 0.0, angle + theta_i, end.x() - s.data.initial.end.x(), end.y() - s.data.initial.end.y(),
-      angle + theta_j, contact.x() - s.data.contact_start.x(), contact.y() - s.data.contact_start.y(), 0.7;
-  s.previous = angle + 0.02;
-  return s;
-}
-
-Matrix9 finite_difference_tangent(const Trial& s) {
-  Matrix9 K;
-  for (int b = 0; b < 9; ++b) {
-    const double h = 1e-6;
-    Vector9 plus = s.d, minus = s.d;
-    plus[b] += h;
-    minus[b] -= h;
-    K.col(b) = (contact_response(s.data, plus, s.previous).nodal_forces -
-                contact_response(s.data, minus, s.previous).nodal_forces) / (2 * h);
-  }
-  return K;
+  return tsm::test::contact_trial({.psi = psi, .angle = angle, .theta_i = theta_i, .theta_j = theta_j, .alpha0 = alpha0,
+                                   .push = push, .slide = slide, .sliding_term = sliding_term});
 }
 
 struct TangentCase {
