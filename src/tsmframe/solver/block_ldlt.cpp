@@ -11,6 +11,7 @@ namespace tsm::solver {
 namespace {
 
 constexpr size_t parallel_rows_above = 256;  // fewer rows above the tasks: run them serially
+constexpr int path_rows_per_thread = 8;      // a thread's run of consecutive path rows (false sharing)
 
 // The factorisation's 3×3 block products are arithmetic-bound (a lattice frame's top separator):
 // on x86-64 they are also compiled for AVX2 + FMA, picked at load time where the CPU has them
@@ -348,12 +349,15 @@ bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
     }
     int* slot = thread_slot_.data() + static_cast<size_t>(omp_get_thread_num()) * size_;
     const int lowest = top_rows_[stage.begin];
-#pragma omp for schedule(dynamic, 1)
+    // Rows in runs of path_rows_per_thread: consecutive rows' entries in a column are neighbours in
+    // memory (72-byte blocks share cache lines), so rows handed out one by one to alternating
+    // threads wrote the same lines from both cores - slower on two threads than on one.
+#pragma omp for schedule(dynamic, path_rows_per_thread)
     for (int q = stage.begin; q < stage.end; ++q) {
       const int k = top_rows_[q];
       form_row(a, k, row_start_[k], split_[q], forward, slot, false, lowest, deferred_z_.data() + deferred_start_[q]);
     }
-#pragma omp for schedule(dynamic, 1)
+#pragma omp for schedule(dynamic, path_rows_per_thread)
     for (int q = stage.begin; q < stage.end; ++q)
       apply_deferred(a, top_rows_[q], split_[q], lowest, deferred_z_.data() + deferred_start_[q], slot);
 #pragma omp single
