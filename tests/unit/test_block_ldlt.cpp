@@ -29,11 +29,17 @@ struct Case {
 };
 
 // `chains` chains of n / chains blocks, each with n / 3 / chains random couplings inside it, and
-// `bridges` couplings between chains (which put rows above the factorisation's subtrees).
-std::vector<std::set<int>> chain_pattern(int n, int chains, int bridges, std::mt19937& random) {
+// `bridges` couplings between chains (which put rows above the factorisation's subtrees); then
+// `top` blocks numbered last, each coupled to all the others and to three random chain blocks
+// (a dense separator at the top of the elimination tree, like a frame lattice's last one).
+std::vector<std::set<int>> chain_pattern(int n, int chains, int bridges, std::mt19937& random, int top = 0) {
   const int length = n / chains;
-  std::uniform_int_distribution<int> block(0, length - 1), chain(0, chains - 1);
-  std::vector<std::set<int>> rows(n);  // rows ≥ c of column c
+  std::uniform_int_distribution<int> block(0, length - 1), chain(0, chains - 1), any(0, n - 1);
+  std::vector<std::set<int>> rows(n + top);  // rows ≥ c of column c
+  for (int t = n; t < n + top; ++t) {
+    for (int u = t; u < n + top; ++u) rows[t].insert(u);
+    for (int extra = 0; extra < 3; ++extra) rows[any(random)].insert(t);
+  }
   for (int c = 0; c < n; ++c) {
     rows[c].insert(c);
     if (c + 1 < n && (c + 1) % length != 0) rows[c].insert(c + 1);
@@ -50,10 +56,11 @@ std::vector<std::set<int>> chain_pattern(int n, int chains, int bridges, std::mt
   return rows;
 }
 
-Case random_case(int n, double shift, unsigned seed, int chains = 1, int bridges = 0, bool dense = true) {
+Case random_case(int n, double shift, unsigned seed, int chains = 1, int bridges = 0, bool dense = true, int top = 0) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> value(-1.0, 1.0);
-  const std::vector<std::set<int>> rows = chain_pattern(n, chains, bridges, random);
+  const std::vector<std::set<int>> rows = chain_pattern(n, chains, bridges, random, top);
+  n += top;
   Case out;
   out.dense = Eigen::MatrixXd::Zero(dense ? 3 * n : 0, dense ? 3 * n : 0);
   std::vector<std::vector<Block>> values(n);
@@ -181,6 +188,37 @@ TEST(BlockLDLT, SolvesWithParallelSubtreesAndRowsAboveThemTheSameWithAnyThreadCo
   const double residual = (multiply(c.matrix, x[0]) - b).norm() / b.norm();
   std::printf("[figure] block LDLT, 3600 blocks in parallel subtrees: relative residual %.2e\n", residual);
   EXPECT_LT(residual, 1e-12);
+  EXPECT_LT((multiply(c.matrix, fused[0]) - b).norm() / b.norm(), 1e-12);
+  EXPECT_EQ(x[0], x[1]);  // bit for bit
+  EXPECT_EQ(fused[0], fused[1]);
+}
+
+TEST(BlockLDLT, FactorisesADenseTopSeparatorAsOneDenseMatrixTheSameWithAnyThreadCount) {
+  // The chains above plus 48 blocks, all coupled among themselves, numbered last: their rows end
+  // the tree's top path with consecutive numbers and fill their triangle, so after the passes
+  // over their prefixes they are factorised as one dense matrix (DenseBlockLDLT).
+  const Case c = random_case(3600, 20.0, 3, 24, 60, false, 48);
+  std::mt19937 random(9);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  Eigen::VectorXd b(3 * c.matrix.size);
+  for (Eigen::Index i = 0; i < b.size(); ++i) b[i] = value(random);
+  Eigen::VectorXd x[2], fused[2];
+  for (int threads = 1; threads <= 2; ++threads) {
+    omp_set_num_threads(threads);
+    BlockMatrix m = c.matrix;
+    BlockLDLT ldlt;
+    ldlt.analyze(m);
+    ASSERT_GE(ldlt.rows_in_dense_paths(), 48);
+    ASSERT_TRUE(ldlt.factorize(m));
+    x[threads - 1] = b;
+    ldlt.solve_in_place(x[threads - 1]);
+    BlockMatrix n = c.matrix;
+    fused[threads - 1] = b;
+    ASSERT_TRUE(ldlt.factorize(n, &fused[threads - 1]));
+    ldlt.finish_solve(fused[threads - 1]);
+  }
+  omp_set_num_threads(omp_get_num_procs());
+  EXPECT_LT((multiply(c.matrix, x[0]) - b).norm() / b.norm(), 1e-12);
   EXPECT_LT((multiply(c.matrix, fused[0]) - b).norm() / b.norm(), 1e-12);
   EXPECT_EQ(x[0], x[1]);  // bit for bit
   EXPECT_EQ(fused[0], fused[1]);

@@ -12,6 +12,7 @@ namespace {
 
 constexpr size_t parallel_rows_above = 256;  // fewer rows above the tasks: run them serially
 constexpr int path_rows_per_thread = 8;      // a thread's run of consecutive path rows (false sharing)
+constexpr int dense_path_rows = 32;         // a shorter path is formed row by row, never dense
 
 // The factorisation's 3×3 block products are arithmetic-bound (a lattice frame's top separator):
 // on x86-64 they are also compiled for AVX2 + FMA, picked at load time where the CPU has them
@@ -206,14 +207,42 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   int shared = 0;  // rows in levels of two or more
   for (int l = 0; l < levels; ++l)
     if (level_start_[l + 1] - level_start_[l] > 1) shared += level_start_[l + 1] - level_start_[l];
+  // In parallel only where the rows above the tasks are many (else a barrier per stage costs
+  // more than it saves).
+  parallel_top_ = top_rows_.size() >= parallel_rows_above;
   // Stages of the rows above the tasks: each level of several rows, and each run of single-row
-  // levels — a path of the tree, where every row's pattern below the path is final before the
+  // levels - a path of the tree, where every row's pattern below the path is final before the
   // path starts (its other descendants sit in lower levels). A path row's split: its first
   // entry in a column of the path.
+  // A path's top rows with consecutive numbers (the tree's top supernode, or one like it: a
+  // frame lattice's last separator) have all their other descendants below the lowest of them,
+  // so from that row on their entries lie in their own columns only. Where such a run is long
+  // and fills at least half of its lower triangle, it becomes a path of its own whose rows,
+  // after the passes over their prefixes, are factorised as one dense matrix (passes only).
   stages_.clear();
   split_.assign(top_rows_.size(), 0);
   deferred_start_.assign(top_rows_.size(), 0);
+  std::vector<int>().swap(path_place_);
   size_t deferred = 0;
+  auto add_path = [&](int begin, int end, bool dense) {
+    const int lowest = top_rows_[begin];
+    size_t entries = 0;
+    for (int q = begin; q < end; ++q) {
+      const int k = top_rows_[q];
+      split_[q] = static_cast<int>(std::lower_bound(row_column_.begin() + row_start_[k], row_column_.begin() + row_start_[k + 1], lowest) -
+                                   row_column_.begin());
+      deferred_start_[q] = static_cast<int>(deferred);
+      deferred += split_[q] - row_start_[k];
+      entries += row_start_[k + 1] - split_[q];
+    }
+    const size_t rows = end - begin;
+    dense = dense && 4 * entries >= rows * (rows - 1);
+    if (dense) {
+      if (path_place_.empty()) path_place_.assign(n, -1);
+      for (int q = begin; q < end; ++q) path_place_[top_rows_[q]] = q - begin;
+    }
+    stages_.push_back({begin, end, true, dense});
+  };
   for (int l = 0; l < levels;) {
     if (level_start_[l + 1] - level_start_[l] > 1) {
       stages_.push_back({level_start_[l], level_start_[l + 1], false});
@@ -222,22 +251,25 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
     }
     int m = l;
     while (m < levels && level_start_[m + 1] - level_start_[m] == 1) ++m;
-    const int begin = level_start_[l], end = level_start_[m], lowest = top_rows_[begin];
-    for (int q = begin; q < end; ++q) {
-      const int k = top_rows_[q];
-      split_[q] = static_cast<int>(std::lower_bound(row_column_.begin() + row_start_[k], row_column_.begin() + row_start_[k + 1], lowest) -
-                                   row_column_.begin());
-      deferred_start_[q] = static_cast<int>(deferred);
-      deferred += split_[q] - row_start_[k];
+    const int begin = level_start_[l], end = level_start_[m];
+    int run = end - 1;  // the run of consecutive rows at the path's top, from its lowest
+    while (run > begin && top_rows_[run - 1] == top_rows_[run] - 1) --run;
+    if (parallel_top_ && end - run >= dense_path_rows) {
+      if (run > begin) add_path(begin, run, false);
+      add_path(run, end, true);
+    } else {
+      add_path(begin, end, false);
     }
-    stages_.push_back({begin, end, true});
     l = m;
   }
-  // In parallel only where the rows above the tasks are many (else a barrier per stage costs
-  // more than it saves).
-  parallel_top_ = top_rows_.size() >= parallel_rows_above;
   if (parallel_top_) deferred_z_.resize(deferred);  // the path rows' running sums, pass (1) to (2)
   else std::vector<Block>().swap(deferred_z_);
+  // A dense path's entries from its split on must lie in its own columns (see above).
+  for (const Stage& stage : stages_)
+    for (int q = stage.begin; stage.dense && q < stage.end; ++q)
+      for (int t = split_[q]; t < row_start_[top_rows_[q] + 1]; ++t)
+        if (path_place_[row_column_[t]] < 0) throw std::logic_error("BlockLDLT: a dense path reaches outside its columns");
+  dense_.resize(0, 0);
   // The solves go level by level (a barrier per level): only where levels hold several rows.
   parallel_top_levels_ = parallel_top_ && 2 * shared >= static_cast<int>(top_rows_.size());
 }
@@ -360,6 +392,10 @@ bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
 #pragma omp for schedule(dynamic, path_rows_per_thread)
     for (int q = stage.begin; q < stage.end; ++q)
       apply_deferred(a, top_rows_[q], split_[q], lowest, deferred_z_.data() + deferred_start_[q], slot);
+    if (stage.dense) {
+      if (!factorize_dense_path(a, stage, forward)) ok = false;  // the same on every thread
+      continue;
+    }
 #pragma omp single
     for (int q = stage.begin; q < stage.end && ok; ++q) {
       const int k = top_rows_[q];
@@ -367,6 +403,39 @@ bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
     }
   }
   return ok;
+}
+
+bool BlockLDLT::factorize_dense_path(BlockMatrix& a, const Stage& stage, double* forward) {
+  // After passes (1) and (2) a path row's entries in the path's columns hold A(k, r) less the
+  // prefix's updates, and its diagonal block the running D_k (upper triangle): together the
+  // Schur complement of everything below the path, which the dense factorisation completes.
+  const int rows = stage.end - stage.begin;
+#pragma omp single
+  {
+    dense_.setZero(3 * rows, 3 * rows);
+    for (int q = stage.begin; q < stage.end; ++q) {
+      const int k = top_rows_[q], i = q - stage.begin;
+      dense_.block<3, 3>(3 * i, 3 * i) = a.value[a.column[k]].transpose();  // its lower triangle = the running upper one
+      for (int t = split_[q]; t < row_start_[k + 1]; ++t)
+        dense_.block<3, 3>(3 * i, 3 * path_place_[row_column_[t]]) = a.value[row_position_[t]];
+    }
+  }
+  if (!dense_ldlt_.factorize(dense_)) return false;
+#pragma omp single
+  for (int q = stage.begin; q < stage.end; ++q) {
+    const int k = top_rows_[q], i = q - stage.begin;
+    a.value[a.column[k]] = dense_.block<3, 3>(3 * i, 3 * i);
+    for (int t = split_[q]; t < row_start_[k + 1]; ++t)
+      a.value[row_position_[t]] = dense_.block<3, 3>(3 * i, 3 * path_place_[row_column_[t]]);
+    if (forward) {  // y_k −= Σ L(k, r) y_r over the path's columns (the prefix's went in pass (1))
+      Eigen::Map<Eigen::Vector3d> yk(forward + 3 * k);
+      Eigen::Vector3d sum = yk;
+      for (int t = split_[q]; t < row_start_[k + 1]; ++t)
+        sum.noalias() -= a.value[row_position_[t]] * Eigen::Map<const Eigen::Vector3d>(forward + 3 * row_column_[t]);
+      yk = sum;
+    }
+  }
+  return true;
 }
 
 void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {

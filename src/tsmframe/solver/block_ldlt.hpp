@@ -17,6 +17,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "tsmframe/solver/dense_block_ldlt.hpp"
+
 namespace tsm::solver {
 
 using Block = Eigen::Matrix3d;
@@ -57,6 +59,12 @@ class BlockLDLT {
     for (const Stage& s : stages_) rows += parallel_top_ && s.path ? s.end - s.begin : 0;
     return rows;
   }
+  /// Rows of those paths whose block among themselves is factorised as a dense matrix.
+  int rows_in_dense_paths() const {
+    int rows = 0;
+    for (const Stage& s : stages_) rows += s.dense ? s.end - s.begin : 0;
+    return rows;
+  }
 
  private:
   int size_ = 0;
@@ -82,12 +90,18 @@ class BlockLDLT {
   struct Stage {
     int begin = 0, end = 0;
     bool path = false;
+    /// A path whose rows' entries from its first column on lie in its own columns and fill at
+    /// least half of its lower triangle: that part is factorised as a dense matrix.
+    bool dense = false;
   };
   std::vector<Stage> stages_;
   std::vector<int> split_;        ///< per entry of top_rows_ in a path: its first entry (row index t) in a path column
   std::vector<int> thread_slot_;  ///< one slot map per thread, for the path rows' prefixes
   std::vector<int> deferred_start_;  ///< per entry of top_rows_ in a path: its prefix's place in deferred_z_
   std::vector<Block> deferred_z_;    ///< running sums z of the path rows' prefix entries
+  std::vector<int> path_place_;      ///< per block: its place in its dense path (only if a path is dense)
+  Eigen::MatrixXd dense_;            ///< a dense path's block, gathered, factorised and put back
+  DenseBlockLDLT dense_ldlt_;
 
   /// Forms entries [t_begin, t_end) of row k (see block_ldlt.cpp); `finish` completes the row.
   bool form_row(BlockMatrix& a, int k, int t_begin, int t_end, double* forward, int* slot, bool finish, int defer_from,
@@ -95,6 +109,9 @@ class BlockLDLT {
   /// Adds to row k the updates form_row left out (into rows ≥ defer_from), from its first t_end entries.
   void apply_deferred(BlockMatrix& a, int k, int t_end, int defer_from, const Block* deferred, int* slot) const;
   bool factorize_row(BlockMatrix& a, int k, double* forward);
+  /// The rest of a dense path's rows (after the passes over their prefixes): gathered into dense_,
+  /// factorised by all threads of the calling team together, put back. False if a pivot fails.
+  bool factorize_dense_path(BlockMatrix& a, const Stage& stage, double* forward);
 };
 
 }  // namespace tsm::solver

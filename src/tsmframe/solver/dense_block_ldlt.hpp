@@ -1,0 +1,37 @@
+#pragma once
+// Dense LDLᵀ with 3×3 pivot blocks, for the block of the tangent where the sparse factor is
+// dense: the top of the elimination tree (a frame lattice's last separator), which the
+// node-block factorisation (block_ldlt) would otherwise form row by row in indexed 3×3 updates.
+// Right-looking in panels of block columns: each panel is factorised column by column, then the
+// rest of the matrix is updated by one matrix product per column panel (Eigen's dense kernels).
+// No pivoting beyond the 3×3 blocks, like the sparse factorisation: it handles indefinite
+// matrices as long as no pivot block is singular.
+//
+// SPMD: every thread of an OpenMP team calls factorize() together (or one thread, outside any
+// parallel region); the column panels of each trailing update are shared among them. The
+// panels are fixed by the matrix size alone, so every entry receives the same arithmetic in the
+// same order whatever the number of threads: results are bit-identical.
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace tsm::solver {
+
+class DenseBlockLDLT {
+ public:
+  /// Factorises the symmetric matrix in the lower triangle of `a` (3p × 3p; its strict upper
+  /// triangle is ignored and overwritten) in place: below the diagonal blocks L, on them D_j⁻¹
+  /// (full 3×3). Returns false (on every thread) if a pivot block is singular or not finite.
+  bool factorize(Eigen::MatrixXd& a);
+
+ private:
+  std::vector<Eigen::Matrix3d> pivot_;  ///< D_j of the panel being applied
+  Eigen::MatrixXd scaled_;              ///< L(rest, panel) D_panel, for the trailing update
+  bool ok_ = true;
+};
+
+/// D⁻¹ of the symmetric 3×3 block `d` by cofactors (the same arithmetic as the sparse
+/// factorisation's pivots); false if it is singular or not finite.
+bool invert_pivot(const Eigen::Matrix3d& d, Eigen::Matrix3d& inverse);
+
+}  // namespace tsm::solver
