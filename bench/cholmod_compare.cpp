@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
       for (int p = tangent.column[c]; p < tangent.column[c + 1]; ++p)
         for (int dr = 0; dr < 3; ++dr) {
           const long r = 3L * tangent.row[p] + dr, col = 3L * c + dc;
-          const double v = tangent.value[p](dr, dc);
+          const double v = tangent.is_fill(p) ? 0.0 : tangent.value[p](dr, dc);
           if (r < col || (v == 0.0 && r != col)) continue;
           row.push_back(r);
           value.push_back(v);

@@ -16,7 +16,7 @@ inline Eigen::MatrixXd dense_tangent(const assembly::DofMap& dofs, const solver:
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
   for (int c = 0; c < a.size; ++c)
     for (int p = a.column[c]; p < a.column[c + 1]; ++p)
-      for (int i = 0; i < 3; ++i)
+      for (int i = 0; i < 3 && !a.is_fill(p); ++i)
         for (int j = 0; j < 3; ++j) {
           const int r = dofs.equation(3 * dofs.block_node(a.row[p]) + i), q = dofs.equation(3 * dofs.block_node(c) + j);
           if (r < 0 || q < 0) continue;

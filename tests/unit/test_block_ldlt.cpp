@@ -140,6 +140,7 @@ TEST(BlockLDLT, AddFillKeepsTheEntriesAndAddsWhatEliminationNeeds) {
   EXPECT_THROW(ldlt.analyze(chain), std::logic_error);
   tsm::solver::add_fill(chain);
   EXPECT_EQ(chain.row.size(), 6u);
+  EXPECT_EQ(chain.fill, (std::vector<unsigned char>{0, 0, 0, 0, 1, 0}));  // only (2, 1) is new
   EXPECT_NO_THROW(ldlt.analyze(chain));
 }
 
@@ -222,6 +223,22 @@ TEST(BlockLDLT, FactorisesADenseTopSeparatorAsOneDenseMatrixTheSameWithAnyThread
   EXPECT_LT((multiply(c.matrix, fused[0]) - b).norm() / b.norm(), 1e-12);
   EXPECT_EQ(x[0], x[1]);  // bit for bit
   EXPECT_EQ(fused[0], fused[1]);
+}
+
+TEST(BlockLDLT, NeverReadsTheFillEntriesOfTheMatrix) {
+  // The assembly rewrites only the entries of A between factorisations: the fill still holds the
+  // last factor. A second factorisation must give the same bits as the first.
+  const Case c = random_case(3600, 20.0, 3, 24, 60, false, 48);
+  ASSERT_FALSE(c.matrix.fill.empty());
+  BlockMatrix m = c.matrix;
+  BlockLDLT ldlt;
+  ldlt.analyze(m);
+  ASSERT_TRUE(ldlt.factorize(m));
+  const BlockMatrix first = m;
+  for (size_t p = 0; p < m.value.size(); ++p)
+    if (!m.is_fill(static_cast<int>(p))) m.value[p] = c.matrix.value[p];
+  ASSERT_TRUE(ldlt.factorize(m));
+  for (size_t p = 0; p < m.value.size(); ++p) ASSERT_EQ(m.value[p], first.value[p]) << "entry " << p;
 }
 
 TEST(BlockLDLT, ReportsASingularPivot) {

@@ -174,7 +174,7 @@ void GlobalSystem::mark_first_writers() {
     }
   unwritten_entries_.clear();
   for (size_t p = 0; p < entry_written.size(); ++p)
-    if (!entry_written[p]) unwritten_entries_.push_back(static_cast<int>(p));
+    if (!entry_written[p] && !tangent_.is_fill(p)) unwritten_entries_.push_back(static_cast<int>(p));  // fill: the factorisation zeroes it
   unwritten_nodes_.clear();
   for (size_t k = 0; k < node_written.size(); ++k)
     if (!node_written[k]) unwritten_nodes_.push_back(static_cast<int>(k));

@@ -57,7 +57,9 @@ class GlobalSystem {
 
   /// K_ff from the last evaluation with tangent, as node blocks; the rows and columns of a
   /// block's constrained dofs are zero with 1 on the diagonal (they carry no equation). The
-  /// pattern holds the fill of its LDLᵀ factor (zero blocks where no element couples).
+  /// pattern holds the fill of its LDLᵀ factor: entries no element couples, marked
+  /// (BlockMatrix::is_fill) and left as they are - the factorisation starts them at zero - so a
+  /// reader of the values skips them.
   const BlockMatrix& tangent() const { return tangent_; }
   /// The same storage, for the linear solver to factorise in place: after that it holds the
   /// factor, not K_ff, until the next evaluation with tangent.
@@ -124,7 +126,7 @@ class GlobalSystem {
   std::vector<int> colour_start_;   ///< group c: colour_chunks_[colour_start_[c] .. colour_start_[c+1])
   std::vector<double> chunk_largest_end_rotation_;  ///< per chunk, in the last evaluation
   bool has_prescribed_ = false;
-  std::vector<int> unwritten_entries_;     ///< tangent entries no element writes (fill, contact-only pairs): cleared
+  std::vector<int> unwritten_entries_;     ///< tangent entries no element writes but contacts may (contact-only pairs): cleared
   std::vector<int> unwritten_nodes_;       ///< nodes no element joins: their internal forces cleared
   std::vector<char> replaced_;             ///< per element: carries a contact in this evaluation
   std::vector<solver::RankOne> contact_rank_one_;

@@ -153,9 +153,22 @@ void add_fill(BlockMatrix& a) {
     next[c] = column[c] + 1;
   }
   for (size_t e = 0; e < entries_row.size(); ++e) row[next[entries_column[e]]++] = entries_row[e];  // rows ascending
+  // The fill: the entries of the new pattern that the old one lacks (both ascending per column).
+  std::vector<unsigned char> fill(row.size(), 1);
+  bool any = false;
+  for (int c = 0; c < n; ++c) {
+    int q = column[c];
+    for (int p = a.column[c]; p < a.column[c + 1]; ++p) {
+      for (; row[q] < a.row[p]; ++q) any = true;
+      fill[q++] = 0;
+    }
+    any = any || q < column[c + 1];
+  }
   a.column = std::move(column);
   a.row = std::move(row);
   a.value.assign(a.row.size(), Block::Zero());
+  if (any) a.fill = std::move(fill);
+  else a.fill.clear();
 }
 
 void BlockLDLT::analyze(const BlockMatrix& a) {
@@ -179,6 +192,11 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   row_start_ = rows.start;
   row_column_ = rows.column;
   row_position_ = rows.position;
+  row_fill_.clear();
+  if (!a.fill.empty()) {
+    row_fill_.resize(row_position_.size());
+    for (size_t t = 0; t < row_position_.size(); ++t) row_fill_[t] = a.fill[row_position_[t]];
+  }
   slot_.assign(n, -1);
 
   // Tasks: the largest subtrees of at most `limit` blocks (and at least 64). The limit is the
@@ -328,6 +346,9 @@ TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, in
   // (apply_deferred adds them later, in the same order).
   const int first = row_start_[k], last = row_start_[k + 1];
   for (int t = first; t < last; ++t) slot[row_column_[t]] = row_position_[t];
+  if (t_begin == first && !row_fill_.empty())  // the row's first call: its fill starts at zero (no entry of A)
+    for (int t = first; t < last; ++t)
+      if (row_fill_[t]) a.value[row_position_[t]].setZero();
   // D_k is symmetric: only its upper triangle is formed (d00 d01 d02 d11 d12 d22).
   Block& diagonal = a.value[a.column[k]];
   double d00 = diagonal(0, 0), d01 = diagonal(0, 1), d02 = diagonal(0, 2), d11 = diagonal(1, 1), d12 = diagonal(1, 2),

@@ -29,10 +29,16 @@ struct BlockMatrix {
   std::vector<int> column;      ///< column c holds entries column[c] .. column[c+1]
   std::vector<int> row;         ///< block row of each entry (≥ c, ascending: diagonal first)
   std::vector<Block> value;     ///< 3×3 block of each entry: A(row, c)
+  /// Per entry: 1 if add_fill added it (no entry of A). Its value is never read - the
+  /// factorisation starts it at zero - so it need not be cleared between factorisations; other
+  /// readers of the values skip it (is_fill). Empty: no fill.
+  std::vector<unsigned char> fill;
+  bool is_fill(int entry) const { return !fill.empty() && fill[entry] != 0; }
 };
 
 /// Extends the pattern of `matrix` (every column must hold its diagonal) by the fill of its
-/// LDLᵀ factor, so that it can be factorised in place; the values become zero.
+/// LDLᵀ factor, so that it can be factorised in place, and marks the added entries (fill); the
+/// values become zero.
 void add_fill(BlockMatrix& matrix);
 
 class BlockLDLT {
@@ -75,6 +81,7 @@ class BlockLDLT {
   std::vector<int> row_start_;
   std::vector<int> row_position_;
   std::vector<int> row_column_;  ///< i of each entry
+  std::vector<unsigned char> row_fill_;  ///< whether each entry is fill (zeroed as its row starts); empty: none
   std::vector<int> slot_;        ///< during row k: column i → index in value of the entry (k, i)
   // Parallel factorisation: disjoint subtrees of the elimination tree touch disjoint rows and
   // columns, so they are factorised concurrently; the rows above them follow level by level, a

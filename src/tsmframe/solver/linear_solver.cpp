@@ -80,6 +80,7 @@ bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vecto
   auto equation = [&](int block, int d) { return dofs.equation(dofs_per_node * dofs.block_node(block) + d); };
   for (int c = 0; c < matrix.size; ++c) {
     for (int p = matrix.column[c]; p < matrix.column[c + 1]; ++p) {
+      if (matrix.is_fill(p)) continue;  // no entry of the tangent (its value is stale)
       const int r = matrix.row[p];
       const Block& b = matrix.value[p];
       for (int a = 0; a < dofs_per_node; ++a) {
