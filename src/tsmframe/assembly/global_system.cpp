@@ -73,6 +73,13 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
     key[k] = std::min(a < 0 ? n_blocks : a, b < 0 ? n_blocks : b);
   }
   std::stable_sort(element_order_.begin(), element_order_.end(), [&](int x, int y) { return key[x] < key[y]; });
+  // The records in the loop's order: the loop streams through them (in the model's order a
+  // lattice's loop jumped between them, a cache miss per element).
+  {
+    std::vector<ElementRecord> in_order(n_elements);
+    for (int q = 0; q < n_elements; ++q) in_order[q] = records_[element_order_[q]];
+    records_ = std::move(in_order);
+  }
   const int n_chunks = (n_elements + chunk_size - 1) / chunk_size;
   chunk_start_.resize(n_chunks + 1);
   for (int c = 0; c <= n_chunks; ++c) chunk_start_[c] = std::min(n_elements, c * chunk_size);
@@ -159,7 +166,7 @@ void GlobalSystem::mark_first_writers() {
     for (int idx = colour_start_[c]; idx < colour_start_[c + 1]; ++idx) {
       const int chunk = colour_chunks_[idx];
       for (int q = chunk_start_[chunk]; q < chunk_start_[chunk + 1]; ++q) {
-        ElementRecord& r = records_[element_order_[q]];
+        ElementRecord& r = records_[q];
         auto first = [](int index, std::vector<char>& written) {
           if (index < 0 || written[index]) return false;
           written[index] = 1;
@@ -212,10 +219,11 @@ void GlobalSystem::add_block(int a, int b, const Eigen::Matrix3d& value) {
   else tangent_.value[entry(bb, ba)] += value.transpose();
 }
 
-double GlobalSystem::evaluate_element(int k, const Eigen::VectorXd& displacements,
+double GlobalSystem::evaluate_element(int q, const Eigen::VectorXd& displacements,
                                       const std::vector<double>& previous_rotations, bool with_tangent,
                                       Evaluation& out) {
-  const ElementRecord& slot = records_[k];
+  const ElementRecord& slot = records_[q];
+  const int k = element_order_[q];
   const auto g = element_dofs(slot.start, slot.end);
   double* force = out.internal_force.data();
   solver::Block* value = tangent_.value.data();
@@ -322,7 +330,7 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
       const int chunk = colour_chunks_[idx];
       double largest = 0.0;
       for (int q = chunk_start_[chunk]; q < chunk_start_[chunk + 1]; ++q)
-        largest = std::max(largest, evaluate_element(element_order_[q], displacements, previous_rotations, with_tangent, out));
+        largest = std::max(largest, evaluate_element(q, displacements, previous_rotations, with_tangent, out));
       chunk_largest_end_rotation_[chunk] = largest;
     }
   }
@@ -340,8 +348,9 @@ Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacement
   const int n_elements = static_cast<int>(records_.size());
   Eigen::VectorXd forces(3 * n_elements);
 #pragma omp parallel for schedule(static) if (n_elements > 65536)
-  for (int k = 0; k < n_elements; ++k) {
-    const ElementRecord& slot = records_[k];
+  for (int q = 0; q < n_elements; ++q) {
+    const ElementRecord& slot = records_[q];
+    const int k = element_order_[q];
     const element::Vector6 d = gather(displacements, element_dofs(slot.start, slot.end));
     forces.segment<3>(3 * k) = element::beam_response(slot.chord(), slot.k0.matrix(), d, rotations[k], false).forces;
   }
@@ -359,11 +368,12 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
   std::vector<char> replaced(model_.elements.size(), 0);
   for (const contact::ActiveContact& a : contacts) replaced[a.element] = 1;
   double force = 0.0, moment = 0.0;
-  for (size_t k = 0; k < model_.elements.size(); ++k) {
+  for (size_t q = 0; q < records_.size(); ++q) {  // in the loop's order (the sum's order: the same every call)
+    const int k = element_order_[q];
     if (replaced[k]) continue;
-    const element::Vector6 d = gather(displacements, element_dofs(records_[k].start, records_[k].end));
-    const element::Matrix3 k0 = records_[k].k0.matrix();
-    const element::InitialChord chord = records_[k].chord();
+    const element::Vector6 d = gather(displacements, element_dofs(records_[q].start, records_[q].end));
+    const element::Matrix3 k0 = records_[q].k0.matrix();
+    const element::InitialChord chord = records_[q].chord();
     const element::BeamResponse r = element::beam_response(chord, k0, d, rotations[k], false);
     const element::RoundOffFloor f = element::round_off_floor(chord, k0, d, r);
     force += 4.0 * f.force * f.force;  // two nodes, two translations each

@@ -81,8 +81,9 @@ class GlobalSystem {
   int pattern_version() const { return pattern_version_; }
 
  private:
-  /// Returns the element's max |θ_i|, |θ_j| (0 if a contact element stands in for it).
-  double evaluate_element(int k, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
+  /// The element at place q of the loop (element_order_[q]); returns its max |θ_i|, |θ_j| (0 if a
+  /// contact element stands in for it).
+  double evaluate_element(int q, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                           bool with_tangent, Evaluation& out);
   void mask_constrained_dofs();
   /// Marks the first writers (ElementRecord) and lists what no element writes; after every
@@ -117,7 +118,7 @@ class GlobalSystem {
     }
   };
   static_assert(sizeof(ElementRecord) == 80, "no padding: the element loop streams these records");
-  std::vector<ElementRecord> records_;
+  std::vector<ElementRecord> records_;  ///< in the loop's order: records_[q] is element element_order_[q]
   BlockMatrix tangent_;
   std::vector<unsigned char> block_mask_;  ///< per block: bit d set if dof d of its node is constrained
   std::vector<int> element_order_;  ///< element indices in the tangent's memory order
