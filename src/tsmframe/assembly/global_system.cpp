@@ -38,11 +38,30 @@ Eigen::Matrix<double, N, 1> gather(const Eigen::VectorXd& displacements, const s
 
 GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(model), dofs_(dofs) {
   const int n_elements = static_cast<int>(model.elements.size());
+  const int n_blocks = dofs.block_count();
+  // Elements in the tangent's memory order (by the smaller block of their two nodes), cut into
+  // chunks of a fixed size. A chunk sweeps a compact stretch of the tangent once, its elements
+  // in order; chunks that share no node get the same colour (greedy) and a colour's chunks run
+  // in parallel. Colours beyond 63 all share the last group, run serially. Every sum keeps its
+  // order whatever the number of threads.
+  const int chunk_size = std::clamp(n_elements / 16, 64, 512);  // 16 chunks or more: two groups of 8 for small models
+  element_order_.resize(n_elements);
+  std::iota(element_order_.begin(), element_order_.end(), 0);
+  {
+    std::vector<int> key(n_elements);
+    for (int k = 0; k < n_elements; ++k) {
+      const int a = dofs.block(model.elements[k].start), b = dofs.block(model.elements[k].end);
+      key[k] = std::min(a < 0 ? n_blocks : a, b < 0 ? n_blocks : b);
+    }
+    std::stable_sort(element_order_.begin(), element_order_.end(), [&](int x, int y) { return key[x] < key[y]; });
+  }
+  // The records in the loop's order, so that the loop streams through them (in the model's
+  // order a lattice's loop jumped between them, a cache miss per element).
   records_.resize(n_elements);
-  for (int k = 0; k < n_elements; ++k) {
-    const Element& e = model.elements[k];
+  for (int q = 0; q < n_elements; ++q) {
+    const Element& e = model.elements[element_order_[q]];
     const element::InitialChord chord = element::initial_chord(model.nodes[e.start].position, model.nodes[e.end].position);
-    ElementRecord& r = records_[k];
+    ElementRecord& r = records_[q];
     r.start = e.start;
     r.end = e.end;
     r.delta0[0] = chord.end.x() - chord.start.x();
@@ -53,33 +72,11 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
   }
 
   build_pattern();
-  const int n_blocks = dofs.block_count();
   block_mask_.assign(n_blocks, 0);
   for (int b = 0; b < n_blocks; ++b)
     for (int d = 0; d < dofs_per_node; ++d)
       if (model.constrained[dofs_per_node * dofs.block_node(b) + d]) block_mask_[b] |= 1u << d;
 
-  // Elements in the tangent's memory order (by the smaller block of their two nodes), cut into
-  // chunks of a fixed size. A chunk sweeps a compact stretch of the tangent once, its elements
-  // in order; chunks that share no node get the same colour (greedy) and a colour's chunks run
-  // in parallel. Colours beyond 63 all share the last group, run serially. Every sum keeps its
-  // order whatever the number of threads.
-  const int chunk_size = std::clamp(n_elements / 16, 64, 512);  // 16 chunks or more: two groups of 8 for small models
-  element_order_.resize(n_elements);
-  std::iota(element_order_.begin(), element_order_.end(), 0);
-  std::vector<int> key(n_elements);
-  for (int k = 0; k < n_elements; ++k) {
-    const int a = dofs.block(model.elements[k].start), b = dofs.block(model.elements[k].end);
-    key[k] = std::min(a < 0 ? n_blocks : a, b < 0 ? n_blocks : b);
-  }
-  std::stable_sort(element_order_.begin(), element_order_.end(), [&](int x, int y) { return key[x] < key[y]; });
-  // The records in the loop's order: the loop streams through them (in the model's order a
-  // lattice's loop jumped between them, a cache miss per element).
-  {
-    std::vector<ElementRecord> in_order(n_elements);
-    for (int q = 0; q < n_elements; ++q) in_order[q] = records_[element_order_[q]];
-    records_ = std::move(in_order);
-  }
   const int n_chunks = (n_elements + chunk_size - 1) / chunk_size;
   chunk_start_.resize(n_chunks + 1);
   for (int c = 0; c <= n_chunks; ++c) chunk_start_[c] = std::min(n_elements, c * chunk_size);
