@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -158,12 +159,11 @@ TEST(BlockLDLT, SolvesIndefiniteSystems) {
   }
 }
 
-TEST(BlockLDLT, SolvesWithParallelSubtreesAndRowsAboveThemTheSameWithAnyThreadCount) {
-  // 24 chains of 150 blocks: subtrees of 64 … n/16 blocks are factorised and solved as parallel
-  // tasks; the bridges between chains put rows above them, in levels and in paths of the tree
-  // (whose rows are formed in three passes, the first two in parallel).
-  const Case c = random_case(3600, 20.0, 3, 24, 60, false);
-  std::mt19937 random(5);
+// Solves c with one thread and with two, each by a plain solve and with the forward
+// substitution along the factorisation; `check` looks at the analysis first. Expects residuals
+// below 1e-12 and the same bits from both thread counts.
+void expect_the_same_with_one_and_two_threads(const Case& c, unsigned seed, const std::function<void(const BlockLDLT&)>& check) {
+  std::mt19937 random(seed);
   std::uniform_real_distribution<double> value(-1.0, 1.0);
   Eigen::VectorXd b(3 * c.matrix.size);
   for (Eigen::Index i = 0; i < b.size(); ++i) b[i] = value(random);
@@ -173,9 +173,7 @@ TEST(BlockLDLT, SolvesWithParallelSubtreesAndRowsAboveThemTheSameWithAnyThreadCo
     BlockMatrix m = c.matrix;
     BlockLDLT ldlt;
     ldlt.analyze(m);
-    ASSERT_GT(ldlt.task_count(), 4);
-    ASSERT_GE(ldlt.rows_above_tasks(), 256);  // enough to run them level by level in parallel
-    ASSERT_GE(ldlt.rows_in_paths(), 256);     // and paths of the tree among them, formed in passes
+    check(ldlt);
     ASSERT_TRUE(ldlt.factorize(m));
     x[threads - 1] = b;
     ldlt.solve_in_place(x[threads - 1]);
@@ -187,42 +185,31 @@ TEST(BlockLDLT, SolvesWithParallelSubtreesAndRowsAboveThemTheSameWithAnyThreadCo
   }
   omp_set_num_threads(omp_get_num_procs());
   const double residual = (multiply(c.matrix, x[0]) - b).norm() / b.norm();
-  std::printf("[figure] block LDLT, 3600 blocks in parallel subtrees: relative residual %.2e\n", residual);
+  std::printf("[figure] block LDLT, %d blocks in parallel subtrees: relative residual %.2e\n", c.matrix.size, residual);
   EXPECT_LT(residual, 1e-12);
   EXPECT_LT((multiply(c.matrix, fused[0]) - b).norm() / b.norm(), 1e-12);
   EXPECT_EQ(x[0], x[1]);  // bit for bit
   EXPECT_EQ(fused[0], fused[1]);
 }
 
+TEST(BlockLDLT, SolvesWithParallelSubtreesAndRowsAboveThemTheSameWithAnyThreadCount) {
+  // 24 chains of 150 blocks: subtrees of 64 … n/16 blocks are factorised and solved as parallel
+  // tasks; the bridges between chains put rows above them, in levels and in paths of the tree
+  // (whose rows are formed in three passes, the first two in parallel).
+  expect_the_same_with_one_and_two_threads(random_case(3600, 20.0, 3, 24, 60, false), 5, [](const BlockLDLT& ldlt) {
+    ASSERT_GT(ldlt.task_count(), 4);
+    ASSERT_GE(ldlt.rows_above_tasks(), 256);  // enough to run them level by level in parallel
+    ASSERT_GE(ldlt.rows_in_paths(), 256);     // and paths of the tree among them, formed in passes
+  });
+}
+
 TEST(BlockLDLT, FactorisesADenseTopSeparatorAsOneDenseMatrixTheSameWithAnyThreadCount) {
   // The chains above plus 48 blocks, all coupled among themselves, numbered last: their rows end
   // the tree's top path with consecutive numbers and fill their triangle, so after the passes
   // over their prefixes they are factorised as one dense matrix (DenseBlockLDLT).
-  const Case c = random_case(3600, 20.0, 3, 24, 60, false, 48);
-  std::mt19937 random(9);
-  std::uniform_real_distribution<double> value(-1.0, 1.0);
-  Eigen::VectorXd b(3 * c.matrix.size);
-  for (Eigen::Index i = 0; i < b.size(); ++i) b[i] = value(random);
-  Eigen::VectorXd x[2], fused[2];
-  for (int threads = 1; threads <= 2; ++threads) {
-    omp_set_num_threads(threads);
-    BlockMatrix m = c.matrix;
-    BlockLDLT ldlt;
-    ldlt.analyze(m);
+  expect_the_same_with_one_and_two_threads(random_case(3600, 20.0, 3, 24, 60, false, 48), 9, [](const BlockLDLT& ldlt) {
     ASSERT_GE(ldlt.rows_in_dense_paths(), 48);
-    ASSERT_TRUE(ldlt.factorize(m));
-    x[threads - 1] = b;
-    ldlt.solve_in_place(x[threads - 1]);
-    BlockMatrix n = c.matrix;
-    fused[threads - 1] = b;
-    ASSERT_TRUE(ldlt.factorize(n, &fused[threads - 1]));
-    ldlt.finish_solve(fused[threads - 1]);
-  }
-  omp_set_num_threads(omp_get_num_procs());
-  EXPECT_LT((multiply(c.matrix, x[0]) - b).norm() / b.norm(), 1e-12);
-  EXPECT_LT((multiply(c.matrix, fused[0]) - b).norm() / b.norm(), 1e-12);
-  EXPECT_EQ(x[0], x[1]);  // bit for bit
-  EXPECT_EQ(fused[0], fused[1]);
+  });
 }
 
 TEST(BlockLDLT, NeverReadsTheFillEntriesOfTheMatrix) {

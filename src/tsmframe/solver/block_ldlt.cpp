@@ -385,16 +385,9 @@ TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, in
     return true;
   }
   // D_k⁻¹ by cofactors of the symmetric block.
-  const double c00 = d11 * d22 - d12 * d12, c01 = d02 * d12 - d01 * d22, c02 = d01 * d12 - d02 * d11;
-  const double c11 = d00 * d22 - d02 * d02, c12 = d01 * d02 - d00 * d12, c22 = d00 * d11 - d01 * d01;
-  const double det = d00 * c00 + d01 * c01 + d02 * c02;
-  if (!(det != 0.0) || !std::isfinite(det)) return false;
-  const double r = 1.0 / det;
-  diagonal << c00 * r, c01 * r, c02 * r,  //
-      c01 * r, c11 * r, c12 * r,          //
-      c02 * r, c12 * r, c22 * r;
-  return std::isfinite(r) && std::isfinite(c00 * r) && std::isfinite(c01 * r) && std::isfinite(c02 * r) &&
-         std::isfinite(c11 * r) && std::isfinite(c12 * r) && std::isfinite(c22 * r);
+  Block d;
+  d << d00, d01, d02, d01, d11, d12, d02, d12, d22;
+  return invert_pivot(d, diagonal);
 }
 
 TSM_BLOCK_KERNEL void BlockLDLT::apply_deferred(BlockMatrix& a, int k, int t_end, int defer_from, const Block* deferred, int* slot) const {

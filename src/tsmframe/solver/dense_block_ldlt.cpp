@@ -10,19 +10,6 @@ constexpr int panel_blocks = 16;  // block columns per panel: 48 scalar columns 
 
 }  // namespace
 
-bool invert_pivot(const Eigen::Matrix3d& d, Eigen::Matrix3d& inverse) {
-  const double d00 = d(0, 0), d01 = d(0, 1), d02 = d(0, 2), d11 = d(1, 1), d12 = d(1, 2), d22 = d(2, 2);
-  const double c00 = d11 * d22 - d12 * d12, c01 = d02 * d12 - d01 * d22, c02 = d01 * d12 - d02 * d11;
-  const double c11 = d00 * d22 - d02 * d02, c12 = d01 * d02 - d00 * d12, c22 = d00 * d11 - d01 * d01;
-  const double det = d00 * c00 + d01 * c01 + d02 * c02;
-  if (!(det != 0.0) || !std::isfinite(det)) return false;
-  const double r = 1.0 / det;
-  inverse << c00 * r, c01 * r, c02 * r,  //
-      c01 * r, c11 * r, c12 * r,         //
-      c02 * r, c12 * r, c22 * r;
-  return inverse.allFinite();
-}
-
 bool DenseBlockLDLT::factorize(Eigen::MatrixXd& a) {
   const int p = static_cast<int>(a.rows()) / 3;
   for (int j0 = 0; j0 < p; j0 += panel_blocks) {
