@@ -271,7 +271,7 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   // more than it saves).
   parallel_top_ = top_rows_.size() >= parallel_rows_above;
   // Stages of the rows above the tasks: each level of several rows, and each run of single-row
-  // levels - a path of the tree, where every row's pattern below the path is final before the
+  // levels — a path of the tree, where every row's pattern below the path is final before the
   // path starts (its other descendants sit in lower levels). A path row's split: its first
   // entry in a column of the path.
   // A path's top rows with consecutive numbers (the tree's top supernode, or one like it: a
