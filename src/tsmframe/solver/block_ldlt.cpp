@@ -282,7 +282,6 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   stages_.clear();
   split_.assign(top_rows_.size(), 0);
   deferred_start_.assign(top_rows_.size(), 0);
-  std::vector<int>().swap(path_place_);
   size_t deferred = 0;
   auto add_path = [&](int begin, int end, bool dense) {
     const int lowest = top_rows_[begin];
@@ -297,10 +296,6 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
     }
     const size_t rows = end - begin;
     dense = dense && 4 * entries >= rows * (rows - 1);
-    if (dense) {
-      if (path_place_.empty()) path_place_.assign(n, -1);
-      for (int q = begin; q < end; ++q) path_place_[top_rows_[q]] = q - begin;
-    }
     stages_.push_back({begin, end, true, dense});
   };
   for (int l = 0; l < levels;) {
@@ -324,11 +319,6 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   }
   if (parallel_top_) deferred_z_.resize(deferred);  // the path rows' running sums, pass (1) to (2)
   else std::vector<Block>().swap(deferred_z_);
-  // A dense path's entries from its split on must lie in its own columns (see above).
-  for (const Stage& stage : stages_)
-    for (int q = stage.begin; stage.dense && q < stage.end; ++q)
-      for (int t = split_[q]; t < row_start_[top_rows_[q] + 1]; ++t)
-        if (path_place_[row_column_[t]] < 0) throw std::logic_error("BlockLDLT: a dense path reaches outside its columns");
   dense_.resize(0, 0);
   // The solves go level by level (a barrier per level): only where levels hold several rows.
   parallel_top_levels_ = parallel_top_ && 2 * shared >= static_cast<int>(top_rows_.size());
@@ -467,7 +457,9 @@ bool BlockLDLT::factorize_dense_path(BlockMatrix& a, const Stage& stage, double*
   // After passes (1) and (2) a path row's entries in the path's columns hold A(k, r) less the
   // prefix's updates, and its diagonal block the running D_k (upper triangle): together the
   // Schur complement of everything below the path, which the dense factorisation completes.
-  const int rows = stage.end - stage.begin;
+  // The path's rows are numbered consecutively (analyze): row r's place in it is r − lowest, and
+  // a row's entries from its split on are in the path's own columns.
+  const int rows = stage.end - stage.begin, lowest = top_rows_[stage.begin];
 #pragma omp single
   {
     dense_.setZero(3 * rows, 3 * rows);
@@ -475,7 +467,7 @@ bool BlockLDLT::factorize_dense_path(BlockMatrix& a, const Stage& stage, double*
       const int k = top_rows_[q], i = q - stage.begin;
       dense_.block<3, 3>(3 * i, 3 * i) = a.value[a.column[k]].transpose();  // its lower triangle = the running upper one
       for (int t = split_[q]; t < row_start_[k + 1]; ++t)
-        dense_.block<3, 3>(3 * i, 3 * path_place_[row_column_[t]]) = a.value[row_position_[t]];
+        dense_.block<3, 3>(3 * i, 3 * (row_column_[t] - lowest)) = a.value[row_position_[t]];
     }
   }
   if (!dense_ldlt_.factorize(dense_)) return false;
@@ -484,7 +476,7 @@ bool BlockLDLT::factorize_dense_path(BlockMatrix& a, const Stage& stage, double*
     const int k = top_rows_[q], i = q - stage.begin;
     a.value[a.column[k]] = dense_.block<3, 3>(3 * i, 3 * i);
     for (int t = split_[q]; t < row_start_[k + 1]; ++t)
-      a.value[row_position_[t]] = dense_.block<3, 3>(3 * i, 3 * path_place_[row_column_[t]]);
+      a.value[row_position_[t]] = dense_.block<3, 3>(3 * i, 3 * (row_column_[t] - lowest));
     if (forward) {  // y_k −= Σ L(k, r) y_r over the path's columns (the prefix's went in pass (1))
       Eigen::Map<Eigen::Vector3d> yk(forward + 3 * k);
       Eigen::Vector3d sum = yk;

@@ -12,7 +12,9 @@
 // handles indefinite tangents (past a limit point) as long as no 3×3 pivot block is singular.
 // Up-looking algorithm as in CSparse's cs_chol, lifted to blocks. The arithmetic order is
 // fixed: results do not depend on threads. Independent subtrees of the elimination tree, and
-// rows above them that are not ancestors of one another, are factorised in parallel (OpenMP).
+// rows above them that are not ancestors of one another, are factorised in parallel (OpenMP);
+// the top separator, where the factor is dense, as one dense matrix (dense_block_ldlt). Entries
+// added as fill are zeroed by the factorisation as their row starts, never read before.
 
 #include <Eigen/Core>
 #include <vector>
@@ -106,7 +108,6 @@ class BlockLDLT {
   std::vector<int> thread_slot_;  ///< one slot map per thread, for the path rows' prefixes
   std::vector<int> deferred_start_;  ///< per entry of top_rows_ in a path: its prefix's place in deferred_z_
   std::vector<Block> deferred_z_;    ///< running sums z of the path rows' prefix entries
-  std::vector<int> path_place_;      ///< per block: its place in its dense path (only if a path is dense)
   Eigen::MatrixXd dense_;            ///< a dense path's block, gathered, factorised and put back
   DenseBlockLDLT dense_ldlt_;
 
