@@ -216,6 +216,7 @@ void GlobalSystem::add_block(int a, int b, const Eigen::Matrix3d& value) {
   else tangent_.value[entry(bb, ba)] += value.transpose();
 }
 
+template <bool only_contact_nodes>
 double GlobalSystem::evaluate_element(int q, const Eigen::VectorXd& displacements,
                                       const std::vector<double>& previous_rotations, bool with_tangent,
                                       Evaluation& out) {
@@ -224,23 +225,26 @@ double GlobalSystem::evaluate_element(int q, const Eigen::VectorXd& displacement
   const auto g = element_dofs(slot.start, slot.end);
   double* force = out.internal_force.data();
   solver::Block* value = tangent_.value.data();
+  // What touches node i (its forces, K_ii, K_ij) and node j; in a full evaluation everything.
+  const bool at_i = !only_contact_nodes || contact_node_[slot.start];
+  const bool at_j = !only_contact_nodes || contact_node_[slot.end];
   if (replaced_[k]) {  // a contact element stands in for it: it only clears what it would have set first
     for (int a = 0; a < 3; ++a) {
-      if (slot.first_i) force[g[a]] = 0.0;
-      if (slot.first_j) force[g[3 + a]] = 0.0;
+      if (slot.first_i && at_i) force[g[a]] = 0.0;
+      if (slot.first_j && at_j) force[g[3 + a]] = 0.0;
     }
     if (!with_tangent) return 0.0;
-    if (slot.first_ii) value[slot.ii].setZero();
-    if (slot.first_jj) value[slot.jj].setZero();
-    if (slot.first_ij) value[slot.ij].setZero();
+    if (slot.first_ii && at_i) value[slot.ii].setZero();
+    if (slot.first_jj && at_j) value[slot.jj].setZero();
+    if (slot.first_ij) value[slot.ij].setZero();  // at i or j: it is evaluated for one of them
     return 0.0;
   }
   const element::Vector6 d = gather(displacements, g);
   const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0.matrix(), d, previous_rotations[k], with_tangent);
   out.chord_rotations[k] = r.chord.rotation;
   for (int a = 0; a < 3; ++a) {
-    force[g[a]] = slot.first_i ? r.nodal_forces[a] : force[g[a]] + r.nodal_forces[a];
-    force[g[3 + a]] = slot.first_j ? r.nodal_forces[3 + a] : force[g[3 + a]] + r.nodal_forces[3 + a];
+    if (at_i) force[g[a]] = slot.first_i ? r.nodal_forces[a] : force[g[a]] + r.nodal_forces[a];
+    if (at_j) force[g[3 + a]] = slot.first_j ? r.nodal_forces[3 + a] : force[g[3 + a]] + r.nodal_forces[3 + a];
   }
   const double end_rotation = std::max(std::abs(r.deformations[1]), std::abs(r.deformations[2]));
   if (!with_tangent) return end_rotation;
@@ -248,8 +252,8 @@ double GlobalSystem::evaluate_element(int q, const Eigen::VectorXd& displacement
     if (first) value[entry] = block;
     else value[entry] += block;
   };
-  if (slot.ii >= 0) put(slot.ii, slot.first_ii, r.tangent.topLeftCorner<3, 3>());
-  if (slot.jj >= 0) put(slot.jj, slot.first_jj, r.tangent.bottomRightCorner<3, 3>());
+  if (slot.ii >= 0 && at_i) put(slot.ii, slot.first_ii, r.tangent.topLeftCorner<3, 3>());
+  if (slot.jj >= 0 && at_j) put(slot.jj, slot.first_jj, r.tangent.bottomRightCorner<3, 3>());
   if (slot.ij >= 0) {
     if (slot.transposed) put(slot.ij, slot.first_ij, r.tangent.bottomLeftCorner<3, 3>());
     else put(slot.ij, slot.first_ij, r.tangent.topRightCorner<3, 3>());
@@ -260,10 +264,20 @@ double GlobalSystem::evaluate_element(int q, const Eigen::VectorXd& displacement
     if (dp == 0.0 || dofs_.equation(g[b]) >= 0) continue;
     for (int a = 0; a < 6; ++a) {
       const int row = dofs_.equation(g[a]);
-      if (row >= 0) out.prescribed_coupling[row] += r.tangent(a, b) * dp;
+      if (row >= 0 && (a < 3 ? at_i : at_j)) out.prescribed_coupling[row] += r.tangent(a, b) * dp;
     }
   }
   return end_rotation;
+}
+
+double GlobalSystem::end_rotation(int q, const Eigen::VectorXd& displacements,
+                                  const std::vector<double>& previous_rotations) const {
+  const ElementRecord& slot = records_[q];
+  const int k = element_order_[q];
+  if (replaced_[k]) return 0.0;
+  const element::Vector6 d = gather(displacements, element_dofs(slot.start, slot.end));
+  const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0.matrix(), d, previous_rotations[k], false);
+  return std::max(std::abs(r.deformations[1]), std::abs(r.deformations[2]));
 }
 
 void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen::VectorXd& displacements,
@@ -327,10 +341,15 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
       const int chunk = colour_chunks_[idx];
       double largest = 0.0;
       for (int q = chunk_start_[chunk]; q < chunk_start_[chunk + 1]; ++q)
-        largest = std::max(largest, evaluate_element(q, displacements, previous_rotations, with_tangent, out));
+        largest = std::max(largest, evaluate_element<false>(q, displacements, previous_rotations, with_tangent, out));
       chunk_largest_end_rotation_[chunk] = largest;
     }
   }
+  finish_evaluation(displacements, previous_rotations, with_tangent, out, contacts);
+}
+
+void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
+                                     bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts) {
   out.largest_end_rotation = 0.0;  // a maximum: the same whatever the order
   for (const double largest : chunk_largest_end_rotation_) out.largest_end_rotation = std::max(out.largest_end_rotation, largest);
   for (const contact::ActiveContact& a : contacts) {
@@ -338,6 +357,85 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
     replaced_[a.element] = 0;
   }
   if (with_tangent) mask_constrained_dofs();
+  last_tangent_for_ = with_tangent ? &out : nullptr;
+  last_contacts_ = contacts;
+}
+
+void GlobalSystem::evaluate_contact_change(const Eigen::VectorXd& displacements,
+                                           const std::vector<double>& previous_rotations, Evaluation& out,
+                                           const std::vector<contact::ActiveContact>& contacts) {
+  const int version = pattern_version_;
+  ensure_contact_pattern(contacts);
+  if (last_tangent_for_ != &out || pattern_version_ != version) {
+    evaluate(displacements, previous_rotations, true, out, contacts);
+    return;
+  }
+  if (node_element_start_.empty()) list_node_elements();
+  // The nodes whose sums change: every node of an old or a new contact element (a contact that
+  // stays is added again too: its sums are formed again from their start).
+  std::vector<int> nodes;
+  const std::vector<contact::ActiveContact>& last = last_contacts_;
+  for (const std::vector<contact::ActiveContact>* set : {&last, &contacts})
+    for (const contact::ActiveContact& a : *set) {
+      const Element& e = model_.elements[a.element];
+      for (const int node : {e.start, e.end, a.node})
+        if (!contact_node_[node]) {
+          contact_node_[node] = 1;
+          nodes.push_back(node);
+        }
+    }
+  for (const contact::ActiveContact& a : contacts) replaced_[a.element] = 1;
+  // What no element writes starts from zero (the contacts add to it), as in evaluate().
+  for (const int node : unwritten_nodes_)
+    if (contact_node_[node]) out.internal_force.segment<dofs_per_node>(dofs_per_node * node).setZero();
+  for (const int p : unwritten_entries_) tangent_.value[p].setZero();
+  if (has_prescribed_)
+    for (const int node : nodes)
+      for (int d = 0; d < dofs_per_node; ++d)
+        if (const int row = dofs_.equation(dofs_per_node * node + d); row >= 0) out.prescribed_coupling[row] = 0.0;
+  // Every element at those nodes, in the loop's order (chunks by rank, then place).
+  std::vector<std::pair<int, int>> places;  // (chunk's rank, q)
+  const int chunk_size = chunk_start_.size() > 1 ? chunk_start_[1] : 1;
+  for (const int node : nodes)
+    for (int p = node_element_start_[node]; p < node_element_start_[node + 1]; ++p)
+      places.push_back({chunk_rank_[node_elements_[p] / chunk_size], node_elements_[p]});
+  std::sort(places.begin(), places.end());
+  places.erase(std::unique(places.begin(), places.end()), places.end());
+  for (const auto& [rank, q] : places) evaluate_element<true>(q, displacements, previous_rotations, true, out);
+  // Their chunks' largest end rotations again (a replaced element counts 0).
+  for (size_t p = 0; p < places.size(); ++p) {
+    const int chunk = places[p].second / chunk_size;
+    if (p > 0 && places[p - 1].second / chunk_size == chunk) continue;
+    double largest = 0.0;
+    for (int q = chunk_start_[chunk]; q < chunk_start_[chunk + 1]; ++q)
+      largest = std::max(largest, end_rotation(q, displacements, previous_rotations));
+    chunk_largest_end_rotation_[chunk] = largest;
+  }
+  for (const int node : nodes) contact_node_[node] = 0;
+  out.contacts.clear();
+  contact_rank_one_.clear();
+  finish_evaluation(displacements, previous_rotations, true, out, contacts);
+}
+
+void GlobalSystem::list_node_elements() {
+  const int n_nodes = model_.node_count();
+  chunk_rank_.assign(chunk_start_.size() - 1, 0);
+  node_element_start_.assign(n_nodes + 1, 0);
+  int rank = 0;
+  for (size_t c = 0; c + 1 < colour_start_.size(); ++c)
+    for (int idx = colour_start_[c]; idx < colour_start_[c + 1]; ++idx) chunk_rank_[colour_chunks_[idx]] = rank++;
+  for (const ElementRecord& r : records_) {
+    ++node_element_start_[r.start + 1];
+    ++node_element_start_[r.end + 1];
+  }
+  for (int k = 0; k < n_nodes; ++k) node_element_start_[k + 1] += node_element_start_[k];
+  node_elements_.resize(node_element_start_[n_nodes]);
+  std::vector<int> next(node_element_start_.begin(), node_element_start_.end() - 1);
+  for (int q = 0; q < static_cast<int>(records_.size()); ++q) {  // places ascending: sorted by q per node
+    node_elements_[next[records_[q].start]++] = q;
+    node_elements_[next[records_[q].end]++] = q;
+  }
+  contact_node_.assign(n_nodes, 0);
 }
 
 Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,

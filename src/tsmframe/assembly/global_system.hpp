@@ -54,6 +54,15 @@ class GlobalSystem {
   /// Each active contact replaces its beam element by the three-node contact element.
   void evaluate(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                 bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts = {});
+  /// The same evaluation with another contact set, at the state of the last evaluate() with
+  /// tangent into `out` (same displacements and previous rotations; the tangent not handed out for
+  /// factorisation since). Only the elements at the nodes of the old and the new contacts are
+  /// evaluated again, and only what they write at those nodes is formed again, in the loop's
+  /// order: `out` and the tangent are bit for bit what evaluate() would give, at a cost that does
+  /// not grow with the model. Falls back to evaluate() when the state is not the last one's or
+  /// the contacts need a larger pattern.
+  void evaluate_contact_change(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
+                               Evaluation& out, const std::vector<contact::ActiveContact>& contacts);
 
   /// K_ff from the last evaluation with tangent, as node blocks; the rows and columns of a
   /// block's constrained dofs are zero with 1 on the diagonal (they carry no equation). The
@@ -63,7 +72,10 @@ class GlobalSystem {
   const BlockMatrix& tangent() const { return tangent_; }
   /// The same storage, for the linear solver to factorise in place: after that it holds the
   /// factor, not K_ff, until the next evaluation with tangent.
-  BlockMatrix& tangent_for_factorisation() { return tangent_; }
+  BlockMatrix& tangent_for_factorisation() {
+    last_tangent_for_ = nullptr;  // no longer the evaluation's tangent: a contact change re-evaluates all
+    return tangent_;
+  }
   /// Element forces (N, M_i, M_j) per element, stacked, at a state (chord rotations of that
   /// state's evaluation; a contact's element gives its contact element's): a pass of its own,
   /// for the results only — the Newton iterations never store them.
@@ -83,8 +95,19 @@ class GlobalSystem {
  private:
   /// The element at place q of the loop (element_order_[q]); returns its max |θ_i|, |θ_j| (0 if a
   /// contact element stands in for it).
+  /// With `only_contact_nodes` (a contact change) it writes only what touches a node marked in
+  /// contact_node_.
+  template <bool only_contact_nodes = false>
   double evaluate_element(int q, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                           bool with_tangent, Evaluation& out);
+  /// max |θ_i|, |θ_j| of place q's element (0 if a contact element stands in), nothing written.
+  double end_rotation(int q, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations) const;
+  /// The contacts' sums after the elements: contact elements, masks of the constrained dofs.
+  void finish_evaluation(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
+                         bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts);
+  /// Per node, the places q of its elements in the loop's order (for contact changes; built on
+  /// the first one).
+  void list_node_elements();
   void mask_constrained_dofs();
   /// Marks the first writers (ElementRecord) and lists what no element writes; after every
   /// change of the pattern or of the loop's order.
@@ -135,6 +158,13 @@ class GlobalSystem {
   int pattern_version_ = 0;
   std::vector<std::pair<int, int>> masked_entries_;  ///< (entry, block column) touching a constrained dof
   int masked_version_ = -1;                          ///< pattern version masked_entries_ was listed for
+  // What a contact change needs of the last evaluation (evaluate_contact_change).
+  const Evaluation* last_tangent_for_ = nullptr;  ///< the evaluation the tangent belongs to (nullptr: none)
+  std::vector<contact::ActiveContact> last_contacts_;  ///< the contacts it was evaluated with
+  std::vector<int> chunk_rank_;              ///< per chunk, its place in the loop's order
+  std::vector<int> node_element_start_;      ///< node k: node_elements_[start[k] .. start[k+1])
+  std::vector<int> node_elements_;           ///< places q, per node in the loop's order
+  std::vector<char> contact_node_;           ///< per node: a node of an old or new contact (during a change)
 };
 
 }  // namespace tsm::assembly

@@ -60,7 +60,7 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
   analysed_pattern_ = system.pattern_version();
 }
 
-bool NewtonSolver::evaluate(State& state) {
+bool NewtonSolver::evaluate(State& state, bool contacts_only) {
   const Model& model = system_.model();
   for (int dof : constrained_dofs_) state.displacements[dof] = state.load_factor * model.prescribed(dof);
   constexpr int max_passes = 4;  // contact changes settled per iterate before Newton goes on
@@ -69,7 +69,8 @@ bool NewtonSolver::evaluate(State& state) {
     const std::vector<contact::ActiveContact> active = active_contacts(state);
     // The rotations are continued in place (one vector, not two): lent to the evaluation.
     std::swap(state.chord_rotations, eval_.chord_rotations);
-    system_.evaluate(state.displacements, eval_.chord_rotations, true, eval_, active);
+    if (pass > 0 || contacts_only) system_.evaluate_contact_change(state.displacements, eval_.chord_rotations, eval_, active);
+    else system_.evaluate(state.displacements, eval_.chord_rotations, true, eval_, active);
     std::swap(state.chord_rotations, eval_.chord_rotations);
     if (!contacts_) return false;
     if (pass == max_passes) break;
@@ -97,7 +98,7 @@ bool NewtonSolver::release_pulling_contacts(State& state) {
       contacts_->update(state.displacements, state.chord_rotations, eval_.contacts, state.contacts, true);
   if (!changes.any()) return false;
   switches_ += changes.activated + changes.released;
-  evaluate(state);
+  evaluate(state, true);
   return true;
 }
 
@@ -455,7 +456,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
           out.message = iterate_text("a contact node passed through a beam after its contact was released", it);
           return out;
         }
-        evaluate(state);
+        evaluate(state, true);
         pass = update_residual(state.load_factor);
         if (contacts_) out.contact_iterates.back() = contact_points(state);
         continue;

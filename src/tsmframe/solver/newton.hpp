@@ -78,8 +78,9 @@ class NewtonSolver {
 
  private:
   /// Evaluates at `state` and settles its contacts (detect, release, hand over; re-evaluating
-  /// after each change). Returns whether the contact set changed.
-  bool evaluate(State& state);
+  /// after each change). Returns whether the contact set changed. `contacts_only`: the state is
+  /// the last evaluation's, only its contacts changed (what they touch is evaluated again).
+  bool evaluate(State& state, bool contacts_only = false);
   /// The contact elements standing in for beam elements at `state` (none without contacts).
   std::vector<contact::ActiveContact> active_contacts(const State& state) const;
   /// At a converged iterate: releases contacts that pull and re-evaluates. Returns whether any was.
