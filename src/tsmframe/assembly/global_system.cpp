@@ -1,5 +1,7 @@
 #include "tsmframe/assembly/global_system.hpp"
 
+#include "tsmframe/util/first_touch.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -57,7 +59,7 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
   }
   // The records in the loop's order, so that the loop streams through them (in the model's
   // order a lattice's loop jumped between them, a cache miss per element).
-  records_.resize(n_elements);
+  util::resize_touched(records_, n_elements);
   for (int q = 0; q < n_elements; ++q) {
     const Element& e = model.elements[element_order_[q]];
     const element::InitialChord chord = element::initial_chord(model.nodes[e.start].position, model.nodes[e.end].position);

@@ -1,5 +1,7 @@
 #include "tsmframe/solver/block_ldlt.hpp"
 
+#include "tsmframe/util/first_touch.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -166,7 +168,8 @@ void add_fill(BlockMatrix& a) {
   }
   a.column = std::move(column);
   a.row = std::move(row);
-  a.value.assign(a.row.size(), Block::Zero());
+  util::resize_touched(a.value, a.row.size());  // the tangent's largest array: its pages mapped in at once
+  for (Block& b : a.value) b.setZero();
   if (any) a.fill = std::move(fill);
   else a.fill.clear();
 }
