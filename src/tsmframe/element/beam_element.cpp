@@ -15,18 +15,19 @@ BeamResponse beam_response(const InitialChord& initial, const Matrix3& k0, const
   r.forces = k0 * r.deformations;  // Eq. 3 / Eq. 4
   const double N = r.forces[0], Mi = r.forces[1], Mj = r.forces[2];
   // J S (Eq. 1): along the chord u = (c, s) and across it n = (−s, c).
-  const double shear = (Mi + Mj) / l;
+  const double inverse = 1.0 / l;
+  const double shear = (Mi + Mj) * inverse;
   const double fx = -N * c - shear * s, fy = -N * s + shear * c;
   r.nodal_forces << fx, fy, Mi, -fx, -fy, Mj;
   if (!with_tangent) return r;
   // J k0 Jᵀ + K_G (Eq. 2): translations couple through P = EA/l0 u uᵀ + (Σk/l² + N/l) n nᵀ
   // + (M_i + M_j)/l² (u nᵀ + n uᵀ), rotations through (k_ii + k_ij)/l n and (k_ij + k_jj)/l n.
-  const double axial = k0(0, 0), transverse = (k0(1, 1) + 2.0 * k0(1, 2) + k0(2, 2)) / (l * l) + N / l;
-  const double mixed = (Mi + Mj) / (l * l);
+  const double axial = k0(0, 0), transverse = (k0(1, 1) + 2.0 * k0(1, 2) + k0(2, 2)) * inverse * inverse + N * inverse;
+  const double mixed = shear * inverse;
   const double pxx = axial * c * c + transverse * s * s - 2.0 * mixed * c * s;
   const double pyy = axial * s * s + transverse * c * c + 2.0 * mixed * c * s;
   const double pxy = (axial - transverse) * c * s + mixed * (c * c - s * s);
-  const double qi = (k0(1, 1) + k0(1, 2)) / l, qj = (k0(1, 2) + k0(2, 2)) / l;
+  const double qi = (k0(1, 1) + k0(1, 2)) * inverse, qj = (k0(1, 2) + k0(2, 2)) * inverse;
   Matrix6& K = r.tangent;
   K << pxx, pxy, -qi * s, -pxx, -pxy, -qj * s,  //
       pxy, pyy, qi * c, -pxy, -pyy, qj * c,     //

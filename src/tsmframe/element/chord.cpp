@@ -12,7 +12,8 @@ InitialChord initial_chord(const Vector2& start, const Vector2& end) {
 
 double wrap_angle(double angle) {
   constexpr double two_pi = 2.0 * std::numbers::pi;
-  return angle - two_pi * std::nearbyint(angle / two_pi);
+  constexpr double turns_per_radian = 1.0 / two_pi;
+  return angle - two_pi * std::nearbyint(angle * turns_per_radian);
 }
 
 Chord current_chord(const InitialChord& initial, const Vector6& d, double previous_rotation) {
@@ -23,8 +24,9 @@ Chord current_chord(const InitialChord& initial, const Vector6& d, double previo
   chord.length = delta.norm();
   // l² − l0² = (2Δ0 + Δu)·Δu, so δl keeps its digits when it is tiny against l0.
   chord.elongation = (2.0 * delta0 + relative).dot(relative) / (chord.length + initial.length);
-  chord.cos = delta.x() / chord.length;
-  chord.sin = delta.y() / chord.length;
+  const double inverse = 1.0 / chord.length;
+  chord.cos = delta.x() * inverse;
+  chord.sin = delta.y() * inverse;
   const double angle = std::atan2(delta.y(), delta.x());
   chord.rotation = previous_rotation + wrap_angle(angle - initial.angle - previous_rotation);
   return chord;
