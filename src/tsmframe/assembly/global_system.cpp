@@ -120,12 +120,14 @@ void GlobalSystem::build_pattern() {
   // by an element, or by a contact element that has been active (contact_pairs_).
   const NodeGraph graph = node_graph(model_);
   const int n_blocks = dofs_.block_count();
-  std::vector<std::vector<int>> extra(n_blocks);
+  std::vector<std::pair<int, int>> extra;  // (column, row) of the contact pairs: few, sorted
   for (const auto& [a, b] : contact_pairs_) {
     const int ba = dofs_.block(a), bb = dofs_.block(b);
     if (ba < 0 || bb < 0 || ba == bb) continue;
-    extra[std::min(ba, bb)].push_back(std::max(ba, bb));
+    extra.emplace_back(std::min(ba, bb), std::max(ba, bb));
   }
+  std::sort(extra.begin(), extra.end());
+  auto next_extra = extra.begin();
   tangent_.size = n_blocks;
   tangent_.column.assign(n_blocks + 1, 0);
   tangent_.row.clear();
@@ -136,7 +138,7 @@ void GlobalSystem::build_pattern() {
       const int r = dofs_.block(graph.neighbours[p]);
       if (r >= c) tangent_.row.push_back(r);
     }
-    tangent_.row.insert(tangent_.row.end(), extra[c].begin(), extra[c].end());
+    for (; next_extra != extra.end() && next_extra->first == c; ++next_extra) tangent_.row.push_back(next_extra->second);
     std::sort(tangent_.row.begin() + first, tangent_.row.end());
     tangent_.row.erase(std::unique(tangent_.row.begin() + first, tangent_.row.end()), tangent_.row.end());
     tangent_.column[c + 1] = static_cast<int>(tangent_.row.size());
