@@ -1,15 +1,20 @@
 #include "tsmframe/assembly/dof_map.hpp"
 
 #include "tsmframe/assembly/elimination_order.hpp"
+#include "tsmframe/util/first_touch.hpp"
 
 namespace tsm::assembly {
 
-DofMap::DofMap(const Model& model) : equation_(model.dof_count(), -1), node_block_(model.node_count(), -1) {
+DofMap::DofMap(const Model& model) {
   const int n = model.node_count();
   const std::vector<int> order = elimination_order(node_graph(model));
 
-  free_dofs_.reserve(model.dof_count());  // exact sizes below: no growth by doubling
-  block_node_.reserve(n);
+  util::assign_touched(equation_, model.dof_count(), -1);
+  util::assign_touched(node_block_, n, -1);
+  util::resize_touched(free_dofs_, model.dof_count());  // sized for all, filled below, then cut
+  util::resize_touched(block_node_, n);
+  free_dofs_.clear();
+  block_node_.clear();
 
   for (int k = 0; k < n; ++k) {
     const int node = order[k];

@@ -2,19 +2,21 @@
 
 #include <algorithm>
 
+#include "tsmframe/util/first_touch.hpp"
+
 namespace tsm::assembly {
 
 NodeGraph node_graph(const Model& model) {
   const int n = model.node_count();
   NodeGraph g;
-  g.start.assign(n + 1, 0);
+  util::assign_touched(g.start, n + 1, 0);
   for (int k = 0; k < n; ++k) g.start[k + 1] = 1;  // itself
   for (const Element& e : model.elements) {
     ++g.start[e.start + 1];
     ++g.start[e.end + 1];
   }
   for (int k = 0; k < n; ++k) g.start[k + 1] += g.start[k];
-  g.neighbours.resize(g.start[n]);
+  util::resize_touched(g.neighbours, g.start[n]);
   std::vector<int> fill(g.start.begin(), g.start.end() - 1);
   for (int k = 0; k < n; ++k) g.neighbours[fill[k]++] = k;
   for (const Element& e : model.elements) {

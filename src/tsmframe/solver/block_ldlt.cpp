@@ -78,13 +78,13 @@ struct Rows {
 Rows rows_of(const BlockMatrix& a) {
   const int n = a.size;
   Rows r;
-  r.start.assign(n + 1, 0);
+  util::assign_touched(r.start, n + 1, 0);
   for (int c = 0; c < n; ++c)
     for (int p = a.column[c]; p < a.column[c + 1]; ++p)
       if (a.row[p] > c) ++r.start[a.row[p] + 1];
   for (int k = 0; k < n; ++k) r.start[k + 1] += r.start[k];
-  r.column.resize(r.start[n]);
-  r.position.resize(r.start[n]);
+  util::resize_touched(r.column, r.start[n]);
+  util::resize_touched(r.position, r.start[n]);
   std::vector<int> next(r.start.begin(), r.start.end() - 1);
   for (int c = 0; c < n; ++c)  // ascending c: every row lists its columns ascending
     for (int p = a.column[c]; p < a.column[c + 1]; ++p)
@@ -149,14 +149,16 @@ void add_fill(BlockMatrix& a) {
     }
   }
   for (int c = 0; c < n; ++c) column[c + 1] += column[c] + 1;  // + the diagonal
-  std::vector<int> row(column[n]), next(n);
+  std::vector<int> row, next(n);
+  util::resize_touched(row, column[n]);
   for (int c = 0; c < n; ++c) {
     row[column[c]] = c;  // diagonal first
     next[c] = column[c] + 1;
   }
   for (size_t e = 0; e < entries_row.size(); ++e) row[next[entries_column[e]]++] = entries_row[e];  // rows ascending
   // The fill: the entries of the new pattern that the old one lacks (both ascending per column).
-  std::vector<unsigned char> fill(row.size(), 1);
+  std::vector<unsigned char> fill;
+  util::assign_touched(fill, row.size(), static_cast<unsigned char>(1));
   bool any = false;
   for (int c = 0; c < n; ++c) {
     int q = column[c];
@@ -200,7 +202,7 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
     row_fill_.resize(row_position_.size());
     for (size_t t = 0; t < row_position_.size(); ++t) row_fill_[t] = a.fill[row_position_[t]];
   }
-  slot_.assign(n, -1);
+  util::assign_touched(slot_, n, -1);
 
   // Tasks: the largest subtrees of at most `limit` blocks (and at least 64). The limit is the
   // largest that still gives 8 tasks — enough to keep two or more cores busy, as large as

@@ -25,4 +25,15 @@ void resize_touched(std::vector<T>& v, std::size_t n) {
   v.resize(n);
 }
 
+/// v.assign(n, value), its new storage mapped in first (touch_pages).
+template <class T>
+void assign_touched(std::vector<T>& v, std::size_t n, const T& value) {
+  if (n > v.capacity()) {
+    std::vector<T>().swap(v);
+    v.reserve(n);
+    touch_pages(v.data(), n * sizeof(T));
+  }
+  v.assign(n, value);
+}
+
 }  // namespace tsm::util
