@@ -85,4 +85,30 @@ TEST(Threads, AGridFrameGivesBitIdenticalResults) {
   EXPECT_GT(node_displacement(model, one.steps.back(), id(bays, bays))[0], 0.1);  // it sways far
 }
 
+TEST(Threads, AContactSlidingThroughElementEndsGivesBitIdenticalResults) {
+  // A 9 m cantilever of 6,000 elements pushed 0.6 m up by a rigid node from x = 4.05 m: the
+  // contact point slides through many element ends, each hand-over re-forming only what the
+  // contact touches (GlobalSystem::evaluate_contact_change) between parallel element loops.
+  json m = beam_model({.L = 9.0, .E = 2.05e11, .G = 7.9e10, .A = 1e-2, .I = 1e-4, .shear_area = 8.3e-3, .divisions = 6000,
+                       .element = "timoshenko"});
+  m["nodes"].push_back({{"id", 100}, {"x", 4.05}, {"y", 0.0}});
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 100}, {"fix", {"ux", "rz"}}}});
+  m["prescribed"] = json::array({{{"node", 100}, {"uy", 0.6}}});
+  m["contacts"] = json::array({{{"node", 100}, {"members", "all"}}});
+  m["analysis"] = {{"control", {{"type", "load"}, {"steps", 4}}}, {"output", "all"}};
+  const tsm::Model model = tsm::io::read_model(m);
+
+  omp_set_num_threads(1);
+  const auto one = tsm::solver::run_analysis(model);
+  omp_set_num_threads(2);
+  const auto two = tsm::solver::run_analysis(model);
+  omp_set_num_threads(omp_get_num_procs());
+  ASSERT_EQ(one.status, tsm::solver::Status::converged) << one.message;
+  expect_bit_identical(one, two);
+  ASSERT_EQ(one.steps.back().contacts.size(), 1u);
+  EXPECT_GT(one.steps.back().contacts[0].element, 2700 + 10) << "the point has slid on past element 2700 (x = 4.05 m)";
+  EXPECT_EQ(one.steps.back().contacts[0].element, two.steps.back().contacts[0].element);
+  EXPECT_EQ(one.steps.back().contacts[0].force, two.steps.back().contacts[0].force);
+}
+
 }  // namespace
