@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <utility>
+
 #include "support/models.hpp"
 
 namespace {
@@ -20,6 +22,16 @@ void expect_bit_identical(const tsm::solver::RunResult& one, const tsm::solver::
     EXPECT_TRUE((one.steps[s].displacements.array() == two.steps[s].displacements.array()).all()) << "step " << s;
     EXPECT_TRUE((one.steps[s].element_forces.array() == two.steps[s].element_forces.array()).all()) << "step " << s;
   }
+}
+
+/// The model run with one thread, then with two (the default number restored after).
+std::pair<tsm::solver::RunResult, tsm::solver::RunResult> run_with_one_and_two_threads(const tsm::Model& model) {
+  omp_set_num_threads(1);
+  tsm::solver::RunResult one = tsm::solver::run_analysis(model);
+  omp_set_num_threads(2);
+  tsm::solver::RunResult two = tsm::solver::run_analysis(model);
+  omp_set_num_threads(omp_get_num_procs());
+  return {std::move(one), std::move(two)};
 }
 
 TEST(Threads, OneAndTwoThreadsGiveBitIdenticalResults) {
@@ -39,10 +51,7 @@ TEST(Threads, OneAndTwoThreadsGiveBitIdenticalResults) {
   m["analysis"]["control"]["steps"] = 2;
   const tsm::Model model = tsm::io::read_model(m);
 
-  omp_set_num_threads(1);
-  const auto one = tsm::solver::run_analysis(model);
-  omp_set_num_threads(2);
-  const auto two = tsm::solver::run_analysis(model);
+  const auto [one, two] = run_with_one_and_two_threads(model);
   ASSERT_EQ(one.status, tsm::solver::Status::converged) << one.message;
   expect_bit_identical(one, two);
   // And the answer is the right one: the first cantilever is bent by M to the arc of angle M L/EI.
@@ -74,11 +83,7 @@ TEST(Threads, AGridFrameGivesBitIdenticalResults) {
   }
   const tsm::Model model = tsm::io::read_model(m);
 
-  omp_set_num_threads(1);
-  const auto one = tsm::solver::run_analysis(model);
-  omp_set_num_threads(2);
-  const auto two = tsm::solver::run_analysis(model);
-  omp_set_num_threads(omp_get_num_procs());
+  const auto [one, two] = run_with_one_and_two_threads(model);
   ASSERT_EQ(one.status, tsm::solver::Status::converged) << one.message;
   expect_bit_identical(one, two);
   for (const auto& step : one.steps) expect_global_equilibrium(model, step);
@@ -98,11 +103,7 @@ TEST(Threads, AContactSlidingThroughElementEndsGivesBitIdenticalResults) {
   m["analysis"] = {{"control", {{"type", "load"}, {"steps", 4}}}, {"output", "all"}};
   const tsm::Model model = tsm::io::read_model(m);
 
-  omp_set_num_threads(1);
-  const auto one = tsm::solver::run_analysis(model);
-  omp_set_num_threads(2);
-  const auto two = tsm::solver::run_analysis(model);
-  omp_set_num_threads(omp_get_num_procs());
+  const auto [one, two] = run_with_one_and_two_threads(model);
   ASSERT_EQ(one.status, tsm::solver::Status::converged) << one.message;
   expect_bit_identical(one, two);
   ASSERT_EQ(one.steps.back().contacts.size(), 1u);
