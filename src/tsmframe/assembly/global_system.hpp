@@ -58,9 +58,10 @@ class GlobalSystem {
   /// tangent into `out` (same displacements and previous rotations; the tangent not handed out for
   /// factorisation since). Only the elements at the nodes of the old and the new contacts are
   /// evaluated again, and only what they write at those nodes is formed again, in the loop's
-  /// order: `out` and the tangent are bit for bit what evaluate() would give, at a cost that does
-  /// not grow with the model. Falls back to evaluate() when the state is not the last one's or
-  /// the contacts need a larger pattern.
+  /// order: `out` and the tangent are bit for bit what evaluate() would give. The cost does not
+  /// grow with the model (those elements, their chunks' end rotations, the entries only contacts
+  /// write). Falls back to evaluate() when the state is not the last one's or the contacts need
+  /// a larger pattern.
   void evaluate_contact_change(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                                Evaluation& out, const std::vector<contact::ActiveContact>& contacts);
 
@@ -94,9 +95,8 @@ class GlobalSystem {
 
  private:
   /// The element at place q of the loop (element_order_[q]); returns its max |θ_i|, |θ_j| (0 if a
-  /// contact element stands in for it).
-  /// With `only_contact_nodes` (a contact change) it writes only what touches a node marked in
-  /// contact_node_.
+  /// contact element stands in for it). With `only_contact_nodes` (a contact change) it writes
+  /// only what touches a node marked in contact_node_.
   template <bool only_contact_nodes = false>
   double evaluate_element(int q, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                           bool with_tangent, Evaluation& out);
