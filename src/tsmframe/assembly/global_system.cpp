@@ -243,7 +243,7 @@ double GlobalSystem::evaluate_element(int q, const Eigen::VectorXd& displacement
     if (slot.first_ij) value[slot.ij].setZero();  // at i or j: it is evaluated for one of them
     return 0.0;
   }
-  const element::Vector6 d = gather(displacements, g);
+  const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
   const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0.matrix(), d, previous_rotations[k], with_tangent);
   out.chord_rotations[k] = r.chord.rotation;
   for (int a = 0; a < 3; ++a) {
@@ -279,7 +279,7 @@ double GlobalSystem::end_rotation(int q, const Eigen::VectorXd& displacements,
   const ElementRecord& slot = records_[q];
   const int k = element_order_[q];
   if (replaced_[k]) return 0.0;
-  const element::Vector6 d = gather(displacements, element_dofs(slot.start, slot.end));
+  const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
   const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0.matrix(), d, previous_rotations[k], false);
   return std::max(std::abs(r.deformations[1]), std::abs(r.deformations[2]));
 }
@@ -450,7 +450,7 @@ Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacement
   for (int q = 0; q < n_elements; ++q) {
     const ElementRecord& slot = records_[q];
     const int k = element_order_[q];
-    const element::Vector6 d = gather(displacements, element_dofs(slot.start, slot.end));
+    const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
     forces.segment<3>(3 * k) = element::beam_response(slot.chord(), slot.k0.matrix(), d, rotations[k], false).forces;
   }
   for (const contact::ActiveContact& a : contacts) {
@@ -470,7 +470,7 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
   for (size_t q = 0; q < records_.size(); ++q) {  // in the loop's order (the sum's order: the same every call)
     const int k = element_order_[q];
     if (replaced[k]) continue;
-    const element::Vector6 d = gather(displacements, element_dofs(records_[q].start, records_[q].end));
+    const element::Vector6 d = element_displacements(displacements, records_[q].start, records_[q].end);
     const element::Matrix3 k0 = records_[q].k0.matrix();
     const element::InitialChord chord = records_[q].chord();
     const element::BeamResponse r = element::beam_response(chord, k0, d, rotations[k], false);

@@ -16,9 +16,7 @@ constexpr double side_reach = 1.0;
 int sign(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
 
 element::Vector6 element_displacements(const Element& e, const Eigen::VectorXd& D) {
-  element::Vector6 d;
-  d << D.segment<3>(dofs_per_node * e.start), D.segment<3>(dofs_per_node * e.end);
-  return d;
+  return tsm::element_displacements(D, e.start, e.end);
 }
 
 /// Unit normal n of an element's current chord.

@@ -33,6 +33,19 @@ struct Element {
   element::SectionStiffness section;
 };
 
+/// An element's end displacements (u, v, θ)_i, (u, v, θ)_j out of all dofs' D. Each node's
+/// (u, v) is copied as one pair: the chord reads them as pairs, and a pair read back from two
+/// single stores waits for both to reach the cache (no store-to-load forwarding), a stall that
+/// cost the element loop 15 % (bench/README "Sixth session").
+inline Eigen::Matrix<double, 6, 1> element_displacements(const Eigen::VectorXd& D, int start, int end) {
+  Eigen::Matrix<double, 6, 1> d;
+  d.segment<2>(0) = D.segment<2>(dofs_per_node * start);
+  d[2] = D[dofs_per_node * start + rz];
+  d.segment<2>(3) = D.segment<2>(dofs_per_node * end);
+  d[5] = D[dofs_per_node * end + rz];
+  return d;
+}
+
 struct ContactSpec {
   int node = 0;                 ///< contact node index
   std::vector<int> members;     ///< member indices the node may touch
