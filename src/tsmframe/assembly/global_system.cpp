@@ -324,9 +324,9 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
   if (with_tangent) contact_rank_one_.clear();
   const int n_elements = static_cast<int>(model_.elements.size());
   // The elements' first writers assign (mark_first_writers): only what no element writes is cleared.
-  out.internal_force.resize(model_.dof_count());
+  util::resize_touched(out.internal_force, model_.dof_count());
   for (const int node : unwritten_nodes_) out.internal_force.segment<dofs_per_node>(dofs_per_node * node).setZero();
-  out.chord_rotations.resize(n_elements);
+  util::resize_touched(out.chord_rotations, n_elements);
   if (has_prescribed_) out.prescribed_coupling.setZero(dofs_.free_count());
   else out.prescribed_coupling.resize(0);  // nothing prescribed moves: no coupling to carry
   if (with_tangent) {
@@ -445,7 +445,8 @@ void GlobalSystem::list_node_elements() {
 Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                                              const std::vector<contact::ActiveContact>& contacts) const {
   const int n_elements = static_cast<int>(records_.size());
-  Eigen::VectorXd forces(3 * n_elements);
+  Eigen::VectorXd forces;
+  util::resize_touched(forces, 3 * n_elements);
 #pragma omp parallel for schedule(static) if (n_elements > 65536)
   for (int q = 0; q < n_elements; ++q) {
     const ElementRecord& slot = records_[q];

@@ -10,6 +10,7 @@
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/assembly/global_system.hpp"
 #include "tsmframe/solver/newton.hpp"
+#include "tsmframe/util/first_touch.hpp"
 
 namespace tsm::solver {
 namespace {
@@ -189,8 +190,9 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   malloc_trim(0);
 #endif
 
-  State state{Eigen::VectorXd::Zero(model.dof_count()), 0.0,
-              std::vector<double>(model.elements.size(), 0.0), contacts.initial_states()};
+  std::vector<double> zero_rotations;
+  util::assign_touched(zero_rotations, model.elements.size(), 0.0);
+  State state{util::zeros_touched(model.dof_count()), 0.0, std::move(zero_rotations), contacts.initial_states()};
   newton.reset(state);
   if (control.type == ControlType::arc_length) return run_arc_length(model, dofs, newton, state, observer);
 

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <sstream>
 
+#include "tsmframe/util/first_touch.hpp"
+
 namespace tsm::solver {
 namespace {
 
@@ -125,7 +127,7 @@ Eigen::VectorXd NewtonSolver::element_forces(const State& state) const {
 
 Eigen::VectorXd NewtonSolver::reactions(double load_factor) const {
   const Model& model = system_.model();
-  Eigen::VectorXd reactions = Eigen::VectorXd::Zero(model.dof_count());
+  Eigen::VectorXd reactions = util::zeros_touched(model.dof_count());
   for (int dof : constrained_dofs_) reactions[dof] = eval_.internal_force[dof] - load_factor * model.reference_load[dof];
   return reactions;
 }
@@ -174,7 +176,7 @@ ResidualScale NewtonSolver::scale_from(std::array<double, 2> load, std::array<do
 NewtonSolver::ResidualPass NewtonSolver::update_residual(double load_factor) {
   const assembly::DofMap& dofs = system_.dofs();
   const Eigen::Index n = dofs.free_count();
-  residual_.resize(n);
+  util::resize_touched(residual_, n);
   const double* F = eval_.internal_force.data();
   const double* P = system_.model().reference_load.data();
   const int* free_dof = dofs.free_dofs().data();

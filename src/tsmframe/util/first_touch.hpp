@@ -5,6 +5,7 @@
 // Linux ≥ 5.14) costs about a fifth of that per page, and two threads can ask side by side. Only
 // memory about to be written is populated: the resident size stays what it would be.
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <vector>
 
@@ -34,6 +35,21 @@ void assign_touched(std::vector<T>& v, std::size_t n, const T& value) {
     touch_pages(v.data(), n * sizeof(T));
   }
   v.assign(n, value);
+}
+
+/// v.resize(n) for an Eigen vector; new storage mapped in first (touch_pages).
+inline void resize_touched(Eigen::VectorXd& v, Eigen::Index n) {
+  if (v.size() == n) return;
+  v.resize(n);
+  touch_pages(v.data(), static_cast<std::size_t>(n) * sizeof(double));
+}
+
+/// An Eigen vector of n zeros, its storage mapped in first (touch_pages).
+inline Eigen::VectorXd zeros_touched(Eigen::Index n) {
+  Eigen::VectorXd v;
+  resize_touched(v, n);
+  v.setZero();
+  return v;
 }
 
 }  // namespace tsm::util
