@@ -1,6 +1,6 @@
-// util::touch_pages / resize_touched: mapping pages in ahead of the writer changes nothing a
-// program can see — what a vector held stays, new elements are value-initialised as by resize —
-// for ranges that start and end inside pages, ranges of less than one page, and none.
+// util::touch_pages and its helpers: mapping pages in ahead of the writer changes nothing a
+// program can see — what a vector held stays, new elements are value-initialised as by resize,
+// zeros_touched gives zeros — for ranges that start and end inside pages, less than a page, none.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -32,6 +32,17 @@ TEST(FirstTouch, ResizeKeepsTheContentsAndValueInitialisesTheRest) {
   }
   tsm::util::resize_touched(r, 10);  // shrinking: as resize
   EXPECT_EQ(r.size(), 10u);
+}
+
+TEST(FirstTouch, EigenVectorsAreSizedAndZeroed) {
+  const Eigen::VectorXd z = tsm::util::zeros_touched(1'000'000);
+  ASSERT_EQ(z.size(), 1'000'000);
+  EXPECT_EQ(z.cwiseAbs().maxCoeff(), 0.0);
+  Eigen::VectorXd v = Eigen::VectorXd::Constant(10, 3.0);
+  tsm::util::resize_touched(v, 10);  // the same size: kept as it is
+  EXPECT_EQ(v.sum(), 30.0);
+  tsm::util::resize_touched(v, 500'000);
+  EXPECT_EQ(v.size(), 500'000);
 }
 
 TEST(FirstTouch, RangesInsideOnePageOrEmptyAreLeftAlone) {
