@@ -1,6 +1,8 @@
 #include "tsmframe/util/first_touch.hpp"
 
+#if defined(__unix__) || defined(__APPLE__)
 #include <sys/mman.h>
+#endif
 
 #include <algorithm>
 #include <cstdint>
