@@ -11,10 +11,8 @@ DofMap::DofMap(const Model& model) {
 
   util::assign_touched(equation_, model.dof_count(), -1);
   util::assign_touched(node_block_, n, -1);
-  util::resize_touched(free_dofs_, model.dof_count());  // sized for all, filled below, then cut
-  util::resize_touched(block_node_, n);
-  free_dofs_.clear();
-  block_node_.clear();
+  util::reserve_touched(free_dofs_, model.dof_count());  // exact sizes below: no growth by doubling
+  util::reserve_touched(block_node_, n);
 
   for (int k = 0; k < n; ++k) {
     const int node = order[k];

@@ -16,24 +16,26 @@ namespace tsm::util {
 /// afterwards (raw storage to be written).
 void touch_pages(void* data, std::size_t bytes);
 
-/// v.resize(n), its new storage mapped in first (touch_pages).
+/// v.reserve(n), the storage beyond v's elements mapped in first (touch_pages).
+template <class T>
+void reserve_touched(std::vector<T>& v, std::size_t n) {
+  if (n <= v.capacity()) return;
+  v.reserve(n);
+  touch_pages(v.data() + v.size(), (n - v.size()) * sizeof(T));  // raw storage: what follows constructs over it
+}
+
+/// v.resize(n), its new storage mapped in first.
 template <class T>
 void resize_touched(std::vector<T>& v, std::size_t n) {
-  if (n > v.capacity()) {
-    v.reserve(n);
-    touch_pages(v.data() + v.size(), (n - v.size()) * sizeof(T));  // raw storage: resize constructs over it
-  }
+  reserve_touched(v, n);
   v.resize(n);
 }
 
-/// v.assign(n, value), its new storage mapped in first (touch_pages).
+/// v.assign(n, value), its new storage mapped in first.
 template <class T>
 void assign_touched(std::vector<T>& v, std::size_t n, const T& value) {
-  if (n > v.capacity()) {
-    std::vector<T>().swap(v);
-    v.reserve(n);
-    touch_pages(v.data(), n * sizeof(T));
-  }
+  if (n > v.capacity()) std::vector<T>().swap(v);  // nothing to keep: all of it new storage
+  reserve_touched(v, n);
   v.assign(n, value);
 }
 
