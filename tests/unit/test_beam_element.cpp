@@ -124,4 +124,27 @@ TEST(BeamElement, EquilibriumOfNodalForces) {
   EXPECT_GT(r.forces.norm(), 1.0);  // a real force state, not a trivial zero
 }
 
+TEST(BeamElement, KeptStiffnessTermsGiveTheFullMatrixBitForBit) {
+  // The element loop passes k0 as its three kept terms (BasicStiffness); every result must be
+  // exactly what the 3×3 k0 gives, for Euler–Bernoulli and Timoshenko, on all branches of β.
+  const InitialChord chord = initial_chord({0.3, -0.2}, {2.3, 0.8});
+  for (const double psi : {0.0, 0.05, 0.5}) {
+    const SectionStiffness section{.EA = 200.0, .EI = 3.0, .shear_flexibility = psi};
+    const BasicStiffness terms = basic_stiffness_terms(section, chord.length);
+    const Matrix3 full = basic_stiffness(section, chord.length);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) EXPECT_EQ(terms(a, b), full(a, b)) << a << "," << b;
+    for (const double angle : {0.0, 0.4, 3 * pi, -3 * pi + 0.3}) {
+      const Vector6 d = deformed(chord, angle, 0.02, 2.5, -1.7);
+      const BeamResponse x = beam_response(chord, terms, d, angle + 0.01);
+      const BeamResponse y = beam_response(chord, full, d, angle + 0.01);
+      EXPECT_EQ(x.chord.rotation, y.chord.rotation);
+      EXPECT_TRUE((x.forces.array() == y.forces.array()).all()) << x.forces.transpose() << " | " << y.forces.transpose();
+      EXPECT_TRUE((x.nodal_forces.array() == y.nodal_forces.array()).all());
+      EXPECT_TRUE((x.tangent.array() == y.tangent.array()).all());
+      EXPECT_GT(x.forces.norm(), 1.0);  // a real force state
+    }
+  }
+}
+
 }  // namespace

@@ -244,7 +244,7 @@ double GlobalSystem::evaluate_element(int q, const Eigen::VectorXd& displacement
     return 0.0;
   }
   const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-  const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0.matrix(), d, previous_rotations[k], with_tangent);
+  const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0, d, previous_rotations[k], with_tangent);
   out.chord_rotations[k] = r.chord.rotation;
   for (int a = 0; a < 3; ++a) {
     if (at_i) force[g[a]] = slot.first_i ? r.nodal_forces[a] : force[g[a]] + r.nodal_forces[a];
@@ -280,7 +280,7 @@ double GlobalSystem::end_rotation(int q, const Eigen::VectorXd& displacements,
   const int k = element_order_[q];
   if (replaced_[k]) return 0.0;
   const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-  const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0.matrix(), d, previous_rotations[k], false);
+  const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0, d, previous_rotations[k], false);
   return std::max(std::abs(r.deformations[1]), std::abs(r.deformations[2]));
 }
 
@@ -452,7 +452,7 @@ Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacement
     const ElementRecord& slot = records_[q];
     const int k = element_order_[q];
     const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-    forces.segment<3>(3 * k) = element::beam_response(slot.chord(), slot.k0.matrix(), d, rotations[k], false).forces;
+    forces.segment<3>(3 * k) = element::beam_response(slot.chord(), slot.k0, d, rotations[k], false).forces;
   }
   for (const contact::ActiveContact& a : contacts) {
     const contact::Vector9 d = gather(displacements, contact_dofs(model_.elements[a.element], a.node));

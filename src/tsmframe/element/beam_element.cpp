@@ -5,14 +5,19 @@
 
 namespace tsm::element {
 
-BeamResponse beam_response(const InitialChord& initial, const Matrix3& k0, const Vector6& d,
-                           double previous_rotation, bool with_tangent) {
+namespace {
+
+// One body for both forms of k0: Stiffness gives k0(a, b).
+template <class Stiffness>
+BeamResponse response_of(const InitialChord& initial, const Stiffness& k0, const Vector6& d,
+                         double previous_rotation, bool with_tangent) {
   BeamResponse r;
   r.chord = current_chord(initial, d, previous_rotation);
   const double c = r.chord.cos, s = r.chord.sin, l = r.chord.length;
   // Strict compatibility: θ = Θ − β at both ends (FORMULATION §1).
   r.deformations = {r.chord.elongation, d[2] - r.chord.rotation, d[5] - r.chord.rotation};
-  r.forces = k0 * r.deformations;  // Eq. 3 / Eq. 4
+  for (int a = 0; a < 3; ++a)  // S = k0 d (Eq. 3 / Eq. 4)
+    r.forces[a] = k0(a, 0) * r.deformations[0] + k0(a, 1) * r.deformations[1] + k0(a, 2) * r.deformations[2];
   const double N = r.forces[0], Mi = r.forces[1], Mj = r.forces[2];
   // J S (Eq. 1): along the chord u = (c, s) and across it n = (−s, c).
   const double inverse = 1.0 / l;
@@ -36,6 +41,18 @@ BeamResponse beam_response(const InitialChord& initial, const Matrix3& k0, const
       -pxy, -pyy, -qi * c, pxy, pyy, -qj * c,   //
       -qj * s, qj * c, k0(2, 1), qj * s, -qj * c, k0(2, 2);
   return r;
+}
+
+}  // namespace
+
+BeamResponse beam_response(const InitialChord& initial, const Matrix3& k0, const Vector6& d,
+                           double previous_rotation, bool with_tangent) {
+  return response_of(initial, k0, d, previous_rotation, with_tangent);
+}
+
+BeamResponse beam_response(const InitialChord& initial, const BasicStiffness& k0, const Vector6& d,
+                           double previous_rotation, bool with_tangent) {
+  return response_of(initial, k0, d, previous_rotation, with_tangent);
 }
 
 RoundOffFloor round_off_floor(const InitialChord& initial, const Matrix3& k0, const Vector6& d,

@@ -22,6 +22,10 @@ struct BeamResponse {
 /// (the same matrix as equilibrium_matrix and geometric_stiffness give, without the products).
 BeamResponse beam_response(const InitialChord& initial, const Matrix3& k0, const Vector6& d,
                            double previous_rotation, bool with_tangent = true);
+/// The same with k0 as an element keeps it: read where it lies, no Matrix3 written per call (a
+/// 3×3 written with 8-byte stores and read back in pairs stalls on the store buffer).
+BeamResponse beam_response(const InitialChord& initial, const BasicStiffness& k0, const Vector6& d,
+                           double previous_rotation, bool with_tangent = true);
 
 /// How large the element's nodal forces can be in error from rounding alone, at this state:
 /// positions are X + u, so δl and β carry an absolute error ≈ ε(|u_i| + |u_j| + l0), and

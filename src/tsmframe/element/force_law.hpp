@@ -25,6 +25,11 @@ struct BasicStiffness {
   double axial = 0.0;   ///< EA / l0
   double direct = 0.0;  ///< k_ii = k_jj
   double cross = 0.0;   ///< k_ij
+  /// k0(a, b), as Matrix3 would give it (the zeros fold away where a and b are constants).
+  constexpr double operator()(int a, int b) const {
+    if (a == 0 || b == 0) return a == b ? axial : 0.0;
+    return a == b ? direct : cross;
+  }
   Matrix3 matrix() const {
     Matrix3 k;
     k << axial, 0.0, 0.0, 0.0, direct, cross, 0.0, cross, direct;
