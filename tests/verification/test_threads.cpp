@@ -6,9 +6,12 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <cmath>
 #include <utility>
 
 #include "support/models.hpp"
+#include "tsmframe/assembly/global_system.hpp"
+#include "tsmframe/element/beam_element.hpp"
 
 namespace {
 
@@ -110,6 +113,47 @@ TEST(Threads, AContactSlidingThroughElementEndsGivesBitIdenticalResults) {
   EXPECT_GT(one.steps.back().contacts[0].element, 2700 + 10) << "the point has slid on past element 2700 (x = 4.05 m)";
   EXPECT_EQ(one.steps.back().contacts[0].element, two.steps.back().contacts[0].element);
   EXPECT_EQ(one.steps.back().contacts[0].force, two.steps.back().contacts[0].force);
+}
+
+TEST(Threads, TheRoundingFloorIsTheSameOnOneAndTwoThreads) {
+  // The floor Newton's round-off criterion compares with (GlobalSystem::rounding_floor) sums its
+  // elements chunk by chunk on both threads: the same bits on one, and the sum of every element's
+  // own floor (element::round_off_floor, summed here one by one in the model's order).
+  json m = beam_model({.L = 10.0, .E = 2e11, .G = 8e10, .A = 1e-2, .I = 1e-5, .shear_area = 8e-3, .divisions = 9000, .element = "timoshenko"});
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}});
+  const tsm::Model model = tsm::io::read_model(m);
+  const tsm::assembly::DofMap dofs(model);
+  const tsm::assembly::GlobalSystem system(model, dofs);
+  Eigen::VectorXd D(model.dof_count());
+  std::vector<double> rotations(model.elements.size());
+  for (int k = 0; k < model.node_count(); ++k) {  // bent into an arc of 1.5 rad, stretched a little
+    const double x = model.nodes[k].position.x(), turn = 0.15 * x;
+    D.segment<3>(3 * k) << (x > 0 ? std::sin(turn) / 0.15 * 1.001 - x : 0.0), (1.0 - std::cos(turn)) / 0.15, turn;
+  }
+  for (size_t e = 0; e < rotations.size(); ++e) rotations[e] = 0.15 * model.nodes[model.elements[e].start].position.x();
+  omp_set_num_threads(1);
+  const tsm::assembly::RoundingFloor one = system.rounding_floor(D, rotations, {});
+  omp_set_num_threads(2);
+  const tsm::assembly::RoundingFloor two = system.rounding_floor(D, rotations, {});
+  omp_set_num_threads(omp_get_num_procs());
+  EXPECT_EQ(one.force, two.force);
+  EXPECT_EQ(one.moment, two.moment);
+  double force = 0.0, moment = 0.0;
+  for (size_t e = 0; e < model.elements.size(); ++e) {
+    const tsm::Element& el = model.elements[e];
+    const tsm::element::InitialChord chord =
+        tsm::element::initial_chord(model.nodes[el.start].position, model.nodes[el.end].position);
+    const tsm::element::Matrix3 k0 = tsm::element::basic_stiffness(el.section, chord.length);
+    tsm::element::Vector6 d;
+    d << D.segment<3>(3 * el.start), D.segment<3>(3 * el.end);
+    const tsm::element::RoundOffFloor f =
+        tsm::element::round_off_floor(chord, k0, d, tsm::element::beam_response(chord, k0, d, rotations[e], false));
+    force += 4.0 * f.force * f.force;
+    moment += 2.0 * f.moment * f.moment;
+  }
+  EXPECT_NEAR(two.force, std::sqrt(force), 1e-12 * std::sqrt(force));
+  EXPECT_NEAR(two.moment, std::sqrt(moment), 1e-12 * std::sqrt(moment));
+  EXPECT_GT(two.force, 0.0);
 }
 
 }  // namespace

@@ -467,17 +467,29 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
   constexpr double eps = std::numeric_limits<double>::epsilon();
   std::vector<char> replaced(model_.elements.size(), 0);
   for (const contact::ActiveContact& a : contacts) replaced[a.element] = 1;
+  // Per chunk of the loop's order, on both threads; then summed chunk by chunk in that order,
+  // so the floor is the same whatever the thread count.
+  const int n_chunks = static_cast<int>(chunk_start_.size()) - 1;
+  std::vector<std::array<double, 2>> chunk_sum(n_chunks, {0.0, 0.0});
+#pragma omp parallel for schedule(static) if (n_chunks > 1)
+  for (int chunk = 0; chunk < n_chunks; ++chunk) {
+    double force = 0.0, moment = 0.0;
+    for (int q = chunk_start_[chunk]; q < chunk_start_[chunk + 1]; ++q) {
+      const ElementRecord& slot = records_[q];
+      const int k = element_order_[q];
+      if (replaced[k]) continue;
+      const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
+      const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0, d, rotations[k], false);
+      const element::RoundOffFloor f = element::round_off_floor(slot.chord(), slot.k0.matrix(), d, r);
+      force += 4.0 * f.force * f.force;  // two nodes, two translations each
+      moment += 2.0 * f.moment * f.moment;
+    }
+    chunk_sum[chunk] = {force, moment};
+  }
   double force = 0.0, moment = 0.0;
-  for (size_t q = 0; q < records_.size(); ++q) {  // in the loop's order (the sum's order: the same every call)
-    const int k = element_order_[q];
-    if (replaced[k]) continue;
-    const element::Vector6 d = element_displacements(displacements, records_[q].start, records_[q].end);
-    const element::Matrix3 k0 = records_[q].k0.matrix();
-    const element::InitialChord chord = records_[q].chord();
-    const element::BeamResponse r = element::beam_response(chord, k0, d, rotations[k], false);
-    const element::RoundOffFloor f = element::round_off_floor(chord, k0, d, r);
-    force += 4.0 * f.force * f.force;  // two nodes, two translations each
-    moment += 2.0 * f.moment * f.moment;
+  for (const auto& [f, m] : chunk_sum) {
+    force += f;
+    moment += m;
   }
   for (const contact::ActiveContact& a : contacts) {
     // The beam part as for the plain element, plus Y's: the error of δy_c − w (about ε times the
