@@ -112,7 +112,11 @@ TEST(Elastica, ScaledModelGivesTheSameNormalisedAnswer) {
   ASSERT_EQ(b.status, tsm::solver::Status::converged);
   ASSERT_EQ(a.steps.size(), b.steps.size());
   for (size_t s = 0; s < a.steps.size(); ++s) {
-    EXPECT_EQ(a.steps[s].iterations, b.steps[s].iterations);
+    // The same number of iterations, give or take the last: these steps end on the round-off
+    // criterion (EA/EI ~ 1e5 puts the floor near 1e-7), where a stagnating residual is stopped
+    // one iterate earlier or later as the roundings of the two scalings fall.
+    EXPECT_LE(std::abs(a.steps[s].iterations - b.steps[s].iterations), 1);
+    EXPECT_EQ(a.steps[s].criterion, b.steps[s].criterion);
     const Eigen::Vector3d ta = node_displacement(unit, a.steps[s], 2), tb = node_displacement(scaled, b.steps[s], 2);
     // Same iterates in exact arithmetic; the roundings differ between the scalings and Newton
     // stops at a relative residual of 1e-8, so the answers agree to about 1e-9 (EA/EI ~ 1e5 here).

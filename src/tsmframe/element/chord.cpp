@@ -10,6 +10,19 @@ InitialChord initial_chord(const Vector2& start, const Vector2& end) {
   return {start, end, delta.norm(), std::atan2(delta.y(), delta.x())};
 }
 
+double direction_angle(double y, double x) {
+  // atan2 by the quadrant around atan of the smaller ratio (|ratio| ≤ 1 keeps atan's accuracy):
+  // within an ulp of std::atan2, at ~10 ns against ~18 here, as glibc's atan2 saves and restores
+  // the rounding mode on every call (bench/README "Seventh session").
+  constexpr double pi = std::numbers::pi, half_pi = pi / 2;
+  if (std::abs(x) >= std::abs(y)) {
+    const double a = std::atan(y / x);
+    return !std::signbit(x) ? a : (!std::signbit(y) ? a + pi : a - pi);
+  }
+  const double a = std::atan(x / y);
+  return !std::signbit(y) ? half_pi - a : -half_pi - a;
+}
+
 double wrap_angle(double angle) {
   constexpr double two_pi = 2.0 * std::numbers::pi;
   constexpr double turns_per_radian = 1.0 / two_pi;
@@ -27,7 +40,7 @@ Chord current_chord(const InitialChord& initial, const Vector6& d, double previo
   const double inverse = 1.0 / chord.length;
   chord.cos = delta.x() * inverse;
   chord.sin = delta.y() * inverse;
-  const double angle = std::atan2(delta.y(), delta.x());
+  const double angle = direction_angle(delta.y(), delta.x());
   chord.rotation = previous_rotation + wrap_angle(angle - initial.angle - previous_rotation);
   return chord;
 }

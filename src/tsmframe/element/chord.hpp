@@ -30,6 +30,9 @@ struct Chord {
   double rotation = 0.0;   ///< β = φ − φ0, a true total (never wrapped)
 };
 
+/// The angle of the direction (x, y) in [−π, π], as std::atan2(y, x) gives it (within an ulp).
+double direction_angle(double y, double x);
+
 /// Angle wrapped into [−π, π].
 double wrap_angle(double angle);
 
