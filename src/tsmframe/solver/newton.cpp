@@ -18,6 +18,13 @@ constexpr double floor_ratio = 10.0;       // ‖R‖ ≤ 10 × the estimated ro
 constexpr double stagnation = 0.5;         // … ends a step once Newton no longer halves it
 constexpr double floor_check_below = 1e-3; // the floor (a pass of its own) is only worth checking below this
 constexpr double largest_end_rotation = std::numbers::pi / 2;  // |θ| an element end may turn against its chord
+// The contacts' sliding terms (FORMULATION §2) join the solve only once the relative residual is
+// below this (and in a step's first solve, from a converged state). Far from it the point hops
+// between short elements, where ∂k0/∂α is large and changes from element to element, and the
+// consistent tangent sent Newton farther off: a 10⁴-element push took 8–24 iterates a step with
+// it, 6–9 with the symmetric part alone (bench/README "Seventh session"). Near the solution
+// the terms bring back quadratic convergence.
+constexpr double sliding_terms_below = 1e-2;
 
 /// Σ over [0, n) in fixed chunks (the same chunks whatever the number of threads), the chunk
 /// sums added in order: bit-identical for any number of threads. body(begin, end, sums) adds its
@@ -341,13 +348,30 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     // correction overwrites it, one vector of the model's size less; and the right-hand side is
     // known before the factorisation, which carries its forward substitution along.
     Eigen::VectorXd& correction = constraint.kind == PathConstraint::Kind::load_increment ? residual_ : correction_;
+    // K_ff = tangent + the sliding terms in use (all, or none: sliding_terms_below); with `rhs`,
+    // solved for it in place. Without the terms the symmetric part alone may be singular where
+    // the whole is not: then once more with them.
+    const auto factorise = [&](Eigen::VectorXd* rhs) {
+      const std::vector<RankOne>& sliding = system_.contact_rank_one();
+      const bool all = it == 1 || sliding.empty() || out.residual_norms.back() < sliding_terms_below;
+      BlockMatrix& K = system_.tangent_for_factorisation();
+      const std::vector<RankOne> none;
+      auto attempt = [&](const std::vector<RankOne>& terms, Eigen::VectorXd* x) {
+        return x ? solver_.factorize_and_solve(K, terms, *x, refill) : solver_.factorize(K, terms, refill);
+      };
+      if (all) return attempt(sliding, rhs);
+      const Eigen::VectorXd kept = rhs ? *rhs : Eigen::VectorXd();  // the solve runs along the factorisation
+      if (attempt(none, rhs)) return true;
+      refill(K);
+      if (rhs) *rhs = kept;
+      return attempt(sliding, rhs);
+    };
     if (constraint.kind == PathConstraint::Kind::load_increment) {
       if (it == 1) dlambda = constraint.load_increment;
       if (dlambda != 0.0) add_load_direction(dlambda, correction);
       if (it == 1) drive = kind_norms(correction);
-      if (!solver_.factorize_and_solve(system_.tangent_for_factorisation(), system_.contact_rank_one(), correction, refill))
-        return singular();
-    } else if (!solver_.factorize(system_.tangent_for_factorisation(), system_.contact_rank_one(), refill)) {
+      if (!factorise(&correction)) return singular();
+    } else if (!factorise(nullptr)) {
       return singular();
     } else if (by_arc) {
       // δD = δD_R + δλ δD_F; δλ from the arc-length constraint (Crisfield's cylindrical form).
