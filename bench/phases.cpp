@@ -3,14 +3,17 @@
 // evaluations of the internal forces and tangent at one bent state and the factorisation of that
 // tangent with a solve, each part with the pages it touched first or had mapped in (minor
 // faults; util::touch_pages counts its pages there too). The 10⁵-element models of bench/targets.sh: `tsmframe_phases chains` (100 × 1,000) or
-// `tsmframe_phases lattice` (70 × 70 bays × 10). Run it in a fresh process: the set-up's page
-// faults are its first touches of the heap.
+// `tsmframe_phases lattice` (70 × 70 bays × 10); `tsmframe_phases chains C` for C chains of
+// 1,000 (1000: the 10⁶ of the spread). Run it in a fresh process: the set-up's page faults are
+// its first touches of the heap.
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <string>
 #include <memory>
 #include <vector>
 
@@ -44,8 +47,9 @@ void timed(const char* name, Part&& part) {
 
 int main(int argc, char** argv) {
   const bool lattice = argc > 1 && std::strcmp(argv[1], "lattice") == 0;
-  const tsm::Model model = lattice ? tsm::bench::lattice(70, 10, 1e6) : tsm::bench::rolled_cantilevers(100, 1000, 0.25, 10);
-  std::printf("%s: %zu elements\n", lattice ? "lattice 70 x 70 x 10" : "100 chains x 1000", model.elements.size());
+  const int chains = !lattice && argc > 2 ? std::atoi(argv[2]) : 100;  // chains C: C chains of 1000
+  const tsm::Model model = lattice ? tsm::bench::lattice(70, 10, 1e6) : tsm::bench::rolled_cantilevers(chains, 1000, 0.25, 10);
+  std::printf("%s: %zu elements\n", lattice ? "lattice 70 x 70 x 10" : (std::to_string(chains) + " chains x 1000").c_str(), model.elements.size());
   std::unique_ptr<tsm::assembly::DofMap> dofs;
   std::unique_ptr<tsm::assembly::GlobalSystem> system;
   std::unique_ptr<tsm::contact::ContactTracker> contacts;
