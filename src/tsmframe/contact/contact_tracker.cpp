@@ -117,6 +117,30 @@ void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, con
       state.reference_side[ci] = fallback == 0 ? 0 : static_cast<signed char>(n.dot(released_normal) >= 0.0 ? fallback : -fallback);
     }
   }
+  // Beyond that reach a member's elements take the side of the nearest element of the same member
+  // that has one, carried along the member (its elements follow one another, each starting where
+  // the previous one ends, so the side of the member's line is the same side of every chord):
+  // a node that slides over many short elements in one step still finds the side it came from
+  // where it arrives. Only a side (±1) is carried: a node on the centre line has none yet.
+  const auto continues = [&](size_t before, size_t after) {
+    const Element& a = model_.elements[spec.candidates[before]];
+    const Element& b = model_.elements[spec.candidates[after]];
+    return a.member == b.member && a.end == b.start;
+  };
+  std::vector<signed char>& side = state.reference_side;
+  const size_t m = spec.candidates.size();
+  std::vector<int> distance(m, std::numeric_limits<int>::max());
+  std::vector<signed char> carried(m, no_side);
+  for (size_t ci = 0; ci < m; ++ci)
+    if (side[ci] == 1 || side[ci] == -1) distance[ci] = 0, carried[ci] = side[ci];
+  for (size_t ci = 1; ci < m; ++ci)  // along each member, then back: from the nearest element with a side
+    if (distance[ci - 1] != std::numeric_limits<int>::max() && distance[ci - 1] + 1 < distance[ci] && continues(ci - 1, ci))
+      distance[ci] = distance[ci - 1] + 1, carried[ci] = carried[ci - 1];
+  for (size_t ci = m - 1; ci-- > 0;)
+    if (distance[ci + 1] != std::numeric_limits<int>::max() && distance[ci + 1] + 1 < distance[ci] && continues(ci, ci + 1))
+      distance[ci] = distance[ci + 1] + 1, carried[ci] = carried[ci + 1];
+  for (size_t ci = 0; ci < m; ++ci)
+    if (side[ci] == no_side) side[ci] = carried[ci];
 }
 
 std::vector<ActiveContact> ContactTracker::active_contacts(const std::vector<ContactState>& states) const {
