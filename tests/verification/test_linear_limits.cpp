@@ -38,6 +38,49 @@ TEST_P(TimoshenkoCantilever, TipDeflectionIsBendingPlusShear) {
 
 INSTANTIATE_TEST_SUITE_P(AnyMesh, TimoshenkoCantilever, ::testing::Values(1, 2, 7, 30));
 
+// Steps driven only by prescribed displacements, from an unstressed structure with no loads: the
+// step's force level is its drive (a first iterate was measured against a zero scale and ended
+// the run as a blow-up).
+TEST(PrescribedOnly, ATipMovedSidewaysBendsTheCantileverAsTheLinearFormulaSays) {
+  BeamSpec b;  // Euler–Bernoulli, EI = 1, L = 1
+  b.divisions = 20;
+  const double delta = 1e-4;  // small: the linear answer holds to ~δ²
+  json m = beam_model(b);
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}});
+  m["prescribed"] = json::array({{{"node", 2}, {"uy", delta}}});
+  m["analysis"] = {{"control", {{"type", "load"}, {"steps", 2}}}};
+  const tsm::Model model = tsm::io::read_model(m);
+  const auto result = tsm::solver::run_analysis(model);
+  ASSERT_EQ(result.status, tsm::solver::Status::converged) << result.message;
+  const tsm::solver::StepRecord& last = result.steps.back();
+  EXPECT_NEAR(node_displacement(model, last, 2)[2], 1.5 * delta, 1e-6 * delta);  // θ = 3δ/(2L)
+  // The tip's reaction is the force that holds it there, 3EIδ/L³; the clamp's moment balances it,
+  // −3EIδ/L² (clockwise).
+  const int tip = model.node_index(2), clamp = model.node_index(1);
+  EXPECT_NEAR(last.reactions[3 * tip + 1], 3.0 * delta, 1e-6 * 3.0 * delta);
+  EXPECT_NEAR(last.reactions[3 * clamp + 2], -3.0 * delta, 1e-6 * 3.0 * delta);
+  expect_global_equilibrium(model, last);
+}
+
+TEST(PrescribedOnly, AMovedClampCarriesTheBeamRigidlyWithoutForce) {
+  BeamSpec b;
+  b.divisions = 20;
+  b.element = "timoshenko";
+  json m = beam_model(b);
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}});
+  m["prescribed"] = json::array({{{"node", 1}, {"ux", 0.3}, {"uy", -0.2}}});
+  m["analysis"] = {{"control", {{"type", "load"}, {"steps", 3}}}};
+  const tsm::Model model = tsm::io::read_model(m);
+  const auto result = tsm::solver::run_analysis(model);
+  ASSERT_EQ(result.status, tsm::solver::Status::converged) << result.message;
+  const tsm::solver::StepRecord& last = result.steps.back();
+  const Eigen::Vector3d tip = node_displacement(model, last, 2);
+  EXPECT_NEAR(tip[0], 0.3, 1e-12);
+  EXPECT_NEAR(tip[1], -0.2, 1e-12);
+  EXPECT_NEAR(tip[2], 0.0, 1e-12);
+  EXPECT_LE(last.element_forces.cwiseAbs().maxCoeff(), 1e-9 * b.E * b.A);  // round-off of EA δl
+}
+
 class ImperfectColumn : public ::testing::TestWithParam<std::tuple<int, const char*>> {};
 
 TEST_P(ImperfectColumn, LoadApproachesEulerLoad) {
