@@ -434,12 +434,12 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
         add_load_direction(dlambda, drive_);
         drive = kind_norms(drive_);
       }
-      out.residual_norms.push_back(relative_norm(drive, start_scale));
       // The drive is a force level of the step too: a step that only moves supports of an
       // unstressed structure has no other (no loads, no internal forces yet), and its iterates
       // would be measured against nothing (a blow-up at once).
       start_scale.force = std::max(start_scale.force, drive[0]);
       start_scale.moment = std::max(start_scale.moment, drive[1]);
+      out.residual_norms.push_back(relative_norm(drive, start_scale));
     }
     out.iterations = it;
     // Applied first, checked after (in the same pass): a failed step's state is restored by the caller.
