@@ -360,10 +360,10 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
         return x ? solver_.factorize_and_solve(K, terms, *x, refill) : solver_.factorize(K, terms, refill);
       };
       if (all) return attempt(sliding, rhs);
-      const Eigen::VectorXd kept = rhs ? *rhs : Eigen::VectorXd();  // the solve runs along the factorisation
+      if (rhs) kept_rhs_ = *rhs;  // the solve runs along the factorisation
       if (attempt(none, rhs)) return true;
-      refill(K);
-      if (rhs) *rhs = kept;
+      refill(K);  // the failed factorisation has overwritten part of it
+      if (rhs) *rhs = kept_rhs_;
       return attempt(sliding, rhs);
     };
     if (constraint.kind == PathConstraint::Kind::load_increment) {

@@ -135,6 +135,7 @@ class NewtonSolver {
   // Workspace of step(), kept between iterations and steps: no allocation per iteration. Under
   // load control only residual_ is used (the correction overwrites it).
   Eigen::VectorXd residual_, correction_, along_load_, along_residual_, start_, increment_, trial_, drive_;
+  Eigen::VectorXd kept_rhs_;  ///< a right-hand side kept for a second factorisation (with the sliding terms)
   std::vector<unsigned char> is_moment_;  ///< per free equation: 1 for a rotation dof (cheaper than dof % 3 in the hot passes)
   std::vector<int> constrained_dofs_;
   double prescribed_squared_ = 0.0;  ///< ‖D_p,ref‖² over prescribed translations
