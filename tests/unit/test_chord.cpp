@@ -41,4 +41,21 @@ TEST(DirectionAngle, IsExactOnTheAxes) {
   EXPECT_TRUE(std::isnan(direction_angle(NAN, 1.0)));
 }
 
+TEST(DirectionAngle, AnUndisplacedChordHasNotTurnedAtAll) {
+  // φ0 (initial_chord) and φ (current_chord) come from the same function: at D = 0 the chord
+  // rotation is exactly 0 for every direction, so an unloaded structure has exactly zero internal
+  // forces (φ0 by std::atan2 and φ by direction_angle differed in the last bit: round-off moments
+  // in every element of an arch, and its unloaded steps ended on the round-off criterion).
+  const tsm::element::Vector6 zero = tsm::element::Vector6::Zero();
+  int turned = 0;
+  for (int k = 0; k < 3600; ++k) {
+    const double t = 2.0 * pi * (k + 0.123) / 3600;
+    const tsm::element::Vector2 start(5.0 * std::cos(t), 5.0 * std::sin(t));
+    const tsm::element::Vector2 end(5.0 * std::cos(t + 0.05), 5.0 * std::sin(t + 0.05));
+    const tsm::element::InitialChord chord = tsm::element::initial_chord(start, end);
+    turned += tsm::element::current_chord(chord, zero, 0.0).rotation != 0.0;
+  }
+  EXPECT_EQ(turned, 0);
+}
+
 }  // namespace

@@ -7,7 +7,7 @@ namespace tsm::element {
 
 InitialChord initial_chord(const Vector2& start, const Vector2& end) {
   const Vector2 delta = end - start;
-  return {start, end, delta.norm(), std::atan2(delta.y(), delta.x())};
+  return {start, end, delta.norm(), direction_angle(delta.y(), delta.x())};  // as current_chord: β = 0 exactly at D = 0
 }
 
 double direction_angle(double y, double x) {
