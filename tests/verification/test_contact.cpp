@@ -296,6 +296,34 @@ TEST(AcrossMembers, ThePointPassesAJointBetweenTwoMembers) {
   EXPECT_TRUE(on_first && on_second);
 }
 
+// ---- A point resting on a beam node (not supported yet: CHANGELOG) ----
+
+TEST(ContactOnANode, APointHoppingAcrossABeamNodeSaysWhichNode) {
+  // A pinned–pinned beam of 20 elements pushed down at its mid-span node: the force is normal to
+  // the carrying element's chord, and the two chords at the node differ, so the point is pushed
+  // one way on one element and back on the other. Until a vertex contact exists the run must
+  // say where and what to do (with 21 elements, the point mid-element, it converges).
+  BeamSpec b{.L = 10.0, .E = 2.0e11, .G = 7.7e10, .A = 4.0e-3, .I = 2.0e-5, .shear_area = 2.0e-3, .divisions = 20,
+             .element = "timoshenko"};
+  json m = pusher_model(b, 5.0, 0.001, 0.0, -1.0, 20);
+  m["supports"] = json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "pinned"}},
+                               {{"node", 100}, {"fix", json::array({"ux", "rz"})}}});
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_NE(r.status, tsm::solver::Status::converged);
+  int middle = -1;
+  for (const tsm::Node& n : model.nodes)
+    if (std::abs(n.position.x() - 5.0) < 1e-12 && n.position.y() == 0.0) middle = n.id;
+  ASSERT_GE(middle, 0);
+  EXPECT_NE(r.message.find("back and forth across beam node " + std::to_string(middle)), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("odd number of divisions"), std::string::npos) << r.message;
+  m["members"][0]["divisions"] = 21;
+  tsm::Model odd;
+  const RunResult ok = run(m, odd);
+  ASSERT_EQ(ok.status, tsm::solver::Status::converged) << ok.message;
+  EXPECT_NEAR(contact_of(ok.steps.back()).alpha, 0.5, 1e-9);  // symmetric: mid-element
+}
+
 // ---- Many short elements ----
 
 TEST(FineMesh, APushSlidingOverManyShortElementsTakesFewIteratesPerStep) {

@@ -26,6 +26,9 @@ struct ContactState {
   /// Direction of the last hand-over in this step (+1 past node j, −1 past node i, 0 none), to
   /// tell a point sliding on from one hopping back and forth.
   int handover_direction = 0;
+  /// The beam node (index) across which the point last came back the way it had gone, −1: none
+  /// in this step — for the message when it keeps hopping.
+  int hop_node = -1;
   /// At that release: the side the node was on, the normal n of the element it left, and per
   /// candidate whether the node lay within its span (0 ≤ α ≤ 1). Until the step ends the node
   /// must not reach the other side of those elements while within their span (going round a

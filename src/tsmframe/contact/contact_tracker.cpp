@@ -249,7 +249,10 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
         occupied[best] = 1;
         state.side = n_from.dot(n_to) >= 0.0 ? state.side : -state.side;
         const int direction = state.alpha > 1.0 ? 1 : -1;
-        if (state.handover_direction != 0 && direction != state.handover_direction) ++changes.reversed;
+        if (state.handover_direction != 0 && direction != state.handover_direction) {
+          ++changes.reversed;
+          state.hop_node = end;
+        }
         // The next element's own direction: past its start (α < 0) when it continues from our end j.
         const Element& to = model_.elements[best];
         state.handover_direction = (to.start == end) == (direction > 0) ? direction : -direction;
@@ -338,6 +341,7 @@ void ContactTracker::accept(const Eigen::VectorXd& D, const std::vector<double>&
   for (size_t k = 0; k < specs_.size(); ++k) {
     states[k].released_in_step = false;
     states[k].handover_direction = 0;
+    states[k].hop_node = -1;
     if (!states[k].active) reset_sides(specs_[k], D, rotations, 0, states[k]);
   }
 }

@@ -455,8 +455,19 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     if (contacts_) out.contact_iterates.push_back(contact_points(state));
     if (switches_ > max_switches || reversals_ > max_reversals) {
       out.status = Status::contact_chatter;
-      out.message = iterate_text(switches_ > max_switches ? "contacts keep switching on and off"
-                                                          : "contact points keep hopping between elements", it);
+      std::string what = switches_ > max_switches ? "contacts keep switching on and off" : "contact points keep hopping between elements";
+      for (size_t k = 0; k < state.contacts.size() && switches_ <= max_switches; ++k) {
+        const int node = state.contacts[k].hop_node;
+        if (node < 0) continue;
+        // A point that rests on a beam node where two elements meet at an angle (a symmetric push
+        // on a node) is pushed along one chord's normal, then the other's (README, Contact).
+        std::ostringstream os;
+        os << what << " (node " << model.nodes[model.contacts[k].node].id << " back and forth across beam node "
+           << model.nodes[node].id << ": if it rests on that node, move it off, e.g. with an odd number of divisions)";
+        what = os.str();
+        break;
+      }
+      out.message = iterate_text(what.c_str(), it);
       return out;
     }
 
