@@ -47,5 +47,4 @@ inline bool invert_pivot(const Eigen::Matrix3d& d, Eigen::Matrix3d& inverse) {
   return inverse.allFinite();
 }
 
-
 }  // namespace tsm::solver

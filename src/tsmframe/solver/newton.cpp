@@ -455,19 +455,21 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
     if (contacts_) out.contact_iterates.push_back(contact_points(state));
     if (switches_ > max_switches || reversals_ > max_reversals) {
       out.status = Status::contact_chatter;
-      std::string what = switches_ > max_switches ? "contacts keep switching on and off" : "contact points keep hopping between elements";
-      for (size_t k = 0; k < state.contacts.size() && switches_ <= max_switches; ++k) {
-        const int node = state.contacts[k].hop_node;
-        if (node < 0) continue;
+      std::ostringstream what;
+      if (switches_ > max_switches) {
+        what << "contacts keep switching on and off";
+      } else {
+        what << "contact points keep hopping between elements";
         // A point that rests on a beam node where two elements meet at an angle (a symmetric push
         // on a node) is pushed along one chord's normal, then the other's (README, Contact).
-        std::ostringstream os;
-        os << what << " (node " << model.nodes[model.contacts[k].node].id << " back and forth across beam node "
-           << model.nodes[node].id << ": if it rests on that node, move it off, e.g. with an odd number of divisions)";
-        what = os.str();
-        break;
+        const auto hops = std::find_if(state.contacts.begin(), state.contacts.end(),
+                                       [](const contact::ContactState& c) { return c.hop_node >= 0; });
+        if (hops != state.contacts.end())
+          what << " (node " << model.nodes[model.contacts[hops - state.contacts.begin()].node].id
+               << " back and forth across beam node " << model.nodes[hops->hop_node].id
+               << ": if it rests on that node, move it off, e.g. with an odd number of divisions)";
       }
-      out.message = iterate_text(what.c_str(), it);
+      out.message = iterate_text(what.str().c_str(), it);
       return out;
     }
 
