@@ -13,8 +13,18 @@ struct ContactState {
   int element = -1;   ///< element carrying the contact (index), −1 when inactive
   int side = 0;       ///< side of that element's chord the node is on: +1 along n, −1 against
   double alpha = 0.0; ///< α = l_ic / l at the last evaluation
-  double force = 0.0; ///< compression −side·Y (≥ 0 when converged)
+  double force = 0.0; ///< compression −side·Y (≥ 0 when converged); at a vertex, of the resultant
   double Y = 0.0;     ///< the element force Y (chord frame, Eq. 6–9)
+  /// A vertex: the node rests on a beam node where two elements meet at an angle (on either
+  /// element alone, the force normal to its chord pushes the point over the node onto the other).
+  /// Both elements then carry a contact element with the node held at that beam node, so the
+  /// force lies between the two chords' normals (README, Contact). −1: on one element.
+  int partner = -1;
+  int partner_side = 0;
+  double partner_Y = 0.0;
+  /// The beam node at which a vertex opened on one side in this step: the contact left on the
+  /// other element stays there rather than go back into the corner (until the step converges).
+  int held_node = -1;
   /// Per candidate element (ContactTracker order): the side the node was on at the last
   /// converged state (+1, −1), 0 while it lies on the element's centre line, or no_side when it
   /// was beyond the element's reach then (see ContactTracker). Contact starts when it reaches

@@ -12,6 +12,13 @@ constexpr double alpha_tolerance = 1e-12;  // a node on a beam node counts for b
 // −reach to 1 + reach): a node far beyond an element's ends has no meaningful side of it, and
 // its side flipping there (a beam swinging around) must not start a contact later.
 constexpr double side_reach = 1.0;
+// A vertex holds the node at a beam node, where only the compliance floor (edge δ) keeps the
+// contact law finite: with the floor switched off (the paper's element as published, δ → 0) a
+// vertex would be singular, and there is none.
+constexpr double vertex_min_edge = 1e-6;
+// … and it is taken only by a point at most this far (a fraction of either element) past the
+// node: a point sliding over many short elements hops about while it overshoots.
+constexpr double vertex_reach = 0.5;
 
 int sign(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
 
@@ -145,23 +152,58 @@ void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, con
 
 std::vector<ActiveContact> ContactTracker::active_contacts(const std::vector<ContactState>& states) const {
   std::vector<ActiveContact> active;
-  for (size_t k = 0; k < specs_.size(); ++k) {
-    if (!states[k].active) continue;
-    const Spec& spec = specs_[k];
+  const auto add = [&](const Spec& spec, int element, int side) {
     ActiveContact a;
     a.node = spec.node;
-    a.element = states[k].element;
+    a.element = element;
     a.data.initial = initial_[a.element];
     a.data.section = contact_section(spec, a.element);
     a.data.k0 = element::basic_stiffness(a.data.section, a.data.initial.length);
     a.data.contact_start = model_.nodes[spec.node].position;
-    a.data.offset = states[k].side * spec.gap;
+    a.data.offset = side * spec.gap;
     a.data.edge = spec.edge >= 0.0 ? spec.edge : default_edge();
     a.data.sliding_term = spec.sliding_term;
     a.data.cantilever_frame = spec.cantilever_frame;
     active.push_back(a);
+  };
+  for (size_t k = 0; k < specs_.size(); ++k) {
+    if (!states[k].active) continue;
+    add(specs_[k], states[k].element, states[k].side);
+    if (states[k].partner >= 0) add(specs_[k], states[k].partner, states[k].partner_side);
   }
   return active;
+}
+
+int ContactTracker::vertex_node(const ContactState& state) const {
+  const Element& a = model_.elements[state.element];
+  const Element& b = model_.elements[state.partner];
+  return a.end == b.start || a.end == b.end ? a.end : a.start;
+}
+
+size_t ContactTracker::read_evaluation(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                       const ContactEvaluation* evaluated, ContactState& state) const {
+  state.alpha = evaluated[0].alpha;
+  state.Y = evaluated[0].Y;
+  state.force = -state.side * state.Y;
+  if (state.partner < 0) return 1;
+  // A vertex: reported on the element that ends at the node, at α = 1 (or the one that starts
+  // there, at 0), with the compression of the resultant of both contact elements' forces.
+  state.partner_Y = evaluated[1].Y;
+  state.alpha = model_.elements[state.element].end == vertex_node(state) ? 1.0 : 0.0;
+  const auto normal = [&](int f) {
+    return chord_normal(initial_[f], element_displacements(model_.elements[f], D), rotations[f]);
+  };
+  const Eigen::Vector2d push = state.Y * normal(state.element) + state.partner_Y * normal(state.partner);
+  const double compression = -state.side * state.Y - state.partner_side * state.partner_Y;
+  state.force = compression >= 0.0 ? push.norm() : -push.norm();
+  return 2;
+}
+
+void ContactTracker::record(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                            const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states) const {
+  size_t next = 0;
+  for (ContactState& state : states)
+    if (state.active && next < evaluated.size()) next += read_evaluation(D, rotations, &evaluated[next], state);
 }
 
 void ContactTracker::release(const Spec& spec, const Eigen::VectorXd& D, const std::vector<double>& rotations,
@@ -185,7 +227,7 @@ void ContactTracker::release(const Spec& spec, const Eigen::VectorXd& D, const s
   }
   state.active = false;
   state.released_in_step = true;
-  state.element = -1;
+  state.element = state.partner = -1;
   state.side = 0;
   state.force = state.Y = 0.0;
 }
@@ -196,16 +238,45 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
   ContactChanges changes;
   std::vector<char> occupied(model_.elements.size(), 0);
   for (const ContactState& s : states)
-    if (s.active) occupied[s.element] = 1;
+    if (s.active) {
+      occupied[s.element] = 1;
+      if (s.partner >= 0) occupied[s.partner] = 1;
+    }
   size_t next = 0;
   for (size_t k = 0; k < specs_.size(); ++k) {
     const Spec& spec = specs_[k];
     ContactState& state = states[k];
+    if (state.active && state.partner >= 0) {
+      next += read_evaluation(D, rotations, &evaluated[next], state);
+      // A vertex holds the node at the beam node until a converged iterate finds a side pulling:
+      // that side lets go and the node goes on along the other element, or both and it leaves.
+      if (!release_pulling) continue;
+      const bool first_pulls = -state.side * state.Y < 0.0, partner_pulls = -state.partner_side * state.partner_Y < 0.0;
+      if (!first_pulls && !partner_pulls) continue;
+      const int node = vertex_node(state);
+      if (first_pulls && partner_pulls) {
+        occupied[state.element] = occupied[state.partner] = 0;
+        release(spec, D, rotations, state);
+      } else {
+        if (first_pulls) {
+          occupied[state.element] = 0;
+          state.element = state.partner;
+          state.side = state.partner_side;
+          state.Y = state.partner_Y;
+        } else {
+          occupied[state.partner] = 0;
+        }
+        state.partner = -1;
+        state.partner_Y = 0.0;
+        state.held_node = node;
+        state.alpha = locate(spec, state.element, D, rotations).alpha;
+        state.force = -state.side * state.Y;
+      }
+      ++changes.released;
+      continue;
+    }
     if (state.active) {
-      const ContactEvaluation& ev = evaluated[next++];
-      state.alpha = ev.alpha;
-      state.Y = ev.Y;
-      state.force = -state.side * ev.Y;
+      next += read_evaluation(D, rotations, &evaluated[next], state);
       if (release_pulling && state.force < 0.0) {  // compression only
         occupied[state.element] = 0;
         release(spec, D, rotations, state);
@@ -245,16 +316,41 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
         }
         const Eigen::Vector2d n_from = chord_normal(initial_[state.element], element_displacements(from, D), rotations[state.element]);
         const Eigen::Vector2d n_to = chord_normal(initial_[best], element_displacements(model_.elements[best], D), rotations[best]);
+        const int to_side = n_from.dot(n_to) >= 0.0 ? state.side : -state.side;
+        const int direction = state.alpha > 1.0 ? 1 : -1;
+        const Element& to = model_.elements[best];
+        // The vertex opened towards this element: it stays at the node (unless the point has
+        // gone clearly on, more than the edge beyond it).
+        const double edge = spec.edge >= 0.0 ? spec.edge : default_edge();
+        if (end == state.held_node && (state.alpha > 1.0 ? state.alpha - 1.0 : -state.alpha) <= edge) break;
+        const bool reverses = state.handover_direction != 0 && direction != state.handover_direction;
+        const double beyond_from = state.alpha > 1.0 ? state.alpha - 1.0 : -state.alpha;
+        const double into_to = to.start == end ? best_alpha : 1.0 - best_alpha;  // from the node, < 0: behind it
+        if (reverses && end == state.hop_node && end != state.held_node && edge >= vertex_min_edge &&
+            beyond_from <= vertex_reach && std::abs(into_to) <= vertex_reach) {
+          // Back across the node it has already come back across in this step: each element's
+          // force (normal to its own chord; the chords meet at an angle) pushes the point over
+          // the node onto the other, so it rests on the node. Both elements take it (a vertex).
+          occupied[best] = 1;
+          state.partner = best;
+          state.partner_side = to_side;
+          state.partner_Y = 0.0;
+          if (from.end != end && to.end == end) {  // reported on the element that ends at the node
+            std::swap(state.element, state.partner);
+            std::swap(state.side, state.partner_side);
+          }
+          state.alpha = model_.elements[state.element].end == end ? 1.0 : 0.0;
+          ++changes.handed_over;
+          break;
+        }
         occupied[state.element] = 0;
         occupied[best] = 1;
-        state.side = n_from.dot(n_to) >= 0.0 ? state.side : -state.side;
-        const int direction = state.alpha > 1.0 ? 1 : -1;
-        if (state.handover_direction != 0 && direction != state.handover_direction) {
+        state.side = to_side;
+        if (reverses) {
           ++changes.reversed;
           state.hop_node = end;
         }
         // The next element's own direction: past its start (α < 0) when it continues from our end j.
-        const Element& to = model_.elements[best];
         state.handover_direction = (to.start == end) == (direction > 0) ? direction : -direction;
         state.element = best;
         state.alpha = best_alpha;
@@ -341,7 +437,7 @@ void ContactTracker::accept(const Eigen::VectorXd& D, const std::vector<double>&
   for (size_t k = 0; k < specs_.size(); ++k) {
     states[k].released_in_step = false;
     states[k].handover_direction = 0;
-    states[k].hop_node = -1;
+    states[k].hop_node = states[k].held_node = -1;
     if (!states[k].active) reset_sides(specs_[k], D, rotations, 0, states[k]);
   }
 }

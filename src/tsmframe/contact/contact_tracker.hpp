@@ -63,6 +63,10 @@ class ContactTracker {
   ContactChanges update(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
                         const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states,
                         bool release_pulling) const;
+  /// Sets α, Y and the compression of every active contact from `evaluated` (active_contacts()
+  /// order) without changing the active set: the evaluation that stands after the last update().
+  void record(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
+              const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states) const;
   /// Whether a contact released during this step has let its node pass through a beam (it may
   /// not start again within the step): the converged state is then not acceptable.
   bool passed_through(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
@@ -95,6 +99,11 @@ class ContactTracker {
   element::SectionStiffness contact_section(const Spec& spec, int element) const;
   void release(const Spec& spec, const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
                ContactState& state) const;
+  /// The beam node shared by a vertex's two elements.
+  int vertex_node(const ContactState& state) const;
+  /// Reads one contact's evaluation(s) (two at a vertex) into its state; returns how many.
+  size_t read_evaluation(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
+                         const ContactEvaluation* evaluated, ContactState& state) const;
   void reset_sides(const Spec& spec, const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
                    int fallback, ContactState& state) const;
 

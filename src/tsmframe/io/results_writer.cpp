@@ -38,14 +38,16 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
     w.key("displacements");
     write_triples(w, model, step.displacements, nullptr);
     // A contact element adds Y to its element's (N, M_i, M_j).
-    std::vector<const solver::ContactPoint*> contact_on(model.elements.size(), nullptr);
-    for (const solver::ContactPoint& c : step.contacts)
-      if (c.element >= 0) contact_on[c.element] = &c;
+    std::vector<const double*> contact_Y(model.elements.size(), nullptr);
+    for (const solver::ContactPoint& c : step.contacts) {
+      if (c.element >= 0) contact_Y[c.element] = &c.Y;
+      if (c.partner >= 0) contact_Y[c.partner] = &c.partner_Y;
+    }
     w.key("element_forces").begin_object();
     for (size_t e = 0; e < model.elements.size(); ++e) {
       w.newline().key(std::to_string(model.elements[e].id)).begin_array();
       for (int f = 0; f < 3; ++f) w.value(step.element_forces[3 * e + f]);
-      if (contact_on[e]) w.value(contact_on[e]->Y);
+      if (contact_Y[e]) w.value(*contact_Y[e]);
       w.end_array();
     }
     w.end_object();
@@ -63,6 +65,7 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
       w.key("element").value(model.elements[c.element].id);
       w.key("xi").value(c.alpha);
       w.key("force").value(c.force);
+      if (c.partner >= 0) w.key("also").value(model.elements[c.partner].id);
       w.end_object();
     }
     w.end_array();

@@ -50,22 +50,31 @@ void write_vtu(const std::string& path, const Model& model, const solver::StepRe
   curves.reserve(model.elements.size());
   for (const Element& e : model.elements) curves.push_back(element_curve(model, e, D));
   struct ContactPoint {
+    int node;
     Eigen::Vector2d position, force;
     double Y;
   };
   std::vector<ContactPoint> contacts;
   std::vector<double> element_Y(model.elements.size(), 0.0);
+  // J S puts +Y n on node c: the force the element needs there, i.e. the push the node gives the beam.
+  const auto push = [&](int element, double Y) -> Eigen::Vector2d {
+    const Element& e = model.elements[element];
+    const Eigen::Vector2d xi = model.nodes[e.start].position + D.segment<2>(dofs_per_node * e.start);
+    const Eigen::Vector2d xj = model.nodes[e.end].position + D.segment<2>(dofs_per_node * e.end);
+    const Eigen::Vector2d t = (xj - xi).normalized();
+    return Y * Eigen::Vector2d(-t.y(), t.x());
+  };
   for (size_t k = 0; k < step.contacts.size(); ++k) {
     const solver::ContactPoint& c = step.contacts[k];
     if (c.element < 0) continue;
     element_Y[c.element] = c.Y;
+    Eigen::Vector2d force = push(c.element, c.Y);
+    if (c.partner >= 0) {  // a vertex: both elements push
+      element_Y[c.partner] = c.partner_Y;
+      force += push(c.partner, c.partner_Y);
+    }
     const int node = model.contacts[k].node;
-    const Element& e = model.elements[c.element];
-    const Eigen::Vector2d xi = model.nodes[e.start].position + D.segment<2>(dofs_per_node * e.start);
-    const Eigen::Vector2d xj = model.nodes[e.end].position + D.segment<2>(dofs_per_node * e.end);
-    const Eigen::Vector2d t = (xj - xi).normalized(), n(-t.y(), t.x());
-    // J S puts +Y n on node c: the force the element needs there, i.e. the push the node gives the beam.
-    contacts.push_back({model.nodes[node].position + D.segment<2>(dofs_per_node * node), c.Y * n, c.Y});
+    contacts.push_back({node, model.nodes[node].position + D.segment<2>(dofs_per_node * node), force, c.Y});
   }
   const size_t per = curve_points + 1, n_points = curves.size() * per + contacts.size();
   const size_t n_cells = curves.size() + contacts.size();
@@ -92,10 +101,8 @@ void write_vtu(const std::string& path, const Model& model, const solver::StepRe
     out << "<DataArray type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (const Curve& c : curves)
       for (const Eigen::Vector2d& u : c.displacement) out << num(u.x()) << ' ' << num(u.y()) << " 0\n";
-    for (size_t k = 0; k < contacts.size(); ++k) {
-      const int node = model.contacts[k].node;
-      out << num(D[dofs_per_node * node]) << ' ' << num(D[dofs_per_node * node + 1]) << " 0\n";
-    }
+    for (const ContactPoint& c : contacts)
+      out << num(D[dofs_per_node * c.node]) << ' ' << num(D[dofs_per_node * c.node + 1]) << " 0\n";
     out << "</DataArray>\n<DataArray type=\"Float64\" Name=\"rotation\" format=\"ascii\">\n";
     for (const Curve& c : curves)
       for (double r : c.rotation) out << num(r) << '\n';

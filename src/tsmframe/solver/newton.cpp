@@ -91,13 +91,7 @@ bool NewtonSolver::evaluate(State& state, bool contacts_only) {
     reversals_ += changes.reversed;
   }
   // α and force of the evaluation that stands (update() has set them unless the passes ran out).
-  size_t next = 0;
-  for (contact::ContactState& c : state.contacts) {
-    if (!c.active || next >= eval_.contacts.size()) continue;
-    c.alpha = eval_.contacts[next].alpha;
-    c.Y = eval_.contacts[next++].Y;
-    c.force = -c.side * c.Y;
-  }
+  contacts_->record(state.displacements, state.chord_rotations, eval_.contacts, state.contacts);
   return changed;
 }
 
@@ -121,7 +115,7 @@ std::vector<ContactPoint> NewtonSolver::contact_points(const State& state) const
   std::vector<ContactPoint> points;
   for (const contact::ContactState& c : state.contacts) {
     ContactPoint p;
-    if (c.active) p = {c.element, c.alpha, c.force, c.Y};
+    if (c.active) p = {c.element, c.alpha, c.force, c.Y, c.partner, c.partner_Y};
     points.push_back(p);
   }
   return points;

@@ -16,6 +16,8 @@ struct ContactPoint {
   double alpha = 0.0;  ///< α = l_ic / l
   double force = 0.0;  ///< compression (≥ 0 at convergence)
   double Y = 0.0;      ///< Y of the contact element (chord frame)
+  int partner = -1;    ///< at a vertex (a beam node, both elements in contact): the other element
+  double partner_Y = 0.0;  ///< … and its Y
 };
 
 struct StepRecord {
