@@ -98,6 +98,45 @@ class Vtk(unittest.TestCase):
         self.assertEqual(points[-1][1], 2.0)  # the contact node, pushed 2 m up
         self.assertEqual(sum(1 for y in cell_data["Y"] if y[0] != 0.0), 2)  # the contact element and vertex
 
+    def test_a_vertex_shows_the_resultant_at_its_own_node(self):
+        # A pinned beam pushed down 0.5 m on its mid-span node (a vertex: both elements at the node
+        # in contact), with an idle contact node listed first: the contact point's arrays belong to
+        # the active contact's node, and its force is the resultant of both elements' pushes.
+        import json
+        model = {
+            "materials": {"steel": {"E": 2e11, "G": 7.7e10}},
+            "sections": {"s": {"A": 0.004, "I": 2e-5, "shear_area": 0.002}},
+            "nodes": [{"id": 1, "x": 0.0, "y": 0.0}, {"id": 2, "x": 10.0, "y": 0.0},
+                      {"id": 9, "x": 5.0, "y": 0.001}, {"id": 7, "x": 5.0, "y": 3.0}],
+            "members": [{"from": 1, "to": 2, "divisions": 20, "element": "timoshenko", "material": "steel", "section": "s"}],
+            "supports": [{"node": 1, "type": "pinned"}, {"node": 2, "type": "pinned"},
+                         {"node": 9, "fix": ["ux"]}, {"node": 7, "type": "fixed"}],
+            "prescribed": [{"node": 9, "uy": -0.5}],
+            "contacts": [{"node": 7, "members": "all"}, {"node": 9, "members": "all"}],
+            "analysis": {"control": {"type": "load", "steps": 5}},
+        }
+        path = os.path.join(self.dir.name, "vertex.json")
+        with open(path, "w") as f:
+            json.dump(model, f)
+        out = os.path.join(self.dir.name, "vertex")
+        r = run("run", path, "--out", out, "--vtk", "-q")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(out, "results.json")) as f:
+            last = json.load(f)["steps"][-1]
+        [contact] = last["contacts"]
+        self.assertEqual((contact["node"], contact["xi"]), (9, 1))
+        self.assertIn("also", contact)
+        files = [d.get("file") for d in ET.parse(os.path.join(out, "vtk", "results.pvd")).getroot().iter("DataSet")]
+        piece, points, point_data, cell_data = read_vtu(os.path.join(out, "vtk", files[-1]))
+        self.assertEqual(int(piece.get("NumberOfCells")), 20 + 1)
+        self.assertAlmostEqual(point_data["displacement"][-1][1], -0.5, places=12)  # node 9's, not node 7's
+        force = point_data["contact_force"][-1]
+        reaction = last["reactions"]["9"]
+        self.assertAlmostEqual(force[1], reaction[1], delta=1e-9 * abs(reaction[1]))  # the push on the beam, which the pusher's support supplies
+        self.assertLess(abs(force[0]), 1e-9 * abs(force[1]))  # symmetric
+        self.assertAlmostEqual(math.hypot(*force[:2]), contact["force"], delta=1e-9 * contact["force"])
+        self.assertEqual(sum(1 for y in cell_data["Y"][:20] if y[0] != 0.0), 2)  # both elements carry Y
+
 
 class Plots(unittest.TestCase):
     def test_plot_writes_png_files(self):
