@@ -40,6 +40,9 @@ chains=$(repeat build/bench/tsmframe_scaling 100 1000)
 huge=$(repeat build/bench/tsmframe_scaling 1000 1000)
 lattice=$(repeat build/bench/tsmframe_lattice 70 10 1e6)
 circle=$(build/bench/tsmframe_scaling 1 10000 1.0 1)
+# The work itself, without the second core: one thread, 10^3 swept in one process, 10^6 once.
+serial_small=$(OMP_NUM_THREADS=1 build/bench/tsmframe_scaling 1 1000 0.25 10 $((runs + 1)) | tail -n +2)
+serial_huge=$(OMP_NUM_THREADS=1 build/bench/tsmframe_scaling 1000 1000)
 
 printf '%-50s %12s %21s %s\n' target limit "measured (best – worst)" verdict
 row "10^5 elements: cost per element per iteration" 100 ns "$(range 5 <<<"$chains")"
@@ -50,6 +53,8 @@ spread=$(printf '%s\n%s\n%s\n' "$small" "$chains" "$huge" | spread_of)
 row "per-element cost, 10^3 … 10^6 (largest / smallest)" 1.5 × "$spread"
 swept_spread=$(printf '%s\n%s\n%s\n' "$swept" "$chains" "$huge" | spread_of)
 row "  the same, 10^3 run again in one process (sweep)" 1.5 × "$swept_spread"
+serial_spread=$(printf '%s\n%s\n' "$serial_small" "$serial_huge" | spread_of)
+row "  the same on one thread (10^3 swept; 10^6)" 1.5 × "$serial_spread"
 ratio=$(printf '%s\n' "$(range 5 <<<"$lattice") $(range 5 <<<"$chains")" | awk '{printf "%.2f %.2f", $1 / $4, $2 / $3}')
 row "lattice 70×70×10 per element / the chains'" 2 × "$ratio"
 echo "$circle" | awk '{printf "%-50s %12s %9s step(s), %s iterations, %s s, %s\n", "10^4-element chain rolled into a full circle", "converges", $2, $3, $6, $8}'
