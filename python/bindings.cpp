@@ -73,7 +73,7 @@ py::dict run_json(const std::string& text, int threads) {
   std::vector<double> load_factors;
   py::list residuals, criteria;
   // Converged steps: contacts; steps with state: displacements, element forces, reactions.
-  std::vector<int> state_steps, contact_element;
+  std::vector<int> state_steps, contact_element, contact_also;
   std::vector<double> displacements, forces, reactions, contact_alpha, contact_force;
   for (const tsm::solver::StepRecord& s : result.steps) {
     step_numbers.push_back(s.step);
@@ -86,6 +86,7 @@ py::dict run_json(const std::string& text, int threads) {
       for (py::ssize_t k = 0; k < c; ++k) {
         const tsm::solver::ContactPoint& p = s.contacts[k];
         contact_element.push_back(p.element >= 0 ? model.elements[p.element].id : 0);
+        contact_also.push_back(p.partner >= 0 ? model.elements[p.partner].id : 0);
         contact_alpha.push_back(p.element >= 0 ? p.alpha : 0.0);
         contact_force.push_back(p.element >= 0 ? p.force : 0.0);
       }
@@ -109,6 +110,7 @@ py::dict run_json(const std::string& text, int threads) {
   out["element_forces"] = array<double>({with_state, m, 3}, forces);
   out["reactions"] = array<double>({with_state, n, 3}, reactions);
   out["contact_element"] = array<int>({c > 0 ? converged_steps : 0, c}, contact_element);
+  out["contact_also"] = array<int>({c > 0 ? converged_steps : 0, c}, contact_also);
   out["contact_alpha"] = array<double>({c > 0 ? converged_steps : 0, c}, contact_alpha);
   out["contact_force"] = array<double>({c > 0 ? converged_steps : 0, c}, contact_force);
   std::ostringstream json, csv;

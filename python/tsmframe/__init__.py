@@ -140,7 +140,9 @@ class Result:
     displacements (K, n, 3)    ux, uy, rz per node; rz is the true total rotation
     element_forces (K, m, 3)   N, M_i, M_j (chord frame)
     reactions (K, n, 3)        Rx, Ry, Mz (0 where the node is free)
-    contact_nodes (c,), contact_element (C, c) element id or 0, contact_alpha (C, c), contact_force (C, c)
+    contact_nodes (c,), contact_element (C, c) element id or 0, contact_alpha (C, c), contact_force (C, c),
+    contact_also (C, c)        at a vertex (a point resting on a beam node, both elements in contact):
+                               the other element's id, else 0
     results_json, steps_csv    exactly what `tsmframe run` writes
     """
 

@@ -34,12 +34,27 @@ def test_arrays_have_the_documented_shapes():
     assert r.node_xy.shape == (n, 2) and r.element_nodes.shape == (m, 2)
     assert r.displacements.shape == (K, n, 3) and r.element_forces.shape == (K, m, 3) and r.reactions.shape == (K, n, 3)
     assert r.contact_element.shape == (C, c) and r.contact_alpha.shape == (C, c) and r.contact_force.shape == (C, c)
+    assert r.contact_also.shape == (C, c) and not r.contact_also.any()  # never resting on a node
     assert len(r.residual_norms) == S and len(r.criterion) == S
     assert list(r.state_steps) == list(range(20, 201, 20))
     # the pusher is at its prescribed 2 m, the contact point in element 10, compression positive
     assert r.displacement(100)[1] == pytest.approx(2.0, abs=1e-12)
     assert r.contact_element[-1, 0] == 10 and r.contact_force[-1, 0] > 0
     assert json.loads(r.results_json)["steps"][-1]["contacts"][0]["xi"] == r.contact_alpha[-1, 0]
+
+
+def test_a_vertex_names_both_elements():
+    # A pinned beam of 20 elements pushed 0.1 m on its mid-span node: both elements at the node
+    # carry the contact (a vertex); the arrays say which, as results.json does.
+    m = tf.Model("vertex").material("steel", E=2e11, G=7.7e10).section("s", A=4e-3, I=2e-5, shear_area=2e-3)
+    m.node(1, 0, 0).node(2, 10, 0).node(9, 5, 0.001)
+    m.member(1, 2, "steel", "s", divisions=20, element="timoshenko")
+    m.support(1, "pinned").support(2, "pinned").support(9, fix=["ux"]).prescribe(9, uy=-0.1).contact(9)
+    r = tf.run(m)
+    assert r.ok, r.message
+    last = json.loads(r.results_json)["steps"][-1]["contacts"][0]
+    assert (r.contact_element[-1, 0], r.contact_also[-1, 0], r.contact_alpha[-1, 0]) == (last["element"], last["also"], 1.0)
+    assert r.contact_also[-1, 0] == r.contact_element[-1, 0] + 1
 
 
 def test_bad_model_raises_value_error_with_the_path():
