@@ -580,6 +580,48 @@ TEST(ContactDetection, ANodeSlidingOverManyElementsInOneStepStillTouches) {
   std::printf("[figure] wheel on a 1000-element rail: force within %.2e of the linear formula\n", largest);
 }
 
+TEST(ContactDetection, ANodeDraggedAcrossAMemberJointInOneStepStillTouches) {
+  // The same kind of pass in a beam built of two members meeting end to end (the second drawn
+  // either way): a pusher dragged from 3.03 m to 7.03 m over a 10 m pinned beam, 0.3 m down, in
+  // ONE step, ends 2 m past the joint at 5 m. The side it came from is carried across the joint
+  // (two members meeting there and nothing else); before, it went through the beam without
+  // touching. The answer is that of the same mesh drawn as one member, to round-off.
+  const auto model_of = [](int members, bool reversed) {
+    json m = {{"materials", {{"steel", {{"E", 2e11}, {"G", 7.7e10}}}}},
+              {"sections", {{"s", {{"A", 0.004}, {"I", 2e-5}, {"shear_area", 0.002}}}}},
+              {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 5.0}, {"y", 0.0}},
+                                     {{"id", 3}, {"x", 10.0}, {"y", 0.0}}, {{"id", 9}, {"x", 3.03}, {"y", 0.001}}})},
+              {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 3}, {"type", "pinned"}}})},
+              {"prescribed", json::array({{{"node", 9}, {"ux", 4.0}, {"uy", -0.3}}})},
+              {"contacts", json::array({{{"node", 9}, {"members", "all"}}})},
+              {"analysis", {{"control", {{"type", "load"}, {"steps", 1}}}}}};
+    const auto member = [](int from, int to, int divisions) {
+      return json{{"from", from}, {"to", to}, {"divisions", divisions}, {"element", "timoshenko"},
+                  {"material", "steel"}, {"section", "s"}};
+    };
+    m["members"] = members == 1 ? json::array({member(1, 3, 20)})
+                                : json::array({member(1, 2, 10), reversed ? member(3, 2, 10) : member(2, 3, 10)});
+    if (members == 1) m["nodes"].erase(1);
+    return m;
+  };
+  tsm::Model one_model;
+  const RunResult one = run(model_of(1, false), one_model);
+  ASSERT_EQ(one.status, tsm::solver::Status::converged) << one.message;
+  const double force = contact_of(one.steps.back()).force;
+  ASSERT_GT(force, 4e5);
+  for (const bool reversed : {false, true}) {
+    tsm::Model model;
+    const RunResult r = run(model_of(2, reversed), model);
+    ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+    const tsm::solver::ContactPoint& c = contact_of(r.steps.back());
+    ASSERT_GE(c.element, 0) << "the pusher went through the beam (reversed: " << reversed << ")";
+    EXPECT_EQ(model.elements[c.element].member, 1);
+    EXPECT_NEAR(c.force, force, 1e-8 * force) << "reversed: " << reversed;
+    const int pusher = model.node_index(9), one_pusher = one_model.node_index(9);
+    EXPECT_NEAR(r.steps.back().reactions[3 * pusher], one.steps.back().reactions[3 * one_pusher], 1e-8 * force);
+  }
+}
+
 TEST(ContactDetection, TwoContactsAtOnceMatchTheLinearFlexibility) {
   BeamSpec b;
   b.divisions = 40;

@@ -124,28 +124,40 @@ void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, con
       state.reference_side[ci] = fallback == 0 ? 0 : static_cast<signed char>(n.dot(released_normal) >= 0.0 ? fallback : -fallback);
     }
   }
-  // Beyond that reach a member's elements take the side of the nearest element of the same member
-  // that has one, carried along the member (its elements follow one another, each starting where
-  // the previous one ends, so the side of the member's line is the same side of every chord):
-  // a node that slides over many short elements in one step still finds the side it came from
-  // where it arrives. Only a side (±1) is carried: a node on the centre line has none yet.
-  const auto continues = [&](size_t before, size_t after) {
-    const Element& a = model_.elements[spec.candidates[before]];
-    const Element& b = model_.elements[spec.candidates[after]];
-    return a.member == b.member && a.end == b.start;
-  };
+  // Beyond that reach an element takes the side of the nearest element that has one, carried
+  // along the beam through every node where exactly two candidate elements meet — a member's
+  // interior nodes, and a joint that only continues the beam into the next member (the two
+  // chords meet there, so a side of one is the same side of the other: kept where one element
+  // starts where the other ends, flipped where they run against each other). A node that slides
+  // over many short elements in one step still finds the side it came from where it arrives,
+  // also past a joint. Not through a joint of three or more: which side of a branch is which is
+  // not defined there. Only a side (±1) is carried: a node on the centre line has none yet.
   std::vector<signed char>& side = state.reference_side;
   const size_t m = spec.candidates.size();
-  std::vector<int> distance(m, std::numeric_limits<int>::max());
+  std::vector<int> distance(m, std::numeric_limits<int>::max()), queue;
   std::vector<signed char> carried(m, no_side);
   for (size_t ci = 0; ci < m; ++ci)
-    if (side[ci] == 1 || side[ci] == -1) distance[ci] = 0, carried[ci] = side[ci];
-  for (size_t ci = 1; ci < m; ++ci)  // along each member, then back: from the nearest element with a side
-    if (distance[ci - 1] != std::numeric_limits<int>::max() && distance[ci - 1] + 1 < distance[ci] && continues(ci - 1, ci))
-      distance[ci] = distance[ci - 1] + 1, carried[ci] = carried[ci - 1];
-  for (size_t ci = m - 1; ci-- > 0;)
-    if (distance[ci + 1] != std::numeric_limits<int>::max() && distance[ci + 1] + 1 < distance[ci] && continues(ci, ci + 1))
-      distance[ci] = distance[ci + 1] + 1, carried[ci] = carried[ci + 1];
+    if (side[ci] == 1 || side[ci] == -1) distance[ci] = 0, carried[ci] = side[ci], queue.push_back(static_cast<int>(ci));
+  for (size_t head = 0; head < queue.size(); ++head) {  // breadth first: from the nearest element with a side
+    const int ci = queue[head];
+    const Element& a = model_.elements[spec.candidates[ci]];
+    for (const int node : {a.start, a.end}) {
+      int other = -1, count = 0;
+      for (int p = node_start_[node]; p < node_start_[node + 1]; ++p)
+        if (spec.candidate_index[node_elements_[p]] >= 0) {
+          ++count;
+          if (node_elements_[p] != spec.candidates[ci]) other = node_elements_[p];
+        }
+      if (count != 2 || other < 0) continue;
+      const int cj = spec.candidate_index[other];
+      if (distance[cj] <= distance[ci] + 1) continue;
+      const Element& b = model_.elements[other];
+      const bool same_direction = (a.end == node) == (b.start == node);
+      distance[cj] = distance[ci] + 1;
+      carried[cj] = same_direction ? carried[ci] : static_cast<signed char>(-carried[ci]);
+      queue.push_back(cj);
+    }
+  }
   for (size_t ci = 0; ci < m; ++ci)
     if (side[ci] == no_side) side[ci] = carried[ci];
 }
