@@ -585,7 +585,11 @@ TEST(ContactDetection, ANodeDraggedAcrossAMemberJointInOneStepStillTouches) {
   // either way): a pusher dragged from 3.03 m to 7.03 m over a 10 m pinned beam, 0.3 m down, in
   // ONE step, ends 2 m past the joint at 5 m. The side it came from is carried across the joint
   // (two members meeting there and nothing else); before, it went through the beam without
-  // touching. The answer is that of the same mesh drawn as one member, to round-off.
+  // touching. The answer is that of the same mesh drawn as one member, to round-off. With a
+  // column under the joint in the contact's set (a T: the beam's top side goes on into the next
+  // span's top, past the column; the pusher's side is also read off the column beyond its top,
+  // left of its line, which is no side of the beam) it is that of the contact on the beam's two
+  // members only, and of the same drag in 10 steps.
   const auto model_of = [](int members, bool reversed) {
     json m = {{"materials", {{"steel", {{"E", 2e11}, {"G", 7.7e10}}}}},
               {"sections", {{"s", {{"A", 0.004}, {"I", 2e-5}, {"shear_area", 0.002}}}}},
@@ -602,6 +606,11 @@ TEST(ContactDetection, ANodeDraggedAcrossAMemberJointInOneStepStillTouches) {
     m["members"] = members == 1 ? json::array({member(1, 3, 20)})
                                 : json::array({member(1, 2, 10), reversed ? member(3, 2, 10) : member(2, 3, 10)});
     if (members == 1) m["nodes"].erase(1);
+    if (members == 3) {  // a column from (5, −4) up to the joint, clamped at its foot
+      m["nodes"].push_back({{"id", 4}, {"x", 5.0}, {"y", -4.0}});
+      m["members"].push_back(member(4, 2, 8));
+      m["supports"].push_back({{"node", 4}, {"type", "fixed"}});
+    }
     return m;
   };
   tsm::Model one_model;
@@ -619,6 +628,24 @@ TEST(ContactDetection, ANodeDraggedAcrossAMemberJointInOneStepStillTouches) {
     EXPECT_NEAR(c.force, force, 1e-8 * force) << "reversed: " << reversed;
     const int pusher = model.node_index(9), one_pusher = one_model.node_index(9);
     EXPECT_NEAR(r.steps.back().reactions[3 * pusher], one.steps.back().reactions[3 * one_pusher], 1e-8 * force);
+  }
+  json beam_only = model_of(3, false);
+  beam_only["contacts"][0]["members"] = {0, 1};
+  tsm::Model beam_model_;
+  const RunResult on_beam = run(beam_only, beam_model_);
+  ASSERT_EQ(on_beam.status, tsm::solver::Status::converged) << on_beam.message;
+  const double supported = contact_of(on_beam.steps.back()).force;
+  ASSERT_GT(supported, 2e5);
+  for (const int steps : {1, 10}) {
+    json tee = model_of(3, false);
+    tee["analysis"]["control"]["steps"] = steps;
+    tsm::Model model;
+    const RunResult r = run(tee, model);
+    ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+    const tsm::solver::ContactPoint& c = contact_of(r.steps.back());
+    ASSERT_GE(c.element, 0) << "the pusher went through the beam (T joint, " << steps << " steps)";
+    EXPECT_EQ(model.elements[c.element].member, 1);
+    EXPECT_NEAR(c.force, supported, 1e-8 * supported) << steps << " steps";
   }
 }
 

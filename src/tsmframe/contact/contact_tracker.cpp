@@ -104,6 +104,42 @@ std::vector<ContactState> ContactTracker::initial_states() const {
   return states;
 }
 
+std::pair<int, int> ContactTracker::across(const Spec& spec, int element, int side, int node,
+                                           const Eigen::VectorXd& D) const {
+  // The side of element f left of its direction away from the node (n is e turned +90°).
+  const auto left_side = [&](int f) { return model_.elements[f].start == node ? 1 : -1; };
+  int count = 0, other = -1;
+  for (int p = node_start_[node]; p < node_start_[node + 1]; ++p)
+    if (spec.candidate_index[node_elements_[p]] >= 0) {
+      ++count;
+      if (node_elements_[p] != element) other = node_elements_[p];
+    }
+  if (count < 2 || other < 0) return {-1, 0};
+  if (count == 2) return {other, side * left_side(element) * -left_side(other)};
+  // Three or more: the elements around the node by the direction they leave it in; the side
+  // faces the sector counter-clockwise from the element (its left) or clockwise (its right).
+  const auto position = [&](int n) -> Eigen::Vector2d { return model_.nodes[n].position + D.segment<2>(dofs_per_node * n); };
+  const Eigen::Vector2d x = position(node);
+  std::vector<std::pair<double, int>> around;
+  for (int p = node_start_[node]; p < node_start_[node + 1]; ++p) {
+    const int g = node_elements_[p];
+    if (spec.candidate_index[g] < 0) continue;
+    const Element& e = model_.elements[g];
+    const Eigen::Vector2d d = position(e.start == node ? e.end : e.start) - x;
+    around.push_back({std::atan2(d.y(), d.x()), g});
+  }
+  std::sort(around.begin(), around.end());
+  const int k = static_cast<int>(around.size());
+  const int i = static_cast<int>(std::find_if(around.begin(), around.end(), [&](const auto& q) { return q.second == element; }) -
+                                 around.begin());
+  if (side == left_side(element)) {  // the far edge of the sector counter-clockwise: its right side
+    const int to = around[(i + 1) % k].second;
+    return {to, -left_side(to)};
+  }
+  const int to = around[(i + k - 1) % k].second;  // the far edge of the sector clockwise: its left side
+  return {to, left_side(to)};
+}
+
 void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, const std::vector<double>& rotations,
                                  int fallback, ContactState& state) const {
   // fallback: the side on state.element's frame, used where the node lies on the centre line.
@@ -112,9 +148,15 @@ void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, con
     const Element& e = model_.elements[state.element];
     released_normal = chord_normal(initial_[state.element], element_displacements(e, D), rotations[state.element]);
   }
+  // Per candidate: whether the node lies past the element's end node (+1) or before its start
+  // node (−1) where its side was read: a side of the chord's line extended beyond a node is no
+  // side of the beam on the far side of that node (at a kink or a joint), so it is not carried
+  // through that node below.
+  std::vector<signed char> past(spec.candidates.size(), 0);
   for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
     const int f = spec.candidates[ci];
     const NodeOnElement where = locate(spec, f, D, rotations);
+    past[ci] = where.alpha > 1.0 ? 1 : (where.alpha < 0.0 ? -1 : 0);
     if (where.alpha < -side_reach || where.alpha > 1.0 + side_reach) {
       state.reference_side[ci] = no_side;
     } else if (std::abs(where.gap) > touch_tolerance_) {
@@ -125,13 +167,15 @@ void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, con
     }
   }
   // Beyond that reach an element takes the side of the nearest element that has one, carried
-  // along the beam through every node where exactly two candidate elements meet — a member's
-  // interior nodes, and a joint that only continues the beam into the next member (the two
-  // chords meet there, so a side of one is the same side of the other: kept where one element
-  // starts where the other ends, flipped where they run against each other). A node that slides
-  // over many short elements in one step still finds the side it came from where it arrives,
-  // also past a joint. Not through a joint of three or more: which side of a branch is which is
-  // not defined there. Only a side (±1) is carried: a node on the centre line has none yet.
+  // along the beam from element to element through their nodes. Where two candidate elements
+  // meet (a member's interior, a joint that only continues the beam into the next member) a
+  // side of one is the same side of the other: kept where one element starts where the other
+  // ends, flipped where they run against each other. Where three or more meet (a T or a cross),
+  // a side faces one of the sectors between the elements around the node, and goes on to the
+  // element on the other edge of that sector only (the top of a beam continues across a column
+  // below it, into the next span's top). A node that slides over many short elements, or past a
+  // joint, in one step still finds the side it came from where it arrives. Only a side (±1) is
+  // carried: a node on the centre line has none yet.
   std::vector<signed char>& side = state.reference_side;
   const size_t m = spec.candidates.size();
   std::vector<int> distance(m, std::numeric_limits<int>::max()), queue;
@@ -139,22 +183,16 @@ void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, con
   for (size_t ci = 0; ci < m; ++ci)
     if (side[ci] == 1 || side[ci] == -1) distance[ci] = 0, carried[ci] = side[ci], queue.push_back(static_cast<int>(ci));
   for (size_t head = 0; head < queue.size(); ++head) {  // breadth first: from the nearest element with a side
-    const int ci = queue[head];
-    const Element& a = model_.elements[spec.candidates[ci]];
+    const int ci = queue[head], f = spec.candidates[ci];
+    const Element& a = model_.elements[f];
     for (const int node : {a.start, a.end}) {
-      int other = -1, count = 0;
-      for (int p = node_start_[node]; p < node_start_[node + 1]; ++p)
-        if (spec.candidate_index[node_elements_[p]] >= 0) {
-          ++count;
-          if (node_elements_[p] != spec.candidates[ci]) other = node_elements_[p];
-        }
-      if (count != 2 || other < 0) continue;
-      const int cj = spec.candidate_index[other];
+      if (distance[ci] == 0 && past[ci] == (node == a.end ? 1 : -1)) continue;  // read beyond this node
+      const auto [to, to_side] = across(spec, f, carried[ci], node, D);
+      if (to < 0) continue;
+      const int cj = spec.candidate_index[to];
       if (distance[cj] <= distance[ci] + 1) continue;
-      const Element& b = model_.elements[other];
-      const bool same_direction = (a.end == node) == (b.start == node);
       distance[cj] = distance[ci] + 1;
-      carried[cj] = same_direction ? carried[ci] : static_cast<signed char>(-carried[ci]);
+      carried[cj] = static_cast<signed char>(to_side);
       queue.push_back(cj);
     }
   }
@@ -304,20 +342,12 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
       while (state.alpha < 0.0 || state.alpha > 1.0) {
         const Element& from = model_.elements[state.element];
         const int end = state.alpha > 1.0 ? from.end : from.start;
-        int best = -1;
-        double best_outside = INFINITY, best_gap = INFINITY, best_alpha = 0.0;
-        for (int p = node_start_[end]; p < node_start_[end + 1]; ++p) {
-          const int f = node_elements_[p];
-          if (f == state.element || spec.candidate_index[f] < 0 || occupied[f]) continue;
-          const NodeOnElement where = locate(spec, f, D, rotations);
-          const double outside = std::max({0.0, -where.alpha, where.alpha - 1.0});
-          if (outside < best_outside || (outside == best_outside && std::abs(where.gap) < best_gap)) {
-            best = f;
-            best_outside = outside;
-            best_gap = std::abs(where.gap);
-            best_alpha = where.alpha;
-          }
-        }
+        // The beam goes on across that node: the next element on the side the node presses
+        // (at a joint of three or more members, the one bounding the same sector: a point on a
+        // beam's top passes a column below it and goes on along the beam).
+        auto [best, to_side] = across(spec, state.element, state.side, end, D);
+        if (best >= 0 && occupied[best]) best = -1;
+        const double best_alpha = best >= 0 ? locate(spec, best, D, rotations).alpha : 0.0;
         if (best < 0) {  // no element beyond: the point has left the beam's free end …
           if (release_pulling) {  // … but only a converged iterate says so (till then α is held at the end)
             occupied[state.element] = 0;
@@ -326,9 +356,6 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
           }
           break;
         }
-        const Eigen::Vector2d n_from = chord_normal(initial_[state.element], element_displacements(from, D), rotations[state.element]);
-        const Eigen::Vector2d n_to = chord_normal(initial_[best], element_displacements(model_.elements[best], D), rotations[best]);
-        const int to_side = n_from.dot(n_to) >= 0.0 ? state.side : -state.side;
         const int direction = state.alpha > 1.0 ? 1 : -1;
         const Element& to = model_.elements[best];
         // The vertex opened towards this element: it stays at the node (unless the point has

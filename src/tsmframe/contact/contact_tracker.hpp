@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tsmframe/contact/contact_element.hpp"
@@ -99,6 +100,10 @@ class ContactTracker {
   element::SectionStiffness contact_section(const Spec& spec, int element) const;
   void release(const Spec& spec, const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
                ContactState& state) const;
+  /// Across `node` from `element`, on the contact's `side` of it: the element the beam goes on
+  /// with and the same side of it (where two candidates meet, the other one; where more do, the
+  /// other edge of the sector between them that the side faces); {−1, 0} at a free end.
+  std::pair<int, int> across(const Spec& spec, int element, int side, int node, const Eigen::VectorXd& displacements) const;
   /// The beam node shared by a vertex's two elements.
   int vertex_node(const ContactState& state) const;
   /// Reads one contact's evaluation(s) (two at a vertex) into its state; returns how many.
