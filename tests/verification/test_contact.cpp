@@ -888,4 +888,40 @@ TEST(ContactVertex, ASidePullingAtAConvergedIterateLetsGoAndBothPullingRelease) 
   }
 }
 
+// ---- Released by a pull: the side it let go on holds for the whole beam ----
+
+TEST(ContactRelease, ANodeThatLetGoByPullingMayNotBeThroughTheBeamAnywhere) {
+  // A contact on element 3 of a 10-element cantilever, from above, lets go by pulling at an
+  // iterate that has thrown the node far beyond the beam (a diverging Newton iterate): no
+  // element's span held it then. If a later converged iterate has it within some element's span
+  // on the beam's other side, it went through: passed_through() must say so (before, only the
+  // elements that held it at the release were checked, and a beam-on-beam run accepted a state
+  // with the tip through the beam). Above the beam, or off its free end, it is fine.
+  BeamSpec b;
+  b.divisions = 10;
+  const tsm::Model model = tsm::io::read_model(pusher_model(b, 0.35, 0.01, 0.0, -0.02, 1));
+  tsm::contact::ContactTracker tracker(model);
+  std::vector<tsm::contact::ContactState> states = tracker.initial_states();
+  states[0].active = true;
+  states[0].element = 3;
+  states[0].side = 1;
+  const std::vector<double> rotations(model.elements.size(), 0.0);
+  const int pusher = model.node_index(100);
+  const auto at = [&](double x, double y) {  // the pusher moved to (x, y), the beam straight
+    Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
+    D.segment<2>(3 * pusher) = Eigen::Vector2d(x - 0.35, y - 0.01);
+    return D;
+  };
+  const Eigen::VectorXd wild = at(5.0, 3.0);
+  // Y > 0 on side +1 is a pull (compression −side·Y); the iterate has converged.
+  const tsm::contact::ContactChanges changes =
+      tracker.update(wild, rotations, {tsm::contact::ContactEvaluation{0.4, 10.0}}, states, true);
+  ASSERT_EQ(changes.released, 1);
+  ASSERT_FALSE(states[0].active);
+  EXPECT_TRUE(tracker.passed_through(at(0.75, -0.001), rotations, states));   // under element 7
+  EXPECT_TRUE(tracker.passed_through(at(0.05, -0.2), rotations, states));     // under element 0
+  EXPECT_FALSE(tracker.passed_through(at(0.75, 0.001), rotations, states));   // above
+  EXPECT_FALSE(tracker.passed_through(at(1.2, -0.1), rotations, states));     // beyond the free end
+}
+
 }  // namespace

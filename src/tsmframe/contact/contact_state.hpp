@@ -44,6 +44,10 @@ struct ContactState {
   /// must not reach the other side of those elements while within their span (going round a
   /// free end is allowed).
   int released_side = 0;
+  /// Released because it would pull (not off a free end): it let go on its side of the beam and
+  /// may not reach the other side of any element of it within the step (reference_side holds
+  /// that side, carried along the beam from the element it left).
+  bool released_pulled = false;
   double released_normal[2] = {0.0, 0.0};
   std::vector<char> released_within;
 };

@@ -166,8 +166,15 @@ void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, con
       state.reference_side[ci] = fallback == 0 ? 0 : static_cast<signed char>(n.dot(released_normal) >= 0.0 ? fallback : -fallback);
     }
   }
-  // Beyond that reach an element takes the side of the nearest element that has one, carried
-  // along the beam from element to element through their nodes. Where two candidate elements
+  // Beyond that reach: the side carried along the beam from the nearest element with one.
+  carry_sides(spec, D, past, state.reference_side);
+}
+
+
+void ContactTracker::carry_sides(const Spec& spec, const Eigen::VectorXd& D, const std::vector<signed char>& past,
+                                 std::vector<signed char>& side) const {
+  // An element takes the side of the nearest element that has one, carried along the beam
+  // from element to element through their nodes. Where two candidate elements
   // meet (a member's interior, a joint that only continues the beam into the next member) a
   // side of one is the same side of the other: kept where one element starts where the other
   // ends, flipped where they run against each other. Where three or more meet (a T or a cross),
@@ -176,7 +183,6 @@ void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, con
   // below it, into the next span's top). A node that slides over many short elements, or past a
   // joint, in one step still finds the side it came from where it arrives. Only a side (±1) is
   // carried: a node on the centre line has none yet.
-  std::vector<signed char>& side = state.reference_side;
   const size_t m = spec.candidates.size();
   std::vector<int> distance(m, std::numeric_limits<int>::max()), queue;
   std::vector<signed char> carried(m, no_side);
@@ -257,8 +263,17 @@ void ContactTracker::record(const Eigen::VectorXd& D, const std::vector<double>&
 }
 
 void ContactTracker::release(const Spec& spec, const Eigen::VectorXd& D, const std::vector<double>& rotations,
-                             ContactState& state) const {
+                             ContactState& state, bool pulled) const {
   reset_sides(spec, D, rotations, state.side, state);
+  state.released_pulled = pulled;
+  if (pulled) {
+    // It let go on its own side of the beam, wherever the iterate has put things: that side,
+    // carried along the beam from the element it left, is the side of every element it may not
+    // reach the other side of (node_passed_through).
+    std::fill(state.reference_side.begin(), state.reference_side.end(), no_side);
+    state.reference_side[spec.candidate_index[state.element]] = static_cast<signed char>(state.side);
+    carry_sides(spec, D, std::vector<signed char>(spec.candidates.size(), 0), state.reference_side);
+  }
   const Eigen::Vector2d n = chord_normal(initial_[state.element], element_displacements(model_.elements[state.element], D),
                                          rotations[state.element]);
   state.released_side = state.side;
@@ -306,7 +321,7 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
       const int node = vertex_node(state);
       if (first_pulls && partner_pulls) {
         occupied[state.element] = occupied[state.partner] = 0;
-        release(spec, D, rotations, state);
+        release(spec, D, rotations, state, true);
       } else {
         if (first_pulls) {
           occupied[state.element] = 0;
@@ -329,7 +344,7 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
       next += read_evaluation(D, rotations, &evaluated[next], state);
       if (release_pulling && state.force < 0.0) {  // compression only
         occupied[state.element] = 0;
-        release(spec, D, rotations, state);
+        release(spec, D, rotations, state, true);
         ++changes.released;
         continue;
       }
@@ -351,7 +366,7 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
         if (best < 0) {  // no element beyond: the point has left the beam's free end …
           if (release_pulling) {  // … but only a converged iterate says so (till then α is held at the end)
             occupied[state.element] = 0;
-            release(spec, D, rotations, state);
+            release(spec, D, rotations, state, false);
             ++changes.released;
           }
           break;
@@ -449,6 +464,13 @@ bool ContactTracker::node_passed_through(size_t k, const Eigen::VectorXd& D, con
     const Eigen::Vector2d n = chord_normal(initial_[f], element_displacements(model_.elements[f], D), rotations[f]);
     const int expected = n.dot(released_normal) >= 0.0 ? state.released_side : -state.released_side;
     if (expected * where.gap < -touch_tolerance_) return true;
+  }
+  if (!state.released_pulled) return false;  // off a free end: it may go round it
+  for (size_t ci = 0; ci < specs_[k].candidates.size(); ++ci) {
+    const int expected = state.reference_side[ci];
+    if (expected != 1 && expected != -1) continue;
+    const NodeOnElement where = locate(specs_[k], specs_[k].candidates[ci], D, rotations);
+    if (where.alpha >= 0.0 && where.alpha <= 1.0 && expected * where.gap < -touch_tolerance_) return true;
   }
   return false;
 }

@@ -98,8 +98,13 @@ class ContactTracker {
   NodeOnElement locate(const Spec& spec, int element, const Eigen::VectorXd& displacements,
                        const std::vector<double>& chord_rotations) const;
   element::SectionStiffness contact_section(const Spec& spec, int element) const;
+  /// `pulled`: released because it would pull (else: it left a free end).
   void release(const Spec& spec, const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
-               ContactState& state) const;
+               ContactState& state, bool pulled) const;
+  /// Gives every candidate without a side (no_side) the side of the nearest one with a side,
+  /// carried from element to element (not from one read past a node through that node: `past`).
+  void carry_sides(const Spec& spec, const Eigen::VectorXd& displacements, const std::vector<signed char>& past,
+                   std::vector<signed char>& side) const;
   /// Across `node` from `element`, on the contact's `side` of it: the element the beam goes on
   /// with and the same side of it (where two candidates meet, the other one; where more do, the
   /// other edge of the sector between them that the side faces); {−1, 0} at a free end.
