@@ -693,6 +693,51 @@ TEST(ContactDetection, BeamOnBeamMatchesTheSeriesSprings) {
   EXPECT_NEAR(contact_of(r.steps.back()).force, closing / compliance, 1e-4 * closing / compliance);
 }
 
+TEST(ContactDetection, ABeamTipDraggedAlongABeamEndsWhereAPushThereEnds) {
+  // A cantilever (8 elements, from (2, 2) down to its tip just above a 20-element pinned beam at
+  // x = 3.03) has its clamp moved 3 m along and 5 cm down: its tip, pressed onto the beam, slides
+  // over six of the beam's nodes. Frictionless and elastic, it must end as the same cantilever
+  // clamped at the end position from the start and only pushed down there. Before, the tip
+  // stopped at the first beam node: the contact's blocks coupling the tip to the next element's
+  // far node landed in an entry of the factor's fill, which the factorisation starts at zero,
+  // so Newton ran on a tangent without them and diverged (then a pull released the contact at
+  // a wild iterate, and the tip was accepted through the beam for the rest of the run).
+  const auto model_of = [](double clamp_x, double move_x, int steps) {
+    const auto member = [](int from, int to, int divisions) {
+      return json{{"from", from}, {"to", to}, {"divisions", divisions}, {"element", "timoshenko"},
+                  {"material", "steel"}, {"section", "s"}};
+    };
+    return json{{"materials", {{"steel", {{"E", 2e11}, {"G", 7.7e10}}}}},
+                {"sections", {{"s", {{"A", 0.004}, {"I", 2e-5}, {"shear_area", 0.002}}}}},
+                {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
+                                       {{"id", 5}, {"x", clamp_x}, {"y", 2.0}}, {{"id", 6}, {"x", clamp_x + 1.03}, {"y", 0.001}}})},
+                {"members", json::array({member(1, 2, 20), member(5, 6, 8)})},
+                {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "pinned"}},
+                                          {{"node", 5}, {"type", "fixed"}}})},
+                {"prescribed", json::array({{{"node", 5}, {"ux", move_x}, {"uy", -0.05}}})},
+                {"contacts", json::array({{{"node", 6}, {"members", {0}}}})},
+                {"analysis", {{"control", {{"type", "load"}, {"steps", steps}}}}}};
+  };
+  tsm::Model pushed_model;
+  const RunResult pushed = run(model_of(5.0, 0.0, 1), pushed_model);
+  ASSERT_EQ(pushed.status, tsm::solver::Status::converged) << pushed.message;
+  const tsm::solver::ContactPoint& there = contact_of(pushed.steps.back());
+  ASSERT_GT(there.force, 1e4);
+  const Eigen::Vector2d tip_there = node_position(pushed_model, pushed.steps.back(), 6);
+  for (const int steps : {1, 20}) {
+    tsm::Model model;
+    const RunResult r = run(model_of(2.0, 3.0, steps), model);
+    ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+    for (const StepRecord& s : r.steps) ASSERT_GE(contact_of(s).element, 0) << "step " << s.step << ": the tip left the beam";
+    const tsm::solver::ContactPoint& c = contact_of(r.steps.back());
+    EXPECT_EQ(c.element, there.element) << steps << " steps";
+    EXPECT_NEAR(c.alpha, there.alpha, 1e-9) << steps << " steps";
+    EXPECT_NEAR(c.force, there.force, 1e-9 * there.force) << steps << " steps";
+    EXPECT_LT((node_position(model, r.steps.back(), 6) - tip_there).norm(), 1e-10) << steps << " steps";
+    expect_equilibrium(model, r.steps.back());
+  }
+}
+
 // ---- The assembled tangent with active contacts ----
 
 TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {

@@ -201,7 +201,10 @@ void GlobalSystem::ensure_contact_pattern(const std::vector<contact::ActiveConta
     for (const int node : {e.start, e.end}) {
       const int bc = dofs_.block(a.node), bn = dofs_.block(node);
       if (bc < 0 || bn < 0 || bc == bn) continue;
-      if (entry(std::max(bc, bn), std::min(bc, bn)) >= 0) continue;
+      // An entry that is fill of the factor is no entry of A: the factorisation starts it at
+      // zero, so a contact element's block written there would be lost. The pair is added.
+      const int p = entry(std::max(bc, bn), std::min(bc, bn));
+      if (p >= 0 && !tangent_.is_fill(p)) continue;
       contact_pairs_.emplace_back(a.node, node);
       missing = true;
     }
