@@ -317,6 +317,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
   // on in one direction, one element per iterate, is not limited here.
   const int max_reversals = 4 * static_cast<int>(state.contacts.size());
   if (contacts_) out.contact_iterates.push_back(contact_points(state));
+  int unsettled = 0;  // iterates that met the criterion but changed the contacts (iterating on)
 
   for (int it = 1; it <= settings_.max_iterations; ++it) {
     if (system_.pattern_version() != analysed_pattern_) {  // a contact has joined new nodes
@@ -485,6 +486,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
                                 : nullptr;
     if (criterion) {
       if (release_pulling_contacts(state)) {  // converged with a contact pulling: iterate on without it
+        ++unsettled;
         pass = update_residual(state.load_factor);
         out.contact_iterates.back() = contact_points(state);
         if (switches_ > max_switches) {
@@ -497,6 +499,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
       if (contacts_ && contacts_->passed_through(state.displacements, state.chord_rotations, state.contacts)) {
         // A contact released in this step let its node through a beam: it takes part again
         // (the active set needs it), and Newton iterates on; the switch count bounds the cycling.
+        ++unsettled;
         switches_ += contacts_->allow_touching_again(state.displacements, state.chord_rotations, state.contacts);
         if (switches_ > max_switches) {
           out.status = Status::contact_chatter;
@@ -539,6 +542,9 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
   std::ostringstream os;
   os << "no convergence in " << settings_.max_iterations << " iterations (last relative residual "
      << out.residual_norms.back() << ")";
+  if (unsettled > 0)  // the equilibrium was found, but never with a set of contacts that all press
+    os << ": " << unsettled << " converged iterates had a contact pull or a node through a beam, so the set of "
+       << "contacts in touch did not settle";
   out.message = os.str();
   return out;
 }
