@@ -96,9 +96,14 @@ class Model:
         self._doc["contacts"].append({"node": _ref(node), "members": members, **options})
         return self
 
-    def analysis(self, control=None, **settings):
-        """control: {"type": "load", "steps": N} | {"type": "displacement", …} | {"type": "arc-length", …};
+    def analysis(self, control=None, steps=None, **settings):
+        """control: {"type": "load", "steps": N} | {"type": "displacement", …} | {"type": "arc-length", …},
+        or steps=N alone for load control in N equal steps;
         settings: tolerance, max_iterations, cutback, max_cutbacks, output, monitor."""
+        if control is not None and steps is not None:
+            raise ValueError("analysis: give control or steps, not both")
+        if steps is not None:
+            control = {"type": "load", "steps": steps}
         if control is not None:
             self._doc["analysis"]["control"] = control
         self._doc["analysis"].update(settings)

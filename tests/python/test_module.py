@@ -50,7 +50,9 @@ def test_a_vertex_names_both_elements():
     m.node(1, 0, 0).node(2, 10, 0).node(9, 5, 0.001)
     m.member(1, 2, "steel", "s", divisions=20, element="timoshenko")
     m.support(1, "pinned").support(2, "pinned").support(9, fix=["ux"]).prescribe(9, uy=-0.1).contact(9)
+    m.analysis(steps=4)  # load control in 4 steps
     r = tf.run(m)
+    assert len(r.step) == 4
     assert r.ok, r.message
     last = json.loads(r.results_json)["steps"][-1]["contacts"][0]
     assert (r.contact_element[-1, 0], r.contact_also[-1, 0], r.contact_alpha[-1, 0]) == (last["element"], last["also"], 1.0)
