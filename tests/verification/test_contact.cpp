@@ -649,6 +649,41 @@ TEST(ContactDetection, ANodeDraggedAcrossAMemberJointInOneStepStillTouches) {
   }
 }
 
+TEST(ContactDetection, ANodeJustOutsideAnArchReadsItsSideOffTheElementUnderIt) {
+  // A clamped half-circle arch (radius 5 m, 40 elements) and a pusher starting 0.1 mm outside it,
+  // inside the sagitta of the chords (3.9 mm): just past an element's end the next chord's line
+  // extended runs outside the arch, so reading the side off it said "inside", and carried round
+  // the arch that side let the pusher, moved to 1 cm inside the crown in one step, go through
+  // without touching. Sides are now read only off elements that hold the node, or whose
+  // neighbour past that end does not; the pusher then ends as the same push made at the crown.
+  const auto arch = [](double angle_from, double angle_to) {
+    const double pi = std::numbers::pi, a0 = angle_from * pi / 180.0, a1 = angle_to * pi / 180.0;
+    const double x0 = 5.0001 * std::cos(a0), y0 = 5.0001 * std::sin(a0), x1 = 4.99 * std::cos(a1), y1 = 4.99 * std::sin(a1);
+    return json{{"materials", {{"steel", {{"E", 2e11}, {"G", 7.7e10}}}}},
+                {"sections", {{"s", {{"A", 0.004}, {"I", 2e-5}, {"shear_area", 0.002}}}}},
+                {"nodes", json::array({{{"id", 1}, {"x", -5.0}, {"y", 0.0}}, {{"id", 2}, {"x", 5.0}, {"y", 0.0}},
+                                       {{"id", 9}, {"x", x0}, {"y", y0}}})},
+                {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 40}, {"element", "timoshenko"}, {"material", "steel"},
+                                          {"section", "s"}, {"arc", {{"center", {0.0, 0.0}}, {"sweep", -pi}}}}})},
+                {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 2}, {"type", "fixed"}},
+                                          {{"node", 9}, {"fix", json::array({"rz"})}}})},
+                {"prescribed", json::array({{{"node", 9}, {"ux", x1 - x0}, {"uy", y1 - y0}}})},
+                {"contacts", json::array({{{"node", 9}, {"members", "all"}}})},
+                {"analysis", {{"control", {{"type", "load"}, {"steps", 1}}}}}};
+  };
+  tsm::Model pushed_model, slid_model;
+  const RunResult pushed = run(arch(91.0, 91.0), pushed_model);
+  ASSERT_EQ(pushed.status, tsm::solver::Status::converged) << pushed.message;
+  const tsm::solver::ContactPoint& there = contact_of(pushed.steps.back());
+  ASSERT_GT(there.force, 1e4);
+  const RunResult slid = run(arch(126.87, 91.0), slid_model);
+  ASSERT_EQ(slid.status, tsm::solver::Status::converged) << slid.message;
+  const tsm::solver::ContactPoint& c = contact_of(slid.steps.back());
+  ASSERT_GE(c.element, 0) << "the pusher went through the arch";
+  EXPECT_EQ(c.element, there.element);
+  EXPECT_NEAR(c.force, there.force, 1e-9 * there.force);
+}
+
 TEST(ContactDetection, TwoContactsAtOnceMatchTheLinearFlexibility) {
   BeamSpec b;
   b.divisions = 40;

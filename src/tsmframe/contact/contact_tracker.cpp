@@ -153,11 +153,26 @@ void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, con
   // side of the beam on the far side of that node (at a kink or a joint), so it is not carried
   // through that node below.
   std::vector<signed char> past(spec.candidates.size(), 0);
+  std::vector<NodeOnElement> where_all(spec.candidates.size());
+  for (size_t ci = 0; ci < spec.candidates.size(); ++ci) where_all[ci] = locate(spec, spec.candidates[ci], D, rotations);
+  // Past an element's end node, its chord's line extended is no guide where the next element's
+  // span holds the node: at a kink the line cuts across (just outside a convex arch, the next
+  // chords' lines run outside it). There the side is carried from the element that holds it.
+  const auto held_beyond = [&](size_t ci, int node) {
+    for (int p = node_start_[node]; p < node_start_[node + 1]; ++p) {
+      const int cj = spec.candidate_index[node_elements_[p]];
+      if (cj < 0 || cj == static_cast<int>(ci)) continue;
+      if (where_all[cj].alpha >= 0.0 && where_all[cj].alpha <= 1.0) return true;
+    }
+    return false;
+  };
   for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
     const int f = spec.candidates[ci];
-    const NodeOnElement where = locate(spec, f, D, rotations);
+    const NodeOnElement& where = where_all[ci];
     past[ci] = where.alpha > 1.0 ? 1 : (where.alpha < 0.0 ? -1 : 0);
-    if (where.alpha < -side_reach || where.alpha > 1.0 + side_reach) {
+    if (past[ci] != 0 && held_beyond(ci, past[ci] > 0 ? model_.elements[f].end : model_.elements[f].start)) {
+      state.reference_side[ci] = no_side;
+    } else if (where.alpha < -side_reach || where.alpha > 1.0 + side_reach) {
       state.reference_side[ci] = no_side;
     } else if (std::abs(where.gap) > touch_tolerance_) {
       state.reference_side[ci] = static_cast<signed char>(sign(where.gap));
