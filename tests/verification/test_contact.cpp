@@ -775,21 +775,43 @@ TEST(ContactDetection, ABeamTipDraggedAlongABeamEndsWhereAPushThereEnds) {
 
 // ---- The assembled tangent with active contacts ----
 
+/// A cantilever of 6 elements (`element`) and a post clamped at its top whose free bottom, node
+/// 100 at (x, 0), is the contact node: all of the contact element's dofs are unknowns.
+json post_on_cantilever(const char* element, double x) {
+  BeamSpec b;
+  b.divisions = 6;
+  b.A = 1e3;
+  b.element = element;
+  json m = beam_model(b);
+  m["nodes"].push_back({{"id", 100}, {"x", x}, {"y", 0.0}});
+  m["nodes"].push_back({{"id", 11}, {"x", x}, {"y", 0.5}});
+  m["members"].push_back({{"from", 11}, {"to", 100}, {"divisions", 2}, {"material", "m"}, {"section", "s"}});
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 11}, {"type", "fixed"}}});
+  m["contacts"] = json::array({{{"node", 100}, {"members", "all"}}});
+  return m;
+}
+
+/// ∂F/∂D over the free dofs by central differences (h = 1e-7) at D, with these contacts.
+Eigen::MatrixXd finite_difference_tangent(tsm::assembly::GlobalSystem& system, const tsm::assembly::DofMap& dofs,
+                                          const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                          const std::vector<tsm::contact::ActiveContact>& active) {
+  const int n = dofs.free_count();
+  Eigen::MatrixXd fd(n, n);
+  for (int q = 0; q < n; ++q) {
+    Eigen::VectorXd plus = D, minus = D;
+    plus[dofs.dof(q)] += 1e-7;
+    minus[dofs.dof(q)] -= 1e-7;
+    tsm::assembly::Evaluation ep, em;
+    system.evaluate(plus, rotations, false, ep, active);
+    system.evaluate(minus, rotations, false, em, active);
+    for (int r = 0; r < n; ++r) fd(r, q) = (ep.internal_force[dofs.dof(r)] - em.internal_force[dofs.dof(r)]) / 2e-7;
+  }
+  return fd;
+}
+
 TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
   for (const char* element : {"euler-bernoulli", "timoshenko"}) {
-    BeamSpec b;
-    b.divisions = 6;
-    b.A = 1e3;
-    b.element = element;
-    // The contact node is the free bottom of a post clamped at its top, so all of the contact
-    // element's dofs are unknowns.
-    json m = beam_model(b);
-    m["nodes"].push_back({{"id", 100}, {"x", 0.45}, {"y", 0.0}});
-    m["nodes"].push_back({{"id", 11}, {"x", 0.45}, {"y", 0.5}});
-    m["members"].push_back({{"from", 11}, {"to", 100}, {"divisions", 2}, {"material", "m"}, {"section", "s"}});
-    m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 11}, {"type", "fixed"}}});
-    m["contacts"] = json::array({{{"node", 100}, {"members", "all"}}});
-    const tsm::Model model = tsm::io::read_model(m);
+    const tsm::Model model = tsm::io::read_model(post_on_cantilever(element, 0.45));
     tsm::assembly::DofMap dofs(model);
     tsm::assembly::GlobalSystem system(model, dofs);
     tsm::contact::ContactTracker tracker(model);
@@ -813,19 +835,9 @@ TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
     ASSERT_GT(std::abs(e.contacts[0].Y), 1.0);
     // Dense K_ff: block part (mirrored; the contact element's symmetric part is in it, the post
     // node joined to the beam's nodes by a pattern the contact added) plus the sliding term.
-    const int n = dofs.free_count();
     ASSERT_EQ(system.contact_rank_one().size(), 1u);  // the sliding term, kept apart for Woodbury
     const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent(), system.contact_rank_one());
-    Eigen::MatrixXd fd(n, n);
-    for (int q = 0; q < n; ++q) {
-      Eigen::VectorXd plus = D, minus = D;
-      plus[dofs.dof(q)] += 1e-7;
-      minus[dofs.dof(q)] -= 1e-7;
-      tsm::assembly::Evaluation ep, em;
-      system.evaluate(plus, e.chord_rotations, false, ep, active);
-      system.evaluate(minus, e.chord_rotations, false, em, active);
-      for (int r = 0; r < n; ++r) fd(r, q) = (ep.internal_force[dofs.dof(r)] - em.internal_force[dofs.dof(r)]) / 2e-7;
-    }
+    const Eigen::MatrixXd fd = finite_difference_tangent(system, dofs, D, e.chord_rotations, active);
     EXPECT_LE((K - fd).norm(), 1e-6 * fd.norm()) << element;
     EXPECT_GT((K - K.transpose()).norm(), 1e-8 * K.norm()) << "the sliding term makes it non-symmetric";
   }
@@ -833,7 +845,7 @@ TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
 
 // ---- A vertex: two contact elements at one node ----
 
-/// The FD test's cantilever of 6 elements with the post's free bottom (node 100) pressed onto the
+/// post_on_cantilever with the post's free bottom (node 100) pressed onto the
 /// beam node at x = 0.5, and a tracker state with both elements at that node in contact.
 struct VertexSetUp {
   tsm::Model model;
@@ -844,17 +856,7 @@ struct VertexSetUp {
 
 VertexSetUp vertex_set_up(const char* element) {
   VertexSetUp v;
-  BeamSpec b;
-  b.divisions = 6;
-  b.A = 1e3;
-  b.element = element;
-  json m = beam_model(b);
-  m["nodes"].push_back({{"id", 100}, {"x", 0.5}, {"y", 0.0}});
-  m["nodes"].push_back({{"id", 11}, {"x", 0.5}, {"y", 0.5}});
-  m["members"].push_back({{"from", 11}, {"to", 100}, {"divisions", 2}, {"material", "m"}, {"section", "s"}});
-  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 11}, {"type", "fixed"}}});
-  m["contacts"] = json::array({{{"node", 100}, {"members", "all"}}});
-  v.model = tsm::io::read_model(m);
+  v.model = tsm::io::read_model(post_on_cantilever(element, 0.5));
   for (int k = 0; k < v.model.node_count(); ++k)
     if (v.model.nodes[k].id != 100 && v.model.nodes[k].position == Eigen::Vector2d(0.5, 0.0)) v.node = k;
   for (size_t k = 0; k < v.model.elements.size(); ++k) {
@@ -896,18 +898,8 @@ TEST(ContactVertex, TheAssembledTangentMatchesFiniteDifferences) {
     ASSERT_EQ(e.contacts.size(), 2u);
     ASSERT_GT(std::abs(e.contacts[0].Y), 1.0);
     ASSERT_GT(std::abs(e.contacts[1].Y), 1.0);
-    const int n = dofs.free_count();
     const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent(), system.contact_rank_one());
-    Eigen::MatrixXd fd(n, n);
-    for (int q = 0; q < n; ++q) {
-      Eigen::VectorXd plus = v.D, minus = v.D;
-      plus[dofs.dof(q)] += 1e-7;
-      minus[dofs.dof(q)] -= 1e-7;
-      tsm::assembly::Evaluation ep, em;
-      system.evaluate(plus, e.chord_rotations, false, ep, active);
-      system.evaluate(minus, e.chord_rotations, false, em, active);
-      for (int r = 0; r < n; ++r) fd(r, q) = (ep.internal_force[dofs.dof(r)] - em.internal_force[dofs.dof(r)]) / 2e-7;
-    }
+    const Eigen::MatrixXd fd = finite_difference_tangent(system, dofs, v.D, e.chord_rotations, active);
     EXPECT_LE((K - fd).norm(), 1e-6 * fd.norm()) << element;
   }
 }
