@@ -48,13 +48,15 @@ std::string progress_line(const tsm::solver::StepRecord& step, bool log_iteratio
   if (log_iterations) {
     os << "\n  residual per iterate:";
     for (double r : step.residual_norms) os << ' ' << tsm::io::format_number(r);
-    // α of each contact per iterate: element:α, or "-" when the node is not in contact.
+    // α of each contact per iterate: element:α (element:α+other at a vertex), or "-" when the
+    // node is not in contact.
     for (size_t c = 0; !step.contact_iterates.empty() && c < step.contact_iterates.front().size(); ++c) {
       os << "\n  contact " << c + 1 << " element:alpha per iterate:";
       for (const auto& iterate : step.contact_iterates) {
         const tsm::solver::ContactPoint& p = iterate[c];
         if (p.element < 0) os << " -";
         else os << ' ' << p.element + 1 << ':' << tsm::io::format_number(p.alpha);
+        if (p.partner >= 0) os << '+' << p.partner + 1;
       }
     }
   }
