@@ -11,6 +11,7 @@ import csv
 import json
 import os
 import sys
+import textwrap
 
 import matplotlib
 
@@ -19,6 +20,15 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report import draw_shape  # noqa: E402  (the element-curve drawing shared with the report)
+
+
+def short_title(title, width=90, lines=3):
+    """A model's title as at most `lines` lines of `width` characters (titles may be paragraphs)."""
+    wrapped = textwrap.wrap(title or "", width)
+    if len(wrapped) > lines:
+        wrapped = wrapped[:lines]
+        wrapped[-1] = wrapped[-1][: width - 1] + "…"
+    return "\n".join(wrapped)
 
 
 def main(directory):
@@ -39,8 +49,8 @@ def main(directory):
     ax.set_aspect("equal")
     ax.set_xlabel("x")
     ax.set_ylabel("y")
-    ax.legend(fontsize=7)
-    ax.set_title(results.get("title") or "deformed shapes")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0))  # beside a long, flat frame
+    ax.set_title(short_title(results.get("title")) or "deformed shapes", fontsize=9)
     for ext in ("png", "svg"):
         fig.savefig(os.path.join(plots, f"deformed.{ext}"), dpi=130, bbox_inches="tight")
     plt.close(fig)

@@ -151,6 +151,18 @@ class Plots(unittest.TestCase):
             with open(os.path.join(out, "plots", "deformed.png"), "rb") as f:
                 self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
 
+    def test_a_paragraph_long_title_is_wrapped_not_a_page_wide_plot(self):
+        # The example's title is a paragraph; drawn on one line it made the figure 4,213 px wide
+        # with the frame a sliver in it.
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "node")
+            r = run("run", os.path.join(SOURCE, "examples", "push-on-a-node.json"), "--out", out, "--plot", "-q")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(os.path.join(out, "plots", "deformed.png"), "rb") as f:
+                header = f.read(24)
+            width = int.from_bytes(header[16:20], "big")  # the IHDR chunk
+            self.assertLess(width, 1600)
+
 
 if __name__ == "__main__":
     unittest.main(argv=[sys.argv[0]], verbosity=2)
