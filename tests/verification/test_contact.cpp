@@ -684,6 +684,47 @@ TEST(ContactDetection, ANodeJustOutsideAnArchReadsItsSideOffTheElementUnderIt) {
   EXPECT_NEAR(c.force, there.force, 1e-9 * there.force);
 }
 
+TEST(ContactDetection, APusherSlidingUpAnLFramesOuterFaceLeavesAtTheCorner) {
+  // An L-frame (column (0,0)–(0,4) clamped, beam (0,4)–(4,4) pinned at its end, all members in
+  // the contact's set) and a rigid pusher on the column's outer face, moved up 2 m and 5 cm
+  // into it in 20 steps. It presses the column, is handed across the corner to the beam's top
+  // (the same, outer, side) and, once above the beam's line, lets go: the frame springs back
+  // unstressed. Before, it went on pressing the beam's start from inside the corner
+  // (200 MN) until it failed with "contact points keep hopping".
+  const auto member = [](int from, int to) {
+    return json{{"from", from}, {"to", to}, {"divisions", 8}, {"element", "timoshenko"}, {"material", "steel"}, {"section", "s"}};
+  };
+  json m = {{"materials", {{"steel", {{"E", 2e11}, {"G", 7.7e10}}}}},
+            {"sections", {{"s", {{"A", 0.01}, {"I", 1e-4}, {"shear_area", 0.005}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 0.0}, {"y", 4.0}},
+                                   {{"id", 3}, {"x", 4.0}, {"y", 4.0}}, {{"id", 9}, {"x", -0.001}, {"y", 3.0}}})},
+            {"members", json::array({member(1, 2), member(2, 3)})},
+            {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 3}, {"type", "pinned"}}})},
+            {"prescribed", json::array({{{"node", 9}, {"ux", 0.05}, {"uy", 2.0}}})},
+            {"contacts", json::array({{{"node", 9}, {"members", "all"}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 20}}}}}};
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  bool pressed_column = false;
+  for (const StepRecord& s : r.steps) {
+    const tsm::solver::ContactPoint& c = contact_of(s);
+    if (s.load_factor < 0.45 + 1e-12 && s.load_factor > 0.05) {
+      ASSERT_GE(c.element, 0) << "step " << s.step;
+      EXPECT_EQ(model.elements[c.element].member, 0) << "step " << s.step;  // on the column
+      EXPECT_GT(c.force, 0.0);
+      pressed_column = true;
+    }
+    if (s.load_factor > 0.55) {
+      EXPECT_LT(c.element, 0) << "step " << s.step << ": still in contact above the beam";
+      const int pusher = model.node_index(9);
+      for (int k = 0; k < model.node_count(); ++k)
+        if (k != pusher) EXPECT_LT(node_displacement(model, s, model.nodes[k].id).cwiseAbs().maxCoeff(), 1e-9) << "step " << s.step;
+    }
+  }
+  EXPECT_TRUE(pressed_column);
+}
+
 TEST(ContactDetection, TwoContactsAtOnceMatchTheLinearFlexibility) {
   BeamSpec b;
   b.divisions = 40;
