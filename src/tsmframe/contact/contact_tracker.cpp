@@ -79,6 +79,8 @@ ContactTracker::ContactTracker(const Model& model) : model_(model) {
   }
 }
 
+double ContactTracker::edge_of(const Spec& spec) { return spec.edge >= 0.0 ? spec.edge : default_edge(); }
+
 element::SectionStiffness ContactTracker::contact_section(const Spec& spec, int element) const {
   element::SectionStiffness s = model_.elements[element].section;
   s.shear_flexibility = spec.shear_flexibility[spec.candidate_index[element]];
@@ -232,7 +234,7 @@ std::vector<ActiveContact> ContactTracker::active_contacts(const std::vector<Con
     a.data.k0 = element::basic_stiffness(a.data.section, a.data.initial.length);
     a.data.contact_start = model_.nodes[spec.node].position;
     a.data.offset = side * spec.gap;
-    a.data.edge = spec.edge >= 0.0 ? spec.edge : default_edge();
+    a.data.edge = edge_of(spec);
     a.data.sliding_term = spec.sliding_term;
     a.data.cantilever_frame = spec.cantilever_frame;
     active.push_back(a);
@@ -279,7 +281,6 @@ void ContactTracker::record(const Eigen::VectorXd& D, const std::vector<double>&
 
 void ContactTracker::release(const Spec& spec, const Eigen::VectorXd& D, const std::vector<double>& rotations,
                              ContactState& state, bool pulled) const {
-  reset_sides(spec, D, rotations, state.side, state);
   state.released_pulled = pulled;
   if (pulled) {
     // It let go on its own side of the beam, wherever the iterate has put things: that side,
@@ -288,6 +289,8 @@ void ContactTracker::release(const Spec& spec, const Eigen::VectorXd& D, const s
     std::fill(state.reference_side.begin(), state.reference_side.end(), no_side);
     state.reference_side[spec.candidate_index[state.element]] = static_cast<signed char>(state.side);
     carry_sides(spec, D, std::vector<signed char>(spec.candidates.size(), 0), state.reference_side);
+  } else {
+    reset_sides(spec, D, rotations, state.side, state);
   }
   const Eigen::Vector2d n = chord_normal(initial_[state.element], element_displacements(model_.elements[state.element], D),
                                          rotations[state.element]);
@@ -388,12 +391,12 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
         }
         const int direction = state.alpha > 1.0 ? 1 : -1;
         const Element& to = model_.elements[best];
+        const double beyond_from = state.alpha > 1.0 ? state.alpha - 1.0 : -state.alpha;
         // The vertex opened towards this element: it stays at the node (unless the point has
         // gone clearly on, more than the edge beyond it).
-        const double edge = spec.edge >= 0.0 ? spec.edge : default_edge();
-        if (end == state.held_node && (state.alpha > 1.0 ? state.alpha - 1.0 : -state.alpha) <= edge) break;
+        const double edge = edge_of(spec);
+        if (end == state.held_node && beyond_from <= edge) break;
         const bool reverses = state.handover_direction != 0 && direction != state.handover_direction;
-        const double beyond_from = state.alpha > 1.0 ? state.alpha - 1.0 : -state.alpha;
         const double into_to = to.start == end ? best_alpha : 1.0 - best_alpha;  // from the node, < 0: behind it
         if (reverses && end == state.hop_node && end != state.held_node && edge >= vertex_min_edge &&
             beyond_from <= vertex_reach && std::abs(into_to) <= vertex_reach) {

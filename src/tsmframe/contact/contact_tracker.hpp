@@ -98,6 +98,8 @@ class ContactTracker {
   NodeOnElement locate(const Spec& spec, int element, const Eigen::VectorXd& displacements,
                        const std::vector<double>& chord_rotations) const;
   element::SectionStiffness contact_section(const Spec& spec, int element) const;
+  /// The compliance floor's edge δ of a contact (its own, or the default).
+  static double edge_of(const Spec& spec);
   /// `pulled`: released because it would pull (else: it left a free end).
   void release(const Spec& spec, const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
                ContactState& state, bool pulled) const;
