@@ -1,6 +1,7 @@
 #include "tsmframe/assembly/global_system.hpp"
 
 #include "tsmframe/util/first_touch.hpp"
+#include "tsmframe/util/parallel_for.hpp"
 
 #include <algorithm>
 #include <array>
@@ -336,21 +337,19 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
     const Eigen::Index unwritten = static_cast<Eigen::Index>(unwritten_entries_.size());
     const int* entry = unwritten_entries_.data();
     solver::Block* value = tangent_.value.data();
-#pragma omp parallel for schedule(static) if (unwritten > 65536)
-    for (Eigen::Index q = 0; q < unwritten; ++q) value[entry[q]].setZero();
+    util::parallel_for_static(Eigen::Index{0}, unwritten, unwritten > 65536, [&](Eigen::Index q) { value[entry[q]].setZero(); });
   }
 
   for (size_t c = 0; c + 1 < colour_start_.size(); ++c) {
     const int begin = colour_start_[c], end = colour_start_[c + 1];
     const bool serial = c == 63 || end - begin < 4;
-#pragma omp parallel for schedule(dynamic, 1) if (!serial)
-    for (int idx = begin; idx < end; ++idx) {
+    util::parallel_for_dynamic(begin, end, !serial, [&](int idx) {
       const int chunk = colour_chunks_[idx];
       double largest = 0.0;
       for (int q = chunk_start_[chunk]; q < chunk_start_[chunk + 1]; ++q)
         largest = std::max(largest, evaluate_element<false>(q, displacements, previous_rotations, with_tangent, out));
       chunk_largest_end_rotation_[chunk] = largest;
-    }
+    });
   }
   finish_evaluation(displacements, previous_rotations, with_tangent, out, contacts);
 }
@@ -450,13 +449,12 @@ Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacement
   const int n_elements = static_cast<int>(records_.size());
   Eigen::VectorXd forces;
   util::resize_touched(forces, 3 * n_elements);
-#pragma omp parallel for schedule(static) if (n_elements > 65536)
-  for (int q = 0; q < n_elements; ++q) {
+  util::parallel_for_static(0, n_elements, n_elements > 65536, [&](int q) {
     const ElementRecord& slot = records_[q];
     const int k = element_order_[q];
     const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
     forces.segment<3>(3 * k) = element::beam_response(slot.chord(), slot.k0, d, rotations[k], false).forces;
-  }
+  });
   for (const contact::ActiveContact& a : contacts) {
     const contact::Vector9 d = gather(displacements, contact_dofs(model_.elements[a.element], a.node));
     forces.segment<3>(3 * a.element) = contact::contact_response(a.data, d, rotations[a.element], false).forces.head<3>();
@@ -474,8 +472,7 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
   // so the floor is the same whatever the thread count.
   const int n_chunks = static_cast<int>(chunk_start_.size()) - 1;
   std::vector<std::array<double, 2>> chunk_sum(n_chunks, {0.0, 0.0});
-#pragma omp parallel for schedule(static) if (n_chunks > 1)
-  for (int chunk = 0; chunk < n_chunks; ++chunk) {
+  util::parallel_for_static(0, n_chunks, n_chunks > 1, [&](int chunk) {
     double force = 0.0, moment = 0.0;
     for (int q = chunk_start_[chunk]; q < chunk_start_[chunk + 1]; ++q) {
       const ElementRecord& slot = records_[q];
@@ -488,7 +485,7 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
       moment += 2.0 * f.moment * f.moment;
     }
     chunk_sum[chunk] = {force, moment};
-  }
+  });
   double force = 0.0, moment = 0.0;
   for (const auto& [f, m] : chunk_sum) {
     force += f;

@@ -1,6 +1,7 @@
 #include "tsmframe/solver/block_ldlt.hpp"
 
 #include "tsmframe/util/first_touch.hpp"
+#include "tsmframe/util/parallel_for.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -407,11 +408,13 @@ bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
   // Rows of one subtree touch only that subtree's columns (their patterns are descendants):
   // the tasks run concurrently, each in ascending order.
   const int tasks = static_cast<int>(task_start_.size()) - 1;
+  const bool tasks_ok = util::parallel_all_dynamic(0, tasks, tasks > 1, [&](int t) {
+    for (int r = task_start_[t]; r < task_start_[t + 1]; ++r)
+      if (!factorize_row(a, task_rows_[r], forward)) return false;
+    return true;
+  });
+  if (!tasks_ok) return false;
   bool ok = true;
-#pragma omp parallel for schedule(dynamic, 1) reduction(&& : ok) if (tasks > 1)
-  for (int t = 0; t < tasks; ++t)
-    for (int r = task_start_[t]; r < task_start_[t + 1] && ok; ++r) ok = factorize_row(a, task_rows_[r], forward);
-  if (!ok) return false;
   if (!parallel_top_) {  // no OpenMP construct per level: a path of rows pays nothing
     for (const int k : top_rows_)
       if (!factorize_row(a, k, forward)) return false;
@@ -503,8 +506,7 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
   const int tasks = static_cast<int>(task_start_.size()) - 1;
   const bool parallel = tasks > 1;
   // L y = b
-#pragma omp parallel for schedule(dynamic, 1) if (parallel)
-  for (int t = 0; t < tasks; ++t) {
+  util::parallel_for_dynamic(0, tasks, parallel, [&](int t) {
     const int root = task_rows_[task_start_[t + 1] - 1];
     for (int q = task_start_[t]; q < task_start_[t + 1]; ++q) {
       const int i = task_rows_[q];
@@ -512,7 +514,7 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
       for (int p = a.column[i] + 1; p < a.column[i + 1] && a.row[p] <= root; ++p)
         b.segment<3>(3 * a.row[p]).noalias() -= a.value[p] * bi;
     }
-  }
+  });
   const int levels = static_cast<int>(level_start_.size()) - 1;
   auto forward = [&](int k) {
     Eigen::Vector3d bk = b.segment<3>(3 * k);
@@ -552,9 +554,9 @@ void BlockLDLT::finish_solve(Eigen::VectorXd& b) const {
       for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) backward(top_rows_[q]);
     }
   }
-#pragma omp parallel for schedule(dynamic, 1) if (parallel)
-  for (int t = 0; t < tasks; ++t)
+  util::parallel_for_dynamic(0, tasks, parallel, [&](int t) {
     for (int q = task_start_[t + 1] - 1; q >= task_start_[t]; --q) backward(task_rows_[q]);
+  });
 }
 
 }  // namespace tsm::solver

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "tsmframe/util/first_touch.hpp"
+#include "tsmframe/util/parallel_for.hpp"
 
 namespace tsm::solver {
 namespace {
@@ -34,12 +35,11 @@ std::array<double, K> chunked_sum(Eigen::Index n, const Body& body) {
   constexpr Eigen::Index chunk = 16384;
   const Eigen::Index chunks = (n + chunk - 1) / chunk;
   std::vector<std::array<double, K>> partial(chunks);
-#pragma omp parallel for schedule(static) if (chunks >= 4)
-  for (Eigen::Index c = 0; c < chunks; ++c) {
+  util::parallel_for_static(Eigen::Index{0}, chunks, chunks >= 4, [&](Eigen::Index c) {
     std::array<double, K> sums{};
     body(c * chunk, std::min(n, (c + 1) * chunk), sums);
     partial[c] = sums;
-  }
+  });
   std::array<double, K> total{};
   for (const std::array<double, K>& p : partial)
     for (int k = 0; k < K; ++k) total[k] += p[k];
@@ -251,19 +251,28 @@ NewtonSolver::Correction NewtonSolver::apply_correction(const Eigen::VectorXd& c
   // Maxima: the same whatever the order.
   double translation = 0.0, rotation = 0.0, largest_translation = 0.0, largest_rotation = 0.0;
   bool finite = true;
-#pragma omp parallel for schedule(static) reduction(max : translation, rotation, largest_translation, largest_rotation) \
-    reduction(&& : finite) if (correction.size() > 65536)
-  for (Eigen::Index eq = 0; eq < correction.size(); ++eq) {
-    const double c = correction[eq], d = D[free_dof[eq]] + c;
-    D[free_dof[eq]] = d;
-    finite = finite && std::isfinite(c);
-    if (is_moment_[eq]) {
-      rotation = std::max(rotation, std::abs(c));
-      largest_rotation = std::max(largest_rotation, std::abs(d));
-    } else {
-      translation = std::max(translation, std::abs(c));
-      largest_translation = std::max(largest_translation, std::abs(d));
+  const auto apply = [&](Eigen::Index begin, Eigen::Index end, double& translation, double& rotation,
+                         double& largest_translation, double& largest_rotation, bool& finite) {
+    for (Eigen::Index eq = begin; eq < end; ++eq) {
+      const double c = correction[eq], d = D[free_dof[eq]] + c;
+      D[free_dof[eq]] = d;
+      finite = finite && std::isfinite(c);
+      if (is_moment_[eq]) {
+        rotation = std::max(rotation, std::abs(c));
+        largest_rotation = std::max(largest_rotation, std::abs(d));
+      } else {
+        translation = std::max(translation, std::abs(c));
+        largest_translation = std::max(largest_translation, std::abs(d));
+      }
     }
+  };
+  const Eigen::Index n = correction.size();
+  if (!util::team_available(n > 65536)) {  // no parallel construct at all (util/parallel_for.hpp)
+    apply(0, n, translation, rotation, largest_translation, largest_rotation, finite);
+  } else {
+#pragma omp parallel for schedule(static) reduction(max : translation, rotation, largest_translation, largest_rotation) \
+    reduction(&& : finite)
+    for (Eigen::Index eq = 0; eq < n; ++eq) apply(eq, eq + 1, translation, rotation, largest_translation, largest_rotation, finite);
   }
   if (!finite) return {{NAN, NAN}, {NAN, NAN}};
   return {{translation, rotation}, {largest_translation, largest_rotation}};
