@@ -12,6 +12,7 @@
 #include "support/models.hpp"
 #include "tsmframe/assembly/global_system.hpp"
 #include "tsmframe/element/beam_element.hpp"
+#include "tsmframe/util/parallel_for.hpp"
 
 namespace {
 
@@ -63,8 +64,9 @@ TEST(Threads, OneAndTwoThreadsGiveBitIdenticalResults) {
 }
 
 TEST(Threads, AGridFrameGivesBitIdenticalResults) {
-  // 16 × 16 bays, 3 elements per member (1,632 elements): its elimination tree leaves ~1,000
-  // rows above the subtree tasks, run level by level in parallel.
+  // 16 × 16 bays, 5 elements per member (2,720 elements, past util::smallest_shared_model): its
+  // elimination tree leaves hundreds of rows above the subtree tasks, run level by level in
+  // parallel.
   const int bays = 16, n = bays + 1;
   json m = {{"materials", {{"steel", {{"E", 2.05e11}, {"G", 7.9e10}}}}},
             {"sections", {{"sq", {{"A", 1e-2}, {"I", 8.333e-6}, {"shear_area", 8.33e-3}}}}},
@@ -74,7 +76,7 @@ TEST(Threads, AGridFrameGivesBitIdenticalResults) {
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) m["nodes"].push_back({{"id", id(x, y)}, {"x", double(x)}, {"y", double(y)}});
   auto member = [&](int a, int b) {
-    m["members"].push_back({{"from", a}, {"to", b}, {"divisions", 3}, {"element", "timoshenko"}, {"material", "steel"}, {"section", "sq"}});
+    m["members"].push_back({{"from", a}, {"to", b}, {"divisions", 5}, {"element", "timoshenko"}, {"material", "steel"}, {"section", "sq"}});
   };
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < bays; ++x) member(id(x, y), id(x + 1, y));
@@ -85,6 +87,7 @@ TEST(Threads, AGridFrameGivesBitIdenticalResults) {
     m["loads"].push_back({{"node", id(x, bays)}, {"fx", 2e5}, {"fy", -2e5}});
   }
   const tsm::Model model = tsm::io::read_model(m);
+  ASSERT_GE(static_cast<int>(model.elements.size()), tsm::util::smallest_shared_model) << "else every loop runs on one thread";
 
   const auto [one, two] = run_with_one_and_two_threads(model);
   ASSERT_EQ(one.status, tsm::solver::Status::converged) << one.message;

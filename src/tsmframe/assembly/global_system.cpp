@@ -342,7 +342,7 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
 
   for (size_t c = 0; c + 1 < colour_start_.size(); ++c) {
     const int begin = colour_start_[c], end = colour_start_[c + 1];
-    const bool serial = c == 63 || end - begin < 4;
+    const bool serial = c == 63 || end - begin < 4 || n_elements < util::smallest_shared_model;
     util::parallel_for_dynamic(begin, end, !serial, [&](int idx) {
       const int chunk = colour_chunks_[idx];
       double largest = 0.0;
@@ -472,7 +472,7 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
   // so the floor is the same whatever the thread count.
   const int n_chunks = static_cast<int>(chunk_start_.size()) - 1;
   std::vector<std::array<double, 2>> chunk_sum(n_chunks, {0.0, 0.0});
-  util::parallel_for_static(0, n_chunks, n_chunks > 1, [&](int chunk) {
+  util::parallel_for_static(0, n_chunks, n_chunks > 1 && static_cast<int>(records_.size()) >= util::smallest_shared_model, [&](int chunk) {
     double force = 0.0, moment = 0.0;
     for (int q = chunk_start_[chunk]; q < chunk_start_[chunk + 1]; ++q) {
       const ElementRecord& slot = records_[q];

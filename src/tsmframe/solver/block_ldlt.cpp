@@ -408,7 +408,7 @@ bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
   // Rows of one subtree touch only that subtree's columns (their patterns are descendants):
   // the tasks run concurrently, each in ascending order.
   const int tasks = static_cast<int>(task_start_.size()) - 1;
-  const bool tasks_ok = util::parallel_all_dynamic(0, tasks, tasks > 1, [&](int t) {
+  const bool tasks_ok = util::parallel_all_dynamic(0, tasks, tasks > 1 && size_ >= util::smallest_shared_model, [&](int t) {
     for (int r = task_start_[t]; r < task_start_[t + 1]; ++r)
       if (!factorize_row(a, task_rows_[r], forward)) return false;
     return true;
@@ -504,7 +504,7 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
   // before them. The partition depends only on the pattern: bit-identical for any thread count.
   const BlockMatrix& a = *factor_;
   const int tasks = static_cast<int>(task_start_.size()) - 1;
-  const bool parallel = tasks > 1;
+  const bool parallel = tasks > 1 && size_ >= util::smallest_shared_model;
   // L y = b
   util::parallel_for_dynamic(0, tasks, parallel, [&](int t) {
     const int root = task_rows_[task_start_[t + 1] - 1];
@@ -536,7 +536,7 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
 void BlockLDLT::finish_solve(Eigen::VectorXd& b) const {
   const BlockMatrix& a = *factor_;
   const int tasks = static_cast<int>(task_start_.size()) - 1;
-  const bool parallel = tasks > 1;
+  const bool parallel = tasks > 1 && size_ >= util::smallest_shared_model;
   const int levels = static_cast<int>(level_start_.size()) - 1;
   // D z = y and Lᵀ x = z in one pass: x_i = D_i⁻¹ y_i − Σ L(p, i)ᵀ x_p, a dot product down each
   // column (D_i⁻¹ heads it), the rows above the tasks first.

@@ -10,6 +10,14 @@
 
 namespace tsm::util {
 
+/// Models smaller than this (elements, or node blocks of the tangent) run every loop on one
+/// thread. An iteration of a 1,000-element chain is ~0.13 ms of work in four parallel regions;
+/// on this VM a region's wake-up of the second thread costs 3–20 µs and the first two regions of a
+/// process ~15 ms (starting the thread), so two threads were 5–20 % slower there in most runs
+/// and faster only in some; from ~4,000 elements on they are faster in every run (bench/README
+/// "Ninth session").
+constexpr int smallest_shared_model = 2000;
+
 /// Whether a loop that `wants` threads gets a parallel region: only if more than one thread is
 /// available (omp_get_max_threads reads a setting; no system call).
 inline bool team_available(bool wants) { return wants && omp_get_max_threads() > 1; }
