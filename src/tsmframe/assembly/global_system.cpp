@@ -224,6 +224,25 @@ void GlobalSystem::add_block(int a, int b, const Eigen::Matrix3d& value) {
   else tangent_.value[entry(bb, ba)] += value.transpose();
 }
 
+void GlobalSystem::prefetch_element(int q, const Eigen::VectorXd& displacements, bool with_tangent, const Evaluation& out) const {
+  // In a frame whose nodes are numbered for the factorisation (a lattice), consecutive elements'
+  // blocks are far apart in the tangent: each store into one missed the cache and stalled the
+  // loop. Asked for a few elements ahead: the lattice's evaluation 20–25 % faster, the chains'
+  // (whose blocks follow each other) unchanged (bench/README "Ninth session").
+  const ElementRecord& ahead = records_[q];
+  __builtin_prefetch(displacements.data() + dofs_per_node * ahead.start, 0);
+  __builtin_prefetch(displacements.data() + dofs_per_node * ahead.end, 0);
+  __builtin_prefetch(out.internal_force.data() + dofs_per_node * ahead.start, 1);
+  __builtin_prefetch(out.internal_force.data() + dofs_per_node * ahead.end, 1);
+  if (!with_tangent) return;
+  for (const int entry : {ahead.ii, ahead.jj, ahead.ij})
+    if (entry >= 0) {  // a 72-byte block spans two cache lines
+      const char* block = reinterpret_cast<const char*>(tangent_.value.data() + entry);
+      __builtin_prefetch(block, 1);
+      __builtin_prefetch(block + 64, 1);
+    }
+}
+
 template <bool only_contact_nodes>
 double GlobalSystem::evaluate_element(int q, const Eigen::VectorXd& displacements,
                                       const std::vector<double>& previous_rotations, bool with_tangent,
@@ -346,8 +365,11 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
     util::parallel_for_dynamic(begin, end, !serial, [&](int idx) {
       const int chunk = colour_chunks_[idx];
       double largest = 0.0;
-      for (int q = chunk_start_[chunk]; q < chunk_start_[chunk + 1]; ++q)
+      const int chunk_end = chunk_start_[chunk + 1];
+      for (int q = chunk_start_[chunk]; q < chunk_end; ++q) {
+        if (q + prefetch_distance < chunk_end) prefetch_element(q + prefetch_distance, displacements, with_tangent, out);
         largest = std::max(largest, evaluate_element<false>(q, displacements, previous_rotations, with_tangent, out));
+      }
       chunk_largest_end_rotation_[chunk] = largest;
     });
   }

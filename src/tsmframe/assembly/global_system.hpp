@@ -97,6 +97,10 @@ class GlobalSystem {
   /// The element at place q of the loop (element_order_[q]); returns its max |θ_i|, |θ_j| (0 if a
   /// contact element stands in for it). With `only_contact_nodes` (a contact change) it writes
   /// only what touches a node marked in contact_node_.
+  /// Asks the cache for what place q's element will read and write (its nodes' displacements
+  /// and forces, its tangent blocks); changes nothing.
+  void prefetch_element(int q, const Eigen::VectorXd& displacements, bool with_tangent, const Evaluation& out) const;
+  static constexpr int prefetch_distance = 8;  ///< places ahead of the element evaluated
   template <bool only_contact_nodes = false>
   double evaluate_element(int q, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                           bool with_tangent, Evaluation& out);
