@@ -649,6 +649,48 @@ TEST(ContactDetection, ANodeDraggedAcrossAMemberJointInOneStepStillTouches) {
   }
 }
 
+TEST(ContactDetection, ANodeDraggedIntoAColumnInOneStepStopsAtIt) {
+  // A pusher pressed onto a pinned beam's top at x = 3 m and dragged 2.02 m right, 1 cm down, in
+  // ONE step, towards a cross joint at 5 m (columns 2 m up and down, pinned at their ends, all in
+  // the contact's set): the column standing up is in its way. The iterate puts the pusher 2 cm
+  // past the joint, beyond the span of every element whose side it knows (the far span's top is
+  // rightly not connected to the near span's across the column), so no element it ends within had
+  // it cross: before, it went through beam and column without touching anything. Its path from
+  // the converged state crosses the near span's top: contact starts there and is handed along the
+  // beam into the corner, where the column's left face stops it — as in 10 steps.
+  json m = {{"materials", {{"steel", {{"E", 2e11}, {"G", 7.7e10}}}}},
+            {"sections", {{"s", {{"A", 0.004}, {"I", 2e-5}, {"shear_area", 0.002}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
+                                   {{"id", 3}, {"x", 5.0}, {"y", 0.0}}, {{"id", 4}, {"x", 5.0}, {"y", 2.0}},
+                                   {{"id", 5}, {"x", 5.0}, {"y", -2.0}}, {{"id", 9}, {"x", 3.0}, {"y", 0.001}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "pinned"}},
+                                      {{"node", 4}, {"type", "pinned"}}, {{"node", 5}, {"type", "pinned"}}})},
+            {"prescribed", json::array({{{"node", 9}, {"ux", 2.02}, {"uy", -0.01}}})},
+            {"contacts", json::array({{{"node", 9}, {"members", "all"}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 1}}}}}};
+  const auto member = [](int from, int to, int divisions) {
+    return json{{"from", from}, {"to", to}, {"divisions", divisions}, {"element", "timoshenko"}, {"material", "steel"}, {"section", "s"}};
+  };
+  m["members"] = json::array({member(1, 3, 10), member(3, 2, 10), member(3, 4, 4), member(3, 5, 4)});
+  for (const int steps : {1, 10}) {
+    m["analysis"]["control"]["steps"] = steps;
+    tsm::Model model;
+    const RunResult r = run(m, model);
+    ASSERT_EQ(r.status, tsm::solver::Status::converged) << steps << " steps: " << r.message;
+    const tsm::solver::ContactPoint& c = contact_of(r.steps.back());
+    ASSERT_GE(c.element, 0) << "the pusher went through beam and column (" << steps << " steps)";
+    // At the joint: on the near span's last element or the upper column's first, or on both.
+    const int joint = model.node_index(3);
+    for (const int e : {c.element, c.partner}) {
+      if (e < 0) continue;
+      const tsm::Element& element = model.elements[e];
+      EXPECT_TRUE(element.member == 0 || element.member == 2) << steps << " steps: member " << element.member;
+      EXPECT_TRUE(element.start == joint || element.end == joint) << steps << " steps: element " << e << " is not at the joint";
+    }
+    EXPECT_GT(c.force, 1e6) << steps << " steps: the column is pushed 2 cm at its foot";
+  }
+}
+
 TEST(ContactDetection, ANodeJustOutsideAnArchReadsItsSideOffTheElementUnderIt) {
   // A clamped half-circle arch (radius 5 m, 40 elements) and a pusher starting 0.1 mm outside it,
   // inside the sagitta of the chords (3.9 mm): just past an element's end the next chord's line

@@ -30,6 +30,11 @@ struct ContactState {
   /// was beyond the element's reach then (see ContactTracker). Contact starts when it reaches
   /// the other side.
   std::vector<signed char> reference_side;
+  /// Per candidate element: where the node was at the last converged state in the frame of
+  /// that element's straight chord then — along it (α) and across it (signed distance). An
+  /// iterate that takes the node across an element's span without ending within it (a long step
+  /// along a beam) is caught by interpolating between these and the iterate's (ContactTracker).
+  std::vector<double> reference_along, reference_across;
   /// Released during the current step: it stays released until the step has converged (the
   /// iterates after a release may sweep the beam through the node).
   bool released_in_step = false;

@@ -95,6 +95,43 @@ NodeOnElement ContactTracker::locate(const Spec& spec, int element, const Eigen:
                          chord_rotations[element], position);
 }
 
+NodeOnElement ContactTracker::on_chord(const Spec& spec, int element, const Eigen::VectorXd& D) const {
+  const Element& e = model_.elements[element];
+  const auto position = [&](int n) -> Eigen::Vector2d { return model_.nodes[n].position + D.segment<2>(dofs_per_node * n); };
+  const Eigen::Vector2d xi = position(e.start), chord = position(e.end) - xi, r = position(spec.node) - xi;
+  const double length2 = chord.squaredNorm();
+  if (!(length2 > 0.0)) return {0.0, 0.0};
+  const double length = std::sqrt(length2);
+  return {r.dot(chord) / length2, (chord.x() * r.y() - chord.y() * r.x()) / length};  // n = e turned +90°
+}
+
+int ContactTracker::swept_crossing(const Spec& spec, const ContactState& state, const Eigen::VectorXd& D,
+                                   const std::vector<char>& occupied) const {
+  // In each element's own frame the node moved from (α0, g0) at the last converged state to
+  // (α1, g1) now: where g reaches the contact's gap on the far side, α is interpolated between.
+  // Only elements with a side (the side the node is to come from) and whose chord the node was
+  // then on that side of; none the node now lies within (the ordinary test covers those).
+  if (state.reference_along.size() != spec.candidates.size()) return -1;
+  int first = -1;
+  double first_t = INFINITY;
+  for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
+    const int f = spec.candidates[ci], side = state.reference_side[ci];
+    if (occupied[f] || (side != 1 && side != -1)) continue;
+    const double before = side * state.reference_across[ci];
+    if (!(before > spec.gap)) continue;
+    const NodeOnElement now = on_chord(spec, f, D);
+    if (now.alpha >= -alpha_tolerance && now.alpha <= 1.0 + alpha_tolerance) continue;
+    const double after = side * now.gap;
+    if (after > spec.gap) continue;
+    const double t = (before - spec.gap) / (before - after);
+    const double alpha = state.reference_along[ci] + t * (now.alpha - state.reference_along[ci]);
+    if (alpha < 0.0 || alpha > 1.0 || t >= first_t) continue;
+    first = f;
+    first_t = t;
+  }
+  return first;
+}
+
 std::vector<ContactState> ContactTracker::initial_states() const {
   const Eigen::VectorXd D = Eigen::VectorXd::Zero(model_.dof_count());
   const std::vector<double> rotations(model_.elements.size(), 0.0);
@@ -185,6 +222,13 @@ void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, con
   }
   // Beyond that reach: the side carried along the beam from the nearest element with one.
   carry_sides(spec, D, past, state.reference_side);
+  state.reference_along.resize(spec.candidates.size());
+  state.reference_across.resize(spec.candidates.size());
+  for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
+    const NodeOnElement there = on_chord(spec, spec.candidates[ci], D);
+    state.reference_along[ci] = there.alpha;
+    state.reference_across[ci] = there.gap;
+  }
 }
 
 
@@ -315,6 +359,74 @@ void ContactTracker::release(const Spec& spec, const Eigen::VectorXd& D, const s
   state.force = state.Y = 0.0;
 }
 
+void ContactTracker::hand_over(const Spec& spec, const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                               bool release_pulling, ContactState& state, std::vector<char>& occupied,
+                               ContactChanges& changes) const {
+  // The point has left its element: hand it on to the neighbour at that end, and on while it
+  // is still beyond, but not farther than max(one element, 5 % of the model's size) per
+  // iterate (coarse meshes: one element; fine meshes slide many elements per iterate).
+  const double reach = 0.05 * model_.size;
+  double travelled = 0.0;
+  while (state.alpha < 0.0 || state.alpha > 1.0) {
+    const Element& from = model_.elements[state.element];
+    const int end = state.alpha > 1.0 ? from.end : from.start;
+    // The beam goes on across that node: the next element on the side the node presses
+    // (at a joint of three or more members, the one bounding the same sector: a point on a
+    // beam's top passes a column below it and goes on along the beam).
+    auto [best, to_side] = across(spec, state.element, state.side, end, D);
+    if (best >= 0 && occupied[best]) best = -1;
+    const double best_alpha = best >= 0 ? locate(spec, best, D, rotations).alpha : 0.0;
+    if (best < 0) {  // no element beyond: the point has left the beam's free end …
+      if (release_pulling) {  // … but only a converged iterate says so (till then α is held at the end)
+        occupied[state.element] = 0;
+        release(spec, D, rotations, state, false);
+        ++changes.released;
+      }
+      break;
+    }
+    const int direction = state.alpha > 1.0 ? 1 : -1;
+    const Element& to = model_.elements[best];
+    const double beyond_from = state.alpha > 1.0 ? state.alpha - 1.0 : -state.alpha;
+    // The vertex opened towards this element: it stays at the node (unless the point has
+    // gone clearly on, more than the edge beyond it).
+    const double edge = edge_of(spec);
+    if (end == state.held_node && beyond_from <= edge) break;
+    const bool reverses = state.handover_direction != 0 && direction != state.handover_direction;
+    const double into_to = to.start == end ? best_alpha : 1.0 - best_alpha;  // from the node, < 0: behind it
+    if (reverses && end == state.hop_node && end != state.held_node && edge >= vertex_min_edge &&
+        beyond_from <= vertex_reach && std::abs(into_to) <= vertex_reach) {
+      // Back across the node it has already come back across in this step: each element's
+      // force (normal to its own chord; the chords meet at an angle) pushes the point over
+      // the node onto the other, so it rests on the node. Both elements take it (a vertex).
+      occupied[best] = 1;
+      state.partner = best;
+      state.partner_side = to_side;
+      state.partner_Y = 0.0;
+      if (from.end != end && to.end == end) {  // reported on the element that ends at the node
+        std::swap(state.element, state.partner);
+        std::swap(state.side, state.partner_side);
+      }
+      state.alpha = model_.elements[state.element].end == end ? 1.0 : 0.0;
+      ++changes.handed_over;
+      break;
+    }
+    occupied[state.element] = 0;
+    occupied[best] = 1;
+    state.side = to_side;
+    if (reverses) {
+      ++changes.reversed;
+      state.hop_node = end;
+    }
+    // The next element's own direction: past its start (α < 0) when it continues from our end j.
+    state.handover_direction = (to.start == end) == (direction > 0) ? direction : -direction;
+    state.element = best;
+    state.alpha = best_alpha;
+    ++changes.handed_over;
+    travelled += initial_[best].length;
+    if (travelled >= reach) break;
+  }
+}
+
 ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vector<double>& rotations,
                                       const std::vector<ContactEvaluation>& evaluated,
                                       std::vector<ContactState>& states, bool release_pulling) const {
@@ -367,69 +479,7 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
         continue;
       }
       if (state.alpha >= 0.0 && state.alpha <= 1.0) continue;
-      // The point has left its element: hand it on to the neighbour at that end, and on while it
-      // is still beyond, but not farther than max(one element, 5 % of the model's size) per
-      // iterate (coarse meshes: one element; fine meshes slide many elements per iterate).
-      const double reach = 0.05 * model_.size;
-      double travelled = 0.0;
-      while (state.alpha < 0.0 || state.alpha > 1.0) {
-        const Element& from = model_.elements[state.element];
-        const int end = state.alpha > 1.0 ? from.end : from.start;
-        // The beam goes on across that node: the next element on the side the node presses
-        // (at a joint of three or more members, the one bounding the same sector: a point on a
-        // beam's top passes a column below it and goes on along the beam).
-        auto [best, to_side] = across(spec, state.element, state.side, end, D);
-        if (best >= 0 && occupied[best]) best = -1;
-        const double best_alpha = best >= 0 ? locate(spec, best, D, rotations).alpha : 0.0;
-        if (best < 0) {  // no element beyond: the point has left the beam's free end …
-          if (release_pulling) {  // … but only a converged iterate says so (till then α is held at the end)
-            occupied[state.element] = 0;
-            release(spec, D, rotations, state, false);
-            ++changes.released;
-          }
-          break;
-        }
-        const int direction = state.alpha > 1.0 ? 1 : -1;
-        const Element& to = model_.elements[best];
-        const double beyond_from = state.alpha > 1.0 ? state.alpha - 1.0 : -state.alpha;
-        // The vertex opened towards this element: it stays at the node (unless the point has
-        // gone clearly on, more than the edge beyond it).
-        const double edge = edge_of(spec);
-        if (end == state.held_node && beyond_from <= edge) break;
-        const bool reverses = state.handover_direction != 0 && direction != state.handover_direction;
-        const double into_to = to.start == end ? best_alpha : 1.0 - best_alpha;  // from the node, < 0: behind it
-        if (reverses && end == state.hop_node && end != state.held_node && edge >= vertex_min_edge &&
-            beyond_from <= vertex_reach && std::abs(into_to) <= vertex_reach) {
-          // Back across the node it has already come back across in this step: each element's
-          // force (normal to its own chord; the chords meet at an angle) pushes the point over
-          // the node onto the other, so it rests on the node. Both elements take it (a vertex).
-          occupied[best] = 1;
-          state.partner = best;
-          state.partner_side = to_side;
-          state.partner_Y = 0.0;
-          if (from.end != end && to.end == end) {  // reported on the element that ends at the node
-            std::swap(state.element, state.partner);
-            std::swap(state.side, state.partner_side);
-          }
-          state.alpha = model_.elements[state.element].end == end ? 1.0 : 0.0;
-          ++changes.handed_over;
-          break;
-        }
-        occupied[state.element] = 0;
-        occupied[best] = 1;
-        state.side = to_side;
-        if (reverses) {
-          ++changes.reversed;
-          state.hop_node = end;
-        }
-        // The next element's own direction: past its start (α < 0) when it continues from our end j.
-        state.handover_direction = (to.start == end) == (direction > 0) ? direction : -direction;
-        state.element = best;
-        state.alpha = best_alpha;
-        ++changes.handed_over;
-        travelled += initial_[best].length;
-        if (travelled >= reach) break;
-      }
+      hand_over(spec, D, rotations, release_pulling, state, occupied, changes);
       continue;
     }
     // Detection: the node has reached or crossed an element's deflected centre line.
@@ -457,6 +507,16 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
         best_alpha = where.alpha;
       }
     }
+    if (best < 0) {
+      // Across an element's span and on beyond it within one iterate (a long step along a beam
+      // the node was pressed onto): contact starts on that element, and is handed on along the
+      // beam from there to where the node is — as far as the beam lets it (a column in the way).
+      best = swept_crossing(spec, state, D, occupied);
+      if (best >= 0) {
+        best_side = state.reference_side[spec.candidate_index[best]];
+        best_alpha = locate(spec, best, D, rotations).alpha;
+      }
+    }
     if (best >= 0) {
       state.active = true;
       state.element = best;
@@ -465,6 +525,7 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
       state.force = state.Y = 0.0;
       occupied[best] = 1;
       ++changes.activated;
+      if (state.alpha < 0.0 || state.alpha > 1.0) hand_over(spec, D, rotations, false, state, occupied, changes);
     }
   }
   return changes;

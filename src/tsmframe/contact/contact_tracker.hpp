@@ -97,6 +97,16 @@ class ContactTracker {
   };
   NodeOnElement locate(const Spec& spec, int element, const Eigen::VectorXd& displacements,
                        const std::vector<double>& chord_rotations) const;
+  /// The contact node in the frame of an element's straight current chord: α along it, the
+  /// signed distance across it (along n). Unlike locate(), meaningful far beyond the element.
+  NodeOnElement on_chord(const Spec& spec, int element, const Eigen::VectorXd& displacements) const;
+  /// The first candidate whose span the node has crossed, from its side, between the last
+  /// converged state and now while ending beyond the span, first along the path (−1: none).
+  int swept_crossing(const Spec& spec, const ContactState& state, const Eigen::VectorXd& displacements,
+                     const std::vector<char>& occupied) const;
+  /// Hands an active contact whose point has left its element on along the beam (update()).
+  void hand_over(const Spec& spec, const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
+                 bool release_pulling, ContactState& state, std::vector<char>& occupied, ContactChanges& changes) const;
   element::SectionStiffness contact_section(const Spec& spec, int element) const;
   /// The compliance floor's edge δ of a contact (its own, or the default).
   static double edge_of(const Spec& spec);
