@@ -35,6 +35,8 @@ struct ContactState {
   /// iterate that takes the node across an element's span without ending within it (a long step
   /// along a beam) is caught by interpolating between these and the iterate's (ContactTracker).
   std::vector<double> reference_along, reference_across;
+  /// The node's position at the last converged state (the start of its path in the step).
+  double reference_position[2] = {0.0, 0.0};
   /// Released during the current step: it stays released until the step has converged (the
   /// iterates after a release may sweep the beam through the node).
   bool released_in_step = false;

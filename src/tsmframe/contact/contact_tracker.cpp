@@ -110,8 +110,23 @@ int ContactTracker::swept_crossing(const Spec& spec, const ContactState& state, 
   // In each element's own frame the node moved from (α0, g0) at the last converged state to
   // (α1, g1) now: where g reaches the contact's gap on the far side, α is interpolated between.
   // Only elements with a side (the side the node is to come from) and whose chord the node was
-  // then on that side of; none the node now lies within (the ordinary test covers those).
+  // then on that side of; none the node now lies within (the ordinary test covers those). And
+  // only where the node itself moved across the element as it lies now (its straight path
+  // meets the current chord): an element that turned a long way in the step sweeps its frame
+  // past nodes that never met it (a strip rolled onto a die in one step).
   if (state.reference_along.size() != spec.candidates.size()) return -1;
+  const auto position = [&](int n) -> Eigen::Vector2d { return model_.nodes[n].position + D.segment<2>(dofs_per_node * n); };
+  const Eigen::Vector2d p0(state.reference_position[0], state.reference_position[1]), p1 = position(spec.node);
+  const Eigen::Vector2d path = p1 - p0;
+  if (!(path.squaredNorm() > 0.0)) return -1;
+  const auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
+  const auto path_meets_chord = [&](int f) {
+    const Eigen::Vector2d a = position(model_.elements[f].start), b = position(model_.elements[f].end);
+    const double denominator = cross(path, b - a);
+    if (denominator == 0.0) return false;
+    const double s = cross(a - p0, b - a) / denominator, u = cross(a - p0, path) / denominator;
+    return s >= 0.0 && s <= 1.0 && u >= 0.0 && u <= 1.0;
+  };
   int first = -1;
   double first_t = INFINITY;
   for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
@@ -125,7 +140,7 @@ int ContactTracker::swept_crossing(const Spec& spec, const ContactState& state, 
     if (after > spec.gap) continue;
     const double t = (before - spec.gap) / (before - after);
     const double alpha = state.reference_along[ci] + t * (now.alpha - state.reference_along[ci]);
-    if (alpha < 0.0 || alpha > 1.0 || t >= first_t) continue;
+    if (alpha < 0.0 || alpha > 1.0 || t >= first_t || !path_meets_chord(f)) continue;
     first = f;
     first_t = t;
   }
@@ -222,6 +237,9 @@ void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, con
   }
   // Beyond that reach: the side carried along the beam from the nearest element with one.
   carry_sides(spec, D, past, state.reference_side);
+  const Eigen::Vector2d node = model_.nodes[spec.node].position + D.segment<2>(dofs_per_node * spec.node);
+  state.reference_position[0] = node.x();
+  state.reference_position[1] = node.y();
   state.reference_along.resize(spec.candidates.size());
   state.reference_across.resize(spec.candidates.size());
   for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
