@@ -1045,6 +1045,47 @@ TEST(ContactVertex, ASidePullingAtAConvergedIterateLetsGoAndBothPullingRelease) 
 
 // ---- Released by a pull: the side it let go on holds for the whole beam ----
 
+TEST(ContactDetection, AlongTheNodesPathOnlyWhereTheNodeItselfCrossedTheElement) {
+  // The tracker alone, on a 4-element cantilever (0 … 1 along x) and a contact node that starts
+  // 0.02 above it at x = 0.125. (a) An iterate throws the node to (1.5, −0.02), past the free end:
+  // it ends within no element's span, but its path crossed element 2's chord from above — contact
+  // starts there and is carried along the beam to its free end (held there until a converged
+  // iterate lets it go). (b) The node stays put outside the beam (x = −0.25) while the beam turns
+  // half a turn about its middle: in element 1's own frame the node passed from one side to the
+  // other within its span, but the node never met it — no contact.
+  BeamSpec b;
+  b.divisions = 4;
+  const tsm::Model model = tsm::io::read_model(pusher_model(b, 0.125, 0.02, 0.0, -0.02, 1));
+  tsm::contact::ContactTracker tracker(model);
+  const std::vector<double> straight(model.elements.size(), 0.0);
+  const int pusher = model.node_index(100);
+  {
+    std::vector<tsm::contact::ContactState> states = tracker.initial_states();
+    Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
+    D.segment<2>(3 * pusher) = Eigen::Vector2d(1.5 - 0.125, -0.04);
+    const tsm::contact::ContactChanges changes = tracker.update(D, straight, {}, states, false);
+    EXPECT_EQ(changes.activated, 1);
+    ASSERT_TRUE(states[0].active) << "the node's path crossed the beam";
+    EXPECT_EQ(states[0].side, 1);  // from above
+    EXPECT_EQ(states[0].element, 3) << "carried on to the free end";
+  }
+  {
+    json m = pusher_model(b, -0.25, 0.02, 0.0, -0.02, 1);
+    const tsm::Model outside = tsm::io::read_model(m);
+    tsm::contact::ContactTracker outside_tracker(outside);
+    std::vector<tsm::contact::ContactState> states = outside_tracker.initial_states();
+    Eigen::VectorXd D = Eigen::VectorXd::Zero(outside.dof_count());
+    for (int k = 0; k < outside.node_count(); ++k) {
+      if (k == outside.node_index(100)) continue;
+      const Eigen::Vector2d x = outside.nodes[k].position, turned = Eigen::Vector2d(1.0 - x.x(), -x.y());
+      D.segment<3>(3 * k) << turned - x, std::numbers::pi;
+    }
+    const std::vector<double> half_turn(outside.elements.size(), std::numbers::pi);
+    EXPECT_FALSE(outside_tracker.update(D, half_turn, {}, states, false).any());
+    EXPECT_FALSE(states[0].active);
+  }
+}
+
 TEST(ContactRelease, ANodeThatLetGoByPullingMayNotBeThroughTheBeamAnywhere) {
   // A contact on element 3 of a 10-element cantilever, from above, lets go by pulling at an
   // iterate that has thrown the node far beyond the beam (a diverging Newton iterate): no
