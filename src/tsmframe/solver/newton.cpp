@@ -307,6 +307,11 @@ bool NewtonSolver::within_floor(const std::array<double, 2>& norms, const State&
   return force <= floor_ratio * floor.force && moment <= floor_ratio * floor.moment;
 }
 
+bool NewtonSolver::carries_nothing(const ResidualScale& scale, const State& state) const {
+  const assembly::RoundingFloor floor = system_.rounding_floor(state.displacements, state.chord_rotations, {});
+  return scale.force <= floor_ratio * floor.force && scale.moment <= floor_ratio * floor.moment;
+}
+
 NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state) {
   const assembly::DofMap& dofs = system_.dofs();
   const Model& model = system_.model();
@@ -490,7 +495,8 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
                               step_size[1] <= round_off_ratio * std::max(1.0, largest[1]);
     const bool stagnating = relative >= stagnation * out.residual_norms[out.residual_norms.size() - 2];
     const char* criterion = relative <= settings_.tolerance ? "force"
-                            : !contacts_changed && (at_round_off || (stagnating && relative < floor_check_below && within_floor(pass.norms, state)))
+                            : !contacts_changed && ((at_round_off && (relative < floor_check_below || carries_nothing(pass.scale, state))) ||
+                                                    (stagnating && relative < floor_check_below && within_floor(pass.norms, state)))
                                 ? "round-off"
                                 : nullptr;
     if (criterion) {

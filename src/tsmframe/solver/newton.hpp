@@ -121,6 +121,10 @@ class NewtonSolver {
   std::array<double, 2> largest_displacements(const State& state, std::array<double, 2> free) const;
   /// ‖R‖ per kind within a small multiple of the rounding floor of the internal forces.
   bool within_floor(const std::array<double, 2>& residual_norms, const State& state) const;
+  /// Whether the structure carries no force above rounding: both kinds' scales within the floor
+  /// ratio × the plain elements' rounding floor (contacts left out: a stiff contact's floor can
+  /// dwarf the force it carries).
+  bool carries_nothing(const ResidualScale& scale, const State& state) const;
   /// Translational part of dot products for the arc-length constraint.
   double arc_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const;
   void free_displacements(const State& state, Eigen::VectorXd& out) const;
