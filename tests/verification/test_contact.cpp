@@ -373,6 +373,23 @@ TEST_P(ContactOnANode, ALargePushOnABeamNodeStaysSymmetric) {
 
 INSTANTIATE_TEST_SUITE_P(Kinds, ContactOnANode, ::testing::Values("euler-bernoulli", "timoshenko"));
 
+TEST(ContactOnANode, AStiffContactAtANodeOfShortElementsIsNotAcceptedUnconverged) {
+  // examples/contact-push.json's cantilever with 10,000 elements (0.9 mm): the pusher starts on
+  // a beam node, pushed 5 mm in one step. Held at that node by both elements, the contact is so
+  // stiff (compliance ~1e-23 m/N) that Newton's corrections fell to rounding level with the
+  // residual still at 0.5 of the load, and the step ended "on round-off" with 2.6× the force.
+  // Round-off now needs a relative residual below 1e-3: the step is cut back and converges to
+  // the linear answer P = δ / (a³/3EI + a/GA_s) (the membrane effect of 5 mm: ~1e-5).
+  BeamSpec b{.L = 9.0, .E = 2.05e11, .G = 7.9e10, .A = 1e-2, .I = 1e-4, .shear_area = 8.3e-3, .divisions = 10000,
+             .element = "timoshenko"};
+  tsm::Model model;
+  const RunResult r = run(pusher_model(b, 4.05, 0.0, 0.0, 0.005, 1), model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  for (const StepRecord& s : r.steps) EXPECT_LT(s.residual_norms.back(), 1e-3) << "step " << s.step << " (" << s.criterion << ")";
+  const double a = 4.05, P = 0.005 / (a * a * a / (3.0 * 2.05e11 * 1e-4) + a / (7.9e10 * 8.3e-3));
+  EXPECT_NEAR(contact_of(r.steps.back()).force, P, 1e-4 * P);
+}
+
 TEST_P(ContactOnANode, ThePushedBeamReturnsAndTheVertexOpensAsAWhole) {
   // Pushed down 0.5 m onto the node and back up (λ: 0 → 1 → 0): the beam is elastic, so on the
   // way back each λ gives the way down's force; the vertex holds until the pusher is back above
