@@ -145,6 +145,15 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
        "loads[0].node: 2 nodes at [4, 0]"},
       {"mechanism", [](json& m) { m["supports"][0]["type"] = "pinned"; }, "supports: structure is a mechanism"},
       {"free node", [](json& m) { m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", 1.0}}); }, "supports: structure is a mechanism: node 5 is held by no element"},
+      {"beam on a knife edge drawn on its axis",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 3.0}, {"y", 0.0}});
+         m["supports"] = json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 5}, {"type", "fixed"}}});
+         m["contacts"] = json::array({{{"node", 5}, {"members", "all"}}});
+       },
+       "supports: structure is a mechanism: the part holding node 1 and the 4 nodes joined to it is free to rotate about (0, 0) "
+       "(add a support that stops it); a contact holds it from the start only if its node is held and drawn at the contact's "
+       "\"gap\" from the beam's centre line"},
       {"load on missing node", [](json& m) { m["loads"][0]["node"] = 42; }, "loads[0].node: unknown node 42"},
       {"contact on missing node",
        [](json& m) { m["contacts"] = json::array({{{"node", 42}, {"members", "all"}}}); },

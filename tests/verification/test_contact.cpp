@@ -16,6 +16,8 @@
 #include "support/models.hpp"
 #include "tsmframe/assembly/global_system.hpp"
 #include "tsmframe/contact/contact_tracker.hpp"
+#include "tsmframe/model/mechanism.hpp"
+#include "tsmframe/model/resting_contact.hpp"
 
 namespace {
 
@@ -167,6 +169,80 @@ INSTANTIATE_TEST_SUITE_P(Cases, SmallPush,
                          ::testing::Values(SmallPushCase{"euler-bernoulli", 0.5}, SmallPushCase{"timoshenko", 0.5},
                                            SmallPushCase{"euler-bernoulli", 0.5125},
                                            SmallPushCase{"timoshenko", 0.5125}));
+
+/// A beam (10 m, 20 Timoshenko elements, steel) resting on two knife edges drawn at the contact
+/// gap (5 cm) below it at x = 1.25 and 8.75 m, held otherwise only along x at mid-span, loaded
+/// by `fy` at mid-span.
+json beam_on_knife_edges(double fy, int steps) {
+  json m = {{"materials", {{"steel", {{"E", 2e11}, {"G", 7.7e10}}}}},
+            {"sections", {{"s", {{"A", 0.004}, {"I", 2e-5}, {"shear_area", 0.002}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
+                                   {{"id", 3}, {"x", 5.0}, {"y", 0.0}}, {{"id", 7}, {"x", 1.25}, {"y", -0.05}},
+                                   {{"id", 8}, {"x", 8.75}, {"y", -0.05}}})},
+            {"supports", json::array({{{"node", 7}, {"type", "fixed"}}, {{"node", 8}, {"type", "fixed"}},
+                                      {{"node", 3}, {"fix", {"ux"}}}})},
+            {"loads", json::array({{{"node", 3}, {"fy", fy}}})},
+            {"contacts", json::array({{{"node", 7}, {"members", "all"}, {"gap", 0.05}},
+                                      {{"node", 8}, {"members", "all"}, {"gap", 0.05}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", steps}}}}}};
+  const auto member = [](int from, int to) {
+    return json{{"from", from}, {"to", to}, {"divisions", 10}, {"element", "timoshenko"}, {"material", "steel"}, {"section", "s"}};
+  };
+  m["members"] = json::array({member(1, 3), member(3, 2)});
+  return m;
+}
+
+TEST(ContactResting, ABeamHeldOnlyByTheKnifeEdgesItRestsOnIsSimplySupported) {
+  // Before, the model was refused ("free to move along y"): contacts were no supports, and the
+  // first solve would have been singular. A contact whose node is drawn at its gap from an
+  // element is in contact from the start and counts as a support along the normal. A small
+  // load: the linear simply supported beam over the 7.5 m between the edges,
+  // δ = P L³/48EI + P L/4GA_s, each edge carrying P/2 (the contact points move ~0.1 mm along the
+  // beam as it turns over the edges, at half its depth: ~1e-5 here).
+  const double P = 1e3, L = 7.5, EI = 2e11 * 2e-5, GAs = 7.7e10 * 2e-3;
+  for (const int steps : {1, 4}) {
+    tsm::Model model;
+    const RunResult r = run(beam_on_knife_edges(-P, steps), model);
+    ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+    const StepRecord& last = r.steps.back();
+    for (size_t k = 0; k < 2; ++k) {
+      ASSERT_GE(contact_of(last, k).element, 0) << "edge " << k;
+      EXPECT_NEAR(contact_of(last, k).force, P / 2.0, 1e-5 * P) << "edge " << k;
+    }
+    EXPECT_NEAR(node_displacement(model, last, 3)[1], -(P * L * L * L / (48.0 * EI) + P * L / (4.0 * GAs)),
+                1e-4 * P * L * L * L / (48.0 * EI));
+    expect_equilibrium(model, last);
+  }
+}
+
+TEST(ContactResting, ABeamLiftedOffTheEdgesItRestsOnFailsSayingNothingHoldsIt) {
+  // Loaded upwards it leaves both edges (the contacts would pull): then nothing holds it, and
+  // the run says so rather than only that the unbalanced force blew up.
+  tsm::Model model;
+  const RunResult r = run(beam_on_knife_edges(1e3, 1), model);
+  EXPECT_NE(r.status, tsm::solver::Status::converged);
+  EXPECT_NE(r.message.find("held only by the contacts resting on it"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("let go: nothing else supports it"), std::string::npos) << r.message;
+}
+
+TEST(ContactResting, OnlyAHeldNodeDrawnAtTheGapOffTheBeamRestsOnIt) {
+  json m = beam_on_knife_edges(-1e3, 1);
+  const tsm::Model model = tsm::io::read_model(m);
+  EXPECT_FALSE(tsm::find_mechanism(model));
+  EXPECT_TRUE(tsm::find_mechanism(model, false)) << "held only by the contacts";
+  const auto resting = tsm::resting_contact(model, model.contacts[0]);
+  ASSERT_TRUE(resting);
+  EXPECT_EQ(resting->side, -1);  // below the beam (n is +y for a beam drawn along +x)
+  EXPECT_NEAR(resting->point.x(), 1.25, 1e-12);
+  EXPECT_NEAR(resting->point.y(), 0.0, 1e-12);
+  for (const double y : {-0.0, -0.051, 0.06}) {  // on the axis (no side yet), beyond the gap, above beyond it
+    json moved = m;
+    moved["nodes"][3]["y"] = y;
+    moved["supports"].push_back({{"node", 1}, {"fix", {"uy"}}});  // held anyway
+    const tsm::Model other = tsm::io::read_model(moved);
+    EXPECT_FALSE(tsm::resting_contact(other, other.contacts[0])) << "y " << y;
+  }
+}
 
 TEST(ContactGap, ContactStartsAtTheGapAndTheForceFollowsTheClosing) {
   // A pusher 10 mm below the beam with a 4 mm gap (say, the beam's half depth): it touches after

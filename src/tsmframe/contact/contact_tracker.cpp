@@ -1,5 +1,7 @@
 #include "tsmframe/contact/contact_tracker.hpp"
 
+#include "tsmframe/model/resting_contact.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -154,6 +156,14 @@ std::vector<ContactState> ContactTracker::initial_states() const {
   for (size_t k = 0; k < specs_.size(); ++k) {
     states[k].reference_side.assign(specs_[k].candidates.size(), 0);
     reset_sides(specs_[k], D, rotations, 0, states[k]);
+    // Resting on an element as drawn (model/resting_contact): in contact from the start, so a
+    // structure held only by its contacts has a tangent to start from.
+    if (const auto r = resting_contact(model_, model_.contacts[k])) {
+      states[k].active = true;
+      states[k].element = r->element;
+      states[k].side = r->side;
+      states[k].alpha = r->alpha;
+    }
   }
   return states;
 }

@@ -1,5 +1,7 @@
 #include "tsmframe/model/mechanism.hpp"
 
+#include "tsmframe/model/resting_contact.hpp"
+
 #include <algorithm>
 
 #include <Eigen/Eigenvalues>
@@ -24,7 +26,7 @@ std::string part_name(const Model& model, const std::vector<int>& members) {
 
 }  // namespace
 
-std::optional<std::string> find_mechanism(const Model& model) {
+std::optional<std::string> find_mechanism(const Model& model, bool resting_contacts_hold) {
   const int n = model.node_count();
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
@@ -48,9 +50,20 @@ std::optional<std::string> find_mechanism(const Model& model) {
   std::vector<std::vector<int>> parts(n);
   for (int k = 0; k < n; ++k)
     if (held[k]) parts[find_root(parent, k)].push_back(k);
+  // A contact resting on a part (resting_contact) whose node is held in both translations holds
+  // that part along the element's normal at the touch point (bilaterally, for this check: it
+  // lets go only if it would pull, which a solve finds out).
+  std::vector<std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>> resting(n);  // per part root: (point, normal)
+  for (const ContactSpec& c : model.contacts) {
+    if (!resting_contacts_hold) break;
+    if (!model.constrained[dofs_per_node * c.node + ux] || !model.constrained[dofs_per_node * c.node + uy]) continue;
+    if (const auto r = resting_contact(model, c))
+      resting[find_root(parent, model.elements[r->element].start)].push_back({r->point, r->normal});
+  }
 
   for (const std::vector<int>& part : parts) {
     if (part.empty()) continue;
+    const int root = find_root(parent, part.front());
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();
     Eigen::Vector2d lo = model.nodes[part.front()].position, hi = lo;
     for (int k : part) {
@@ -70,6 +83,11 @@ std::optional<std::string> find_mechanism(const Model& model) {
       for (int dof = 0; dof < dofs_per_node; ++dof)
         if (model.constrained[dofs_per_node * k + dof]) gram += rows[dof] * rows[dof].transpose();
     }
+    for (const auto& [point, normal] : resting[root]) {
+      const Eigen::Vector2d p = (point - centre) / extent;
+      const Eigen::Vector3d row(normal.x(), normal.y(), -normal.x() * p.y() + normal.y() * p.x());
+      gram += row * row.transpose();
+    }
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(gram);
     if (eig.eigenvalues()[0] > 1e-10 * std::max(1.0, eig.eigenvalues()[2])) continue;
     const Eigen::Vector3d mode = eig.eigenvectors().col(0);  // (a, b, ω·extent)
@@ -85,6 +103,15 @@ std::optional<std::string> find_mechanism(const Model& model) {
       const Eigen::Vector2d pole = centre + Eigen::Vector2d(-mode[1] / omega, mode[0] / omega);
       os << "rotate about (" << pole.x() << ", " << pole.y() << ") (add a support that stops it)";
     }
+    // Contacts on this part count only where they rest on it as drawn.
+    bool touched_by_contact = false;
+    for (const ContactSpec& c : model.contacts)
+      for (const Element& e : model.elements)
+        if (find_root(parent, e.start) == root && std::find(c.members.begin(), c.members.end(), e.member) != c.members.end())
+          touched_by_contact = true;
+    if (touched_by_contact)
+      os << "; a contact holds it from the start only if its node is held and drawn at the contact's \"gap\" "
+            "from the beam's centre line, on the side it supports";
     return os.str();
   }
   return std::nullopt;

@@ -11,7 +11,9 @@
 
 namespace tsm {
 
-/// A sentence naming the free motion and a node on it, or nothing if the model is stable.
-std::optional<std::string> find_mechanism(const Model& model);
+/// A sentence naming the free motion and a node on it, or nothing if the model is stable. Held
+/// contacts resting on a part as drawn (model/resting_contact) count as supports along their
+/// normal unless `resting_contacts_hold` is false.
+std::optional<std::string> find_mechanism(const Model& model, bool resting_contacts_hold = true);
 
 }  // namespace tsm

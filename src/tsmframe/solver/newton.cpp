@@ -8,6 +8,8 @@
 
 #include "tsmframe/util/first_touch.hpp"
 #include "tsmframe/util/parallel_for.hpp"
+#include "tsmframe/model/mechanism.hpp"
+#include "tsmframe/model/resting_contact.hpp"
 
 namespace tsm::solver {
 namespace {
@@ -61,6 +63,9 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
   is_moment_.resize(dofs.free_count());
   for (int eq = 0; eq < dofs.free_count(); ++eq) is_moment_[eq] = dofs.dof(eq) % dofs_per_node == rz ? 1 : 0;
   const Model& model = system.model();
+  if (contacts_ && !find_mechanism(model) && find_mechanism(model, false))
+    for (int k = 0; k < static_cast<int>(model.contacts.size()); ++k)
+      if (resting_contact(model, model.contacts[k])) holding_contacts_.push_back(k);
   for (int dof = 0; dof < model.dof_count(); ++dof) {
     if (model.constrained[dof]) constrained_dofs_.push_back(dof);
     if (dof % dofs_per_node != rz) prescribed_squared_ += model.prescribed(dof) * model.prescribed(dof);
@@ -307,12 +312,25 @@ bool NewtonSolver::within_floor(const std::array<double, 2>& norms, const State&
   return force <= floor_ratio * floor.force && moment <= floor_ratio * floor.moment;
 }
 
+NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state) {
+  NewtonOutcome out = iterate_step(constraint, state);
+  if (out.status == Status::converged || holding_contacts_.empty()) return out;
+  const Model& model = system_.model();
+  for (const int k : holding_contacts_)
+    if (!state.contacts[k].active) {
+      out.message += "; the structure is held only by the contacts resting on it and the one at node " +
+                     std::to_string(model.nodes[model.contacts[k].node].id) + " let go: nothing else supports it";
+      break;
+    }
+  return out;
+}
+
 bool NewtonSolver::carries_nothing(const ResidualScale& scale, const State& state) const {
   const assembly::RoundingFloor floor = system_.rounding_floor(state.displacements, state.chord_rotations, {});
   return scale.force <= floor_ratio * floor.force && scale.moment <= floor_ratio * floor.moment;
 }
 
-NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state) {
+NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State& state) {
   const assembly::DofMap& dofs = system_.dofs();
   const Model& model = system_.model();
   const double prescribed_size = model.reference_prescribed.lpNorm<Eigen::Infinity>();

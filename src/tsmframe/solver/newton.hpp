@@ -125,6 +125,8 @@ class NewtonSolver {
   /// ratio × the plain elements' rounding floor (contacts left out: a stiff contact's floor can
   /// dwarf the force it carries).
   bool carries_nothing(const ResidualScale& scale, const State& state) const;
+  /// step() without the note a failure gets when the structure lost the contacts holding it.
+  NewtonOutcome iterate_step(const PathConstraint& constraint, State& state);
   /// Translational part of dot products for the arc-length constraint.
   double arc_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const;
   void free_displacements(const State& state, Eigen::VectorXd& out) const;
@@ -132,6 +134,9 @@ class NewtonSolver {
   assembly::GlobalSystem& system_;
   NewtonSettings settings_;
   const contact::ContactTracker* contacts_ = nullptr;
+  /// Contacts (model order) resting on the structure as drawn that it needs: without them
+  /// (model/mechanism) it is a mechanism. Empty otherwise.
+  std::vector<int> holding_contacts_;
   int switches_ = 0;   ///< contact activations + releases in the current step
   int reversals_ = 0;  ///< contact hand-overs back the way the point came, in the current step
   LinearSolver solver_;
