@@ -225,6 +225,33 @@ TEST(ContactResting, ABeamLiftedOffTheEdgesItRestsOnFailsSayingNothingHoldsIt) {
   EXPECT_NE(r.message.find("let go: nothing else supports it"), std::string::npos) << r.message;
 }
 
+TEST(ContactResting, PushedThroughBetweenTheEdgesTheLoadPassesAMaximumThatArcLengthFollows) {
+  // 5 MN: the beam sags and slides in between the edges, so the load it carries has a maximum
+  // (481 kN at a sag of 1.8 m). Load control fails there and says why — the tangent lost its
+  // positive definiteness within the step; arc-length control passes the maximum and follows
+  // the beam down until it slides off the edges (their contacts reach its free ends).
+  tsm::Model model;
+  const RunResult loaded = run(beam_on_knife_edges(-5e6, 10), model);
+  ASSERT_NE(loaded.status, tsm::solver::Status::converged);
+  EXPECT_NE(loaded.message.find("the load seems to have reached a maximum (a limit point"), std::string::npos)
+      << loaded.message;
+  json m = beam_on_knife_edges(-5e6, 1);
+  m["analysis"]["control"] = {{"type", "arc-length"}, {"initial_increment", 0.1}, {"max_steps", 300},
+                              {"until", {{"node", 3}, {"dof", "uy"}, {"value", -2.5}}}};
+  const RunResult arc = run(m, model);
+  ASSERT_EQ(arc.status, tsm::solver::Status::converged) << arc.message;
+  ASSERT_EQ(arc.limit_points.size(), 1u);
+  EXPECT_TRUE(arc.limit_points[0].maximum);
+  double largest = 0.0;
+  for (const StepRecord& s : loaded.steps)
+    if (s.converged) largest = std::max(largest, s.load_factor);
+  // Load control stops at the maximum (its last steps cut back to 1/1024 of a step), which the
+  // arc-length path brackets between its steps.
+  EXPECT_NEAR(largest, arc.limit_points[0].load_factor, 5e-3 * arc.limit_points[0].load_factor);
+  EXPECT_LT(arc.steps.back().load_factor, arc.limit_points[0].load_factor);  // past it, going down
+  for (size_t k = 0; k < 2; ++k) EXPECT_NEAR(contact_of(arc.steps.back(), k).force, contact_of(arc.steps.back(), 0).force, 1e-6 * contact_of(arc.steps.back(), 0).force);
+}
+
 TEST(ContactResting, OnlyAHeldNodeDrawnAtTheGapOffTheBeamRestsOnIt) {
   json m = beam_on_knife_edges(-1e3, 1);
   const tsm::Model model = tsm::io::read_model(m);

@@ -25,6 +25,15 @@ bool keeps_state(const OutputSelection& output, int step) {
   return true;
 }
 
+constexpr double limit_point_stiffness = 0.1;  // a path stiffness below this × the first step's: near a maximum
+
+std::string format_ratio(double ratio) {
+  std::ostringstream os;
+  os.precision(2);
+  os << ratio;
+  return os.str();
+}
+
 std::string failure_text(int step, double from, double to, const char* what, const NewtonOutcome& outcome,
                          int cutbacks) {
   std::ostringstream os;
@@ -146,6 +155,15 @@ class StepStart {
     state.contacts = own_.contacts;
   }
   double load_factor() const { return own_.load_factor; }
+  /// ‖ΔD‖₂ over the translations from this start to `state` (before release()).
+  double translation_change(const State& state) const {
+    const Eigen::VectorXd& start = recorded_ ? *recorded_ : own_.displacements;
+    if (start.size() != state.displacements.size()) return 0.0;
+    double sum = 0.0;
+    for (Eigen::Index dof = 0; dof < start.size(); ++dof)
+      if (dof % dofs_per_node != rz) sum += (state.displacements[dof] - start[dof]) * (state.displacements[dof] - start[dof]);
+    return std::sqrt(sum);
+  }
   /// The step converged: its start is not needed any more (its own copy goes before the step is
   /// recorded, so that the two never coexist).
   void release() { own_.displacements.resize(0); }
@@ -222,6 +240,9 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   Recorder recorder(model, newton, observer, result, true);
 
   StepStart saved;  // reused: no allocation per step
+  // The current stiffness parameter |Δλ| / ‖ΔD‖ of the first converged step and of the newest
+  // (Bergan): near a largest load it falls towards zero.
+  double first_stiffness = 0.0, newest_stiffness = 0.0;
   while (grid_index < grid_steps) {
     const double next_grid = static_cast<double>(grid_index + 1) / control.steps;
     double dt = std::min(increment, next_grid - t);
@@ -237,6 +258,13 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     record.increment = (value(t_end) - value(t)) * (by_displacement ? control.target : 1.0);
 
     if (outcome.status == Status::converged) {
+      if (!by_displacement) {
+        const double moved = saved.translation_change(state);
+        if (moved > 0.0) {
+          newest_stiffness = std::abs(state.load_factor - saved.load_factor()) / moved;
+          if (first_stiffness == 0.0) first_stiffness = newest_stiffness;
+        }
+      }
       t = t_end;
       if (reaches_grid) ++grid_index;
       halvings = 0;
@@ -260,10 +288,20 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     result.status = settings.cutback ? Status::cutback_limit : outcome.status;
     const double from = value(t) * (by_displacement ? control.target : 1.0);
     const double to = value(t_end) * (by_displacement ? control.target : 1.0);
+    NewtonOutcome failed = outcome;
+    // A largest load: cut back and still failing, the path's stiffness down to a tenth of its
+    // first step's, and the tangent — positive definite at the step's start — indefinite at its
+    // iterates. Load control cannot pass it.
+    if (!by_displacement && halvings > 0 && failed.start_negative_pivots == 0 && failed.most_negative_pivots > 0 &&
+        first_stiffness > 0.0 && newest_stiffness < limit_point_stiffness * first_stiffness)
+      failed.message += "; the load seems to have reached a maximum (a limit point: the path's stiffness |Δλ|/‖ΔD‖ is down to " +
+                        format_ratio(newest_stiffness / first_stiffness) +
+                        " of the first step's, and the tangent lost its positive definiteness within the step), "
+                        "which load control cannot pass: use arc-length control";
     result.message = failure_text(record.step, from, to, by_displacement ? "controlled displacement" : "load factor",
-                                  outcome, halvings);
+                                  failed, halvings);
     recorder.finish(state);  // state is the newest converged step's again
-    recorder.failed(std::move(record), outcome.message);
+    recorder.failed(std::move(record), failed.message);
     result.limit_points = limit_points(result.steps);
     return result;
   }

@@ -383,7 +383,13 @@ TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, in
   // D_k⁻¹ by cofactors of the symmetric block.
   Block d;
   d << d00, d01, d02, d01, d11, d12, d02, d12, d22;
-  return invert_pivot(d, diagonal);
+  int negatives = 0;
+  if (!invert_pivot(d, diagonal, &negatives)) return false;
+  if (negatives > 0) {
+#pragma omp atomic
+    negative_pivots_ += negatives;
+  }
+  return true;
 }
 
 TSM_BLOCK_KERNEL void BlockLDLT::apply_deferred(BlockMatrix& a, int k, int t_end, int defer_from, const Block* deferred, int* slot) const {
@@ -404,6 +410,7 @@ bool BlockLDLT::factorize_row(BlockMatrix& a, int k, double* forward) {
 
 bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
   factor_ = &a;
+  negative_pivots_ = 0;
   double* forward = forward_rhs ? forward_rhs->data() : nullptr;
   // Rows of one subtree touch only that subtree's columns (their patterns are descendants):
   // the tasks run concurrently, each in ascending order.
@@ -480,6 +487,8 @@ bool BlockLDLT::factorize_dense_path(BlockMatrix& a, const Stage& stage, double*
   }
   if (!dense_ldlt_.factorize(dense_)) return false;
 #pragma omp single
+  {
+  negative_pivots_ += dense_ldlt_.negative_pivots();
   for (int q = stage.begin; q < stage.end; ++q) {
     const int k = top_rows_[q], i = q - stage.begin;
     a.value[a.column[k]] = dense_.block<3, 3>(3 * i, 3 * i);
@@ -492,6 +501,7 @@ bool BlockLDLT::factorize_dense_path(BlockMatrix& a, const Stage& stage, double*
         sum.noalias() -= a.value[row_position_[t]] * Eigen::Map<const Eigen::Vector3d>(forward + 3 * row_column_[t]);
       yk = sum;
     }
+  }
   }
   return true;
 }

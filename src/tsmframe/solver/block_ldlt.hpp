@@ -58,6 +58,11 @@ class BlockLDLT {
   /// Completes a solve whose forward substitution ran with factorize: x = L⁻ᵀ D⁻¹ y, in place.
   void finish_solve(Eigen::VectorXd& y) const;
 
+  /// Negative eigenvalues of D in the last factorisation (the tangent's inertia, Sylvester):
+  /// 0 for a positive definite tangent; more once a structure is past a limit or bifurcation
+  /// point. Counted from each pivot block's leading minors.
+  int negative_pivots() const { return negative_pivots_; }
+
   /// Subtrees factorised (and solved) as parallel tasks, and the rows above them.
   int task_count() const { return static_cast<int>(task_start_.size()) - 1; }
   int rows_above_tasks() const { return static_cast<int>(top_rows_.size()); }
@@ -76,6 +81,7 @@ class BlockLDLT {
 
  private:
   int size_ = 0;
+  int negative_pivots_ = 0;  ///< see negative_pivots(); summed atomically over the threads
   const BlockMatrix* factor_ = nullptr;  ///< the matrix holding L and D⁻¹ after factorize
   // Row k of A's lower triangle (the entries (k, i), i < k, one in each column i): row_start_[k]
   // .. row_start_[k+1] in row_position_ (their index in value), columns ascending. Row k of L

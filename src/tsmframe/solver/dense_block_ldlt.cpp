@@ -1,5 +1,6 @@
 #include "tsmframe/solver/dense_block_ldlt.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -10,6 +11,14 @@ constexpr int panel_blocks = 16;  // block columns per panel: 48 scalar columns 
 
 }  // namespace
 
+int negative_eigenvalues(const Eigen::Matrix3d& d, double c22, double det) {
+  const double d00 = d(0, 0);
+  if (d00 != 0.0 && c22 != 0.0) return (d00 < 0.0) + (d00 * c22 < 0.0) + (c22 * det < 0.0);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  eigen.computeDirect(d.selfadjointView<Eigen::Upper>().toDenseMatrix(), Eigen::EigenvaluesOnly);
+  return static_cast<int>((eigen.eigenvalues().array() < 0.0).count());
+}
+
 bool DenseBlockLDLT::factorize(Eigen::MatrixXd& a) {
   const int p = static_cast<int>(a.rows()) / 3;
   for (int j0 = 0; j0 < p; j0 += panel_blocks) {
@@ -19,13 +28,14 @@ bool DenseBlockLDLT::factorize(Eigen::MatrixXd& a) {
     // trailing update.
 #pragma omp single
     {
+      if (j0 == 0) negative_pivots_ = 0;
       ok_ = true;
       pivot_.resize(j1 - j0);
       Eigen::Matrix<double, Eigen::Dynamic, 3> z;
       for (int j = j0; j < j1 && ok_; ++j) {
         const Eigen::Matrix3d d = a.block<3, 3>(3 * j, 3 * j).selfadjointView<Eigen::Lower>();
         Eigen::Matrix3d inverse;
-        ok_ = invert_pivot(d, inverse);
+        ok_ = invert_pivot(d, inverse, &negative_pivots_);
         const int below = 3 * (p - j - 1), later = 3 * (j1 - j - 1);
         auto l = a.block(3 * (j + 1), 3 * j, below, 3);
         z = l;

@@ -24,22 +24,31 @@ class DenseBlockLDLT {
   /// triangle is ignored and overwritten) in place: below the diagonal blocks L, on them D_j⁻¹
   /// (full 3×3). Returns false (on every thread) if a pivot block is singular or not finite.
   bool factorize(Eigen::MatrixXd& a);
+  /// Negative eigenvalues of D in the last factorisation.
+  int negative_pivots() const { return negative_pivots_; }
 
  private:
   std::vector<Eigen::Matrix3d> pivot_;  ///< D_j of the panel being applied
   Eigen::MatrixXd scaled_;              ///< L(rest, panel) D_panel, for the trailing update
   bool ok_ = true;
+  int negative_pivots_ = 0;
 };
 
+/// Negative eigenvalues of the symmetric 3×3 block `d` (upper triangle), from its leading
+/// minors d00, c22 = d00 d11 − d01² and det (Sylvester: sign changes in 1, d00, c22, det); a zero
+/// leading minor (rare) is settled by the eigenvalues themselves.
+int negative_eigenvalues(const Eigen::Matrix3d& d, double c22, double det);
+
 /// D⁻¹ of the symmetric 3×3 block `d` (its upper triangle is read) by cofactors; false if it is
-/// singular or not finite. Shared by both factorisations; inline, for the sparse one's pivot per
-/// row is on its critical path.
-inline bool invert_pivot(const Eigen::Matrix3d& d, Eigen::Matrix3d& inverse) {
+/// singular or not finite. With `negatives`, adds d's negative eigenvalues to it. Shared by
+/// both factorisations; inline, for the sparse one's pivot per row is on its critical path.
+inline bool invert_pivot(const Eigen::Matrix3d& d, Eigen::Matrix3d& inverse, int* negatives = nullptr) {
   const double d00 = d(0, 0), d01 = d(0, 1), d02 = d(0, 2), d11 = d(1, 1), d12 = d(1, 2), d22 = d(2, 2);
   const double c00 = d11 * d22 - d12 * d12, c01 = d02 * d12 - d01 * d22, c02 = d01 * d12 - d02 * d11;
   const double c11 = d00 * d22 - d02 * d02, c12 = d01 * d02 - d00 * d12, c22 = d00 * d11 - d01 * d01;
   const double det = d00 * c00 + d01 * c01 + d02 * c02;
   if (!(det != 0.0) || !std::isfinite(det)) return false;
+  if (negatives && !(d00 > 0.0 && c22 > 0.0 && det > 0.0)) *negatives += negative_eigenvalues(d, c22, det);
   const double r = 1.0 / det;
   inverse << c00 * r, c01 * r, c02 * r,  //
       c01 * r, c11 * r, c12 * r,         //

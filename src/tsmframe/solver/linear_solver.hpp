@@ -42,6 +42,9 @@ class LinearSolver {
   /// the forward substitution rides along the factorisation (one pass over the factor less).
   bool factorize_and_solve(BlockMatrix& matrix, const std::vector<RankOne>& rank_one, Eigen::VectorXd& x,
                            const Refill& refill = {});
+  /// Negative eigenvalues of the symmetric part A in the last factorisation (block LDLᵀ's
+  /// inertia), −1 when the last factorisation was the general SparseLU one (unknown).
+  int negative_pivots() const { return general_ ? -1 : ldlt_.negative_pivots(); }
   /// Solves with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
   /// Solves in place: `x` holds the right-hand side and receives the solution.

@@ -314,7 +314,8 @@ bool NewtonSolver::within_floor(const std::array<double, 2>& norms, const State&
 
 NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state) {
   NewtonOutcome out = iterate_step(constraint, state);
-  if (out.status == Status::converged || holding_contacts_.empty()) return out;
+  if (out.status == Status::converged) return out;
+  if (holding_contacts_.empty()) return out;
   const Model& model = system_.model();
   for (const int k : holding_contacts_)
     if (!state.contacts[k].active) {
@@ -384,7 +385,12 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
       BlockMatrix& K = system_.tangent_for_factorisation();
       const std::vector<RankOne> none;
       auto attempt = [&](const std::vector<RankOne>& terms, Eigen::VectorXd* x) {
-        return x ? solver_.factorize_and_solve(K, terms, *x, refill) : solver_.factorize(K, terms, refill);
+        const bool ok = x ? solver_.factorize_and_solve(K, terms, *x, refill) : solver_.factorize(K, terms, refill);
+        if (const int negatives = solver_.negative_pivots(); ok && negatives >= 0) {
+          if (it == 1) out.start_negative_pivots = negatives;
+          else out.most_negative_pivots = std::max(out.most_negative_pivots, negatives);
+        }
+        return ok;
       };
       if (all) return attempt(sliding, rhs);
       if (rhs) kept_rhs_ = *rhs;  // the solve runs along the factorisation

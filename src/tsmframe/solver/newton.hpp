@@ -48,6 +48,9 @@ struct NewtonOutcome {
   std::vector<double> residual_norms;  ///< relative, iterate 0 first
   std::string criterion;               ///< "force" or "round-off"
   std::vector<std::vector<ContactPoint>> contact_iterates;  ///< per iterate, iterate 0 first
+  /// Negative eigenvalues of the tangent (its symmetric part) at the step's first factorisation
+  /// (−1: unknown) and the most at any later one in the step.
+  int start_negative_pivots = -1, most_negative_pivots = 0;
 };
 
 /// Force and moment scales of the convergence test (unit-consistent: each kind on its own).
