@@ -385,10 +385,7 @@ TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, in
   d << d00, d01, d02, d01, d11, d12, d02, d12, d22;
   int negatives = 0;
   if (!invert_pivot(d, diagonal, &negatives)) return false;
-  if (negatives > 0) {
-#pragma omp atomic
-    negative_pivots_ += negatives;
-  }
+  if (negatives > 0) thread_negatives_[omp_get_thread_num()].count += negatives;  // each thread its own line
   return true;
 }
 
@@ -411,6 +408,7 @@ bool BlockLDLT::factorize_row(BlockMatrix& a, int k, double* forward) {
 bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
   factor_ = &a;
   negative_pivots_ = 0;
+  thread_negatives_.assign(omp_get_max_threads(), {});
   double* forward = forward_rhs ? forward_rhs->data() : nullptr;
   // Rows of one subtree touch only that subtree's columns (their patterns are descendants):
   // the tasks run concurrently, each in ascending order.

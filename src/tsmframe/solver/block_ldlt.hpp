@@ -61,7 +61,11 @@ class BlockLDLT {
   /// Negative eigenvalues of D in the last factorisation (the tangent's inertia, Sylvester):
   /// 0 for a positive definite tangent; more once a structure is past a limit or bifurcation
   /// point. Counted from each pivot block's leading minors.
-  int negative_pivots() const { return negative_pivots_; }
+  int negative_pivots() const {
+    int total = negative_pivots_;
+    for (const PerThread& t : thread_negatives_) total += t.count;
+    return total;
+  }
 
   /// Subtrees factorised (and solved) as parallel tasks, and the rows above them.
   int task_count() const { return static_cast<int>(task_start_.size()) - 1; }
@@ -81,7 +85,11 @@ class BlockLDLT {
 
  private:
   int size_ = 0;
-  int negative_pivots_ = 0;  ///< see negative_pivots(); summed atomically over the threads
+  int negative_pivots_ = 0;  ///< see negative_pivots(): the dense top's, plus the rows' per thread
+  struct alignas(64) PerThread {
+    int count = 0;
+  };
+  std::vector<PerThread> thread_negatives_;
   const BlockMatrix* factor_ = nullptr;  ///< the matrix holding L and D⁻¹ after factorize
   // Row k of A's lower triangle (the entries (k, i), i < k, one in each column i): row_start_[k]
   // .. row_start_[k+1] in row_position_ (their index in value), columns ascending. Row k of L
