@@ -159,6 +159,45 @@ TEST(BlockLDLT, SolvesIndefiniteSystems) {
   }
 }
 
+TEST(BlockLDLT, CountsTheNegativeEigenvaluesOfTheMatrix) {
+  // Sylvester: D has as many negative eigenvalues as the matrix (LDLᵀ is a congruence), which is
+  // how a run tells a tangent past a limit point. Positive definite: none; shifted down: the
+  // dense eigenvalues' count, with one thread and two, the dense top separator included.
+  for (unsigned seed = 21; seed <= 25; ++seed) {
+    const Case definite = random_case(60, 20.0, seed);
+    BlockMatrix m = definite.matrix;
+    BlockLDLT ldlt;
+    ldlt.analyze(m);
+    ASSERT_TRUE(ldlt.factorize(m));
+    EXPECT_EQ(ldlt.negative_pivots(), 0);
+    const Case c = random_case(60, 0.5, seed);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(c.dense);
+    const int expected = static_cast<int>((eigen.eigenvalues().array() < 0.0).count());
+    ASSERT_GT(expected, 0);
+    BlockMatrix n = c.matrix;
+    ldlt.analyze(n);
+    ASSERT_TRUE(ldlt.factorize(n));
+    EXPECT_EQ(ldlt.negative_pivots(), expected) << "seed " << seed;
+  }
+  // With the rows above the subtrees in parallel and a dense top separator (too big for a dense
+  // eigensolver in a unit test; DenseBlockLDLT's own count is checked in its tests): shifted so
+  // that some pivots are negative, the same count with one thread and two.
+  const Case big = random_case(3600, 1.0, 9, 24, 60, false, 48);
+  int counted[2] = {-1, -1};
+  for (int threads = 1; threads <= 2; ++threads) {
+    omp_set_num_threads(threads);
+    BlockMatrix m = big.matrix;
+    BlockLDLT ldlt;
+    ldlt.analyze(m);
+    ASSERT_GE(ldlt.rows_in_dense_paths(), 48);
+    ASSERT_TRUE(ldlt.factorize(m));
+    counted[threads - 1] = ldlt.negative_pivots();
+  }
+  omp_set_num_threads(omp_get_num_procs());
+  EXPECT_GT(counted[0], 0);
+  EXPECT_EQ(counted[0], counted[1]);
+}
+
 // Solves c with one thread and with two, each by a plain solve and with the forward
 // substitution along the factorisation; `check` looks at the analysis first. Expects residuals
 // below 1e-12 and the same bits from both thread counts.

@@ -77,3 +77,21 @@ TEST(DenseBlockLDLT, ReportsASingularPivotOnEveryThread) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(DenseBlockLDLT, CountsTheNegativeEigenvaluesOfTheMatrix) {
+  // Sylvester: D's inertia is the matrix's (a congruence). 40 blocks over three panels, shifted
+  // from definite to indefinite.
+  for (const double shift : {20.0, 2.0, 0.0, -2.0}) {
+    Eigen::MatrixXd a = random_symmetric(40, shift, 5);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(a, Eigen::EigenvaluesOnly);
+    const int expected = static_cast<int>((eigen.eigenvalues().array() < 0.0).count());
+    DenseBlockLDLT ldlt;
+    ASSERT_TRUE(ldlt.factorize(a)) << shift;
+    EXPECT_EQ(ldlt.negative_pivots(), expected) << "shift " << shift;
+    if (shift == 20.0) EXPECT_EQ(expected, 0);
+  }
+}
+
+}  // namespace
