@@ -252,6 +252,33 @@ TEST(ContactResting, PushedThroughBetweenTheEdgesTheLoadPassesAMaximumThatArcLen
   for (size_t k = 0; k < 2; ++k) EXPECT_NEAR(contact_of(arc.steps.back(), k).force, contact_of(arc.steps.back(), 0).force, 1e-6 * contact_of(arc.steps.back(), 0).force);
 }
 
+TEST(ContactResting, ACantileverTipRestingOnABeamSharesTheLoadAsTwoSpringsInSeries) {
+  // A cantilever (5.1 m) whose tip is drawn at the gap (0.1 m) above a simply supported beam
+  // (span 6 m, the tip 3.1 m from its pin), tip load P in one step: the two members act as
+  // springs in series, the contact carrying P c_c / (c_c + c_b) with c_c = L³/3EI + L/GA_s and
+  // c_b = a²b²/3EIL + ab/(L GA_s) (Timoshenko) — to the geometric effects of a 1 mm deflection.
+  json m = {{"materials", {{"steel", {{"E", 2e11}, {"G", 7.7e10}}}}},
+            {"sections", {{"s", {{"A", 0.004}, {"I", 2e-5}, {"shear_area", 0.002}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 2.0}, {"y", 0.0}}, {{"id", 2}, {"x", 8.0}, {"y", 0.0}},
+                                   {{"id", 11}, {"x", 0.0}, {"y", 0.1}}, {{"id", 12}, {"x", 5.1}, {"y", 0.1}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}},
+                                      {{"node", 11}, {"type", "fixed"}}})},
+            {"loads", json::array({{{"node", 12}, {"fy", -1e3}}})},
+            {"contacts", json::array({{{"node", 12}, {"members", {0}}, {"gap", 0.1}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 1}}}}}};
+  const auto member = [](int from, int to, int divisions) {
+    return json{{"from", from}, {"to", to}, {"divisions", divisions}, {"element", "timoshenko"}, {"material", "steel"}, {"section", "s"}};
+  };
+  m["members"] = json::array({member(1, 2, 12), member(11, 12, 10)});
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const double EI = 2e11 * 2e-5, GAs = 7.7e10 * 2e-3, Lc = 5.1, a = 3.1, b = 2.9, L = 6.0, P = 1e3;
+  const double cc = Lc * Lc * Lc / (3.0 * EI) + Lc / GAs, cb = a * a * b * b / (3.0 * EI * L) + a * b / (L * GAs);
+  EXPECT_NEAR(contact_of(r.steps.back()).force, P * cc / (cc + cb), 1e-5 * P);
+  expect_equilibrium(model, r.steps.back());
+}
+
 TEST(ContactResting, OnlyAHeldNodeDrawnAtTheGapOffTheBeamRestsOnIt) {
   json m = beam_on_knife_edges(-1e3, 1);
   const tsm::Model model = tsm::io::read_model(m);
