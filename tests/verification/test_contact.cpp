@@ -250,6 +250,12 @@ TEST(ContactResting, PushedThroughBetweenTheEdgesTheLoadPassesAMaximumThatArcLen
   EXPECT_NEAR(largest, arc.limit_points[0].load_factor, 5e-3 * arc.limit_points[0].load_factor);
   EXPECT_LT(arc.steps.back().load_factor, arc.limit_points[0].load_factor);  // past it, going down
   for (size_t k = 0; k < 2; ++k) EXPECT_NEAR(contact_of(arc.steps.back(), k).force, contact_of(arc.steps.back(), 0).force, 1e-6 * contact_of(arc.steps.back(), 0).force);
+  // Further down it slides off the edges (their points reach its free ends at a sag of ~3 m),
+  // and the run says so.
+  m["analysis"]["control"]["until"]["value"] = -4.0;
+  const RunResult off = run(m, model);
+  ASSERT_NE(off.status, tsm::solver::Status::converged);
+  EXPECT_NE(off.message.find("has slid off the beam's end: nothing else supports it"), std::string::npos) << off.message;
 }
 
 TEST(ContactResting, ACantileverTipRestingOnABeamSharesTheLoadAsTwoSpringsInSeries) {
