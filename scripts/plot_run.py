@@ -9,6 +9,7 @@ DIR/plots/load-displacement.png|svg (λ against ux, uy, rz of every monitored no
 """
 import csv
 import json
+import math
 import os
 import sys
 import textwrap
@@ -31,6 +32,22 @@ def short_title(title, width=90, lines=3):
     return "\n".join(wrapped)
 
 
+def magnification(results, states):
+    """1, or a round factor (1, 2 or 5 × 10^k) that makes the largest translation of an element's
+    node about a tenth of the model's size, where it is less than 2 % of it: small deflections
+    drawn to scale are a flat line."""
+    xs = [n["x"] for n in results["nodes"]]
+    ys = [n["y"] for n in results["nodes"]]
+    size = math.hypot(max(xs) - min(xs), max(ys) - min(ys))
+    drawn = {str(n) for e in results["elements"] for n in e["nodes"]}  # a pusher's own travel is no deflection
+    largest = max((math.hypot(u[0], u[1]) for s in states for k, u in s["displacements"].items() if k in drawn), default=0.0)
+    if size <= 0.0 or largest <= 0.0 or largest >= 0.02 * size:
+        return 1.0
+    wanted = 0.1 * size / largest
+    power = 10.0 ** math.floor(math.log10(wanted))
+    return max(m * power for m in (1.0, 2.0, 5.0) if m * power <= wanted)
+
+
 def main(directory):
     with open(os.path.join(directory, "results.json")) as f:
         results = json.load(f)
@@ -43,13 +60,15 @@ def main(directory):
     cmap = plt.get_cmap("viridis")
     draw_shape(ax, results, {"displacements": {str(n["id"]): [0, 0, 0] for n in results["nodes"]}},
                color="0.75", lw=1, label="undeformed")
+    scale = magnification(results, states)
     for k, s in enumerate(states):
-        draw_shape(ax, results, s, color=cmap(k / max(1, len(states) - 1)), lw=1.3,
+        draw_shape(ax, results, s, scale=scale, color=cmap(k / max(1, len(states) - 1)), lw=1.3,
                    label=f"step {s['step']}, λ = {s['load_factor']:.4g}")
     ax.set_aspect("equal")
     ax.set_xlabel("x")
     ax.set_ylabel("y")
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0))  # beside a long, flat frame
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0),  # beside a long, flat frame
+              title=f"displacements × {scale:g}" if scale != 1.0 else None, title_fontsize=7)
     ax.set_title(short_title(results.get("title")) or "deformed shapes", fontsize=9)
     for ext in ("png", "svg"):
         fig.savefig(os.path.join(plots, f"deformed.{ext}"), dpi=130, bbox_inches="tight")

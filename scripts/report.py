@@ -63,14 +63,15 @@ def element_curve(xi, yi, xj, yj, Xi, Yi, Xj, Yj, rot_i, rot_j, points=12):
     return xs, ys
 
 
-def draw_shape(ax, results, step, **style):
+def draw_shape(ax, results, step, scale=1.0, **style):
+    """Every element's deflected curve at `step`, its displacements and rotations × `scale`."""
     nodes = {n["id"]: (n["x"], n["y"]) for n in results["nodes"]}
     d = step["displacements"]
     first = True
     for e in results["elements"]:
         a, b = e["nodes"]
         (Xi, Yi), (Xj, Yj) = nodes[a], nodes[b]
-        ui, uj = d[str(a)], d[str(b)]
+        ui, uj = [scale * v for v in d[str(a)]], [scale * v for v in d[str(b)]]
         xs, ys = element_curve(Xi + ui[0], Yi + ui[1], Xj + uj[0], Yj + uj[1], Xi, Yi, Xj, Yj, ui[2], uj[2])
         ax.plot(xs, ys, label=style.pop("label", None) if first else None, **style)
         first = False

@@ -163,6 +163,19 @@ class Plots(unittest.TestCase):
             width = int.from_bytes(header[16:20], "big")  # the IHDR chunk
             self.assertLess(width, 1600)
 
+    def test_small_deflections_are_magnified_by_a_round_factor_a_pushers_travel_not_counted(self):
+        sys.path.insert(0, os.path.join(SOURCE, "scripts"))
+        from plot_run import magnification
+        results = {"nodes": [{"id": 1, "x": 0.0, "y": 0.0}, {"id": 2, "x": 10.0, "y": 0.0}, {"id": 9, "x": 1.0, "y": 0.05}],
+                   "elements": [{"nodes": [1, 2]}]}
+        def states(beam_uy, pusher_ux):
+            return [{"displacements": {"1": [0, 0, 0], "2": [0, beam_uy, 0], "9": [pusher_ux, 0, 0]}}]
+        # 3 cm on a 10 m frame: × 20 brings it to 0.6 m, about a tenth of the size (× 50 would pass it)
+        self.assertEqual(magnification(results, states(-0.03, 8.0)), 20.0)
+        self.assertEqual(magnification(results, states(-0.5, 0.0)), 1.0)   # 5 % of the size: drawn to scale
+        self.assertEqual(magnification(results, states(0.0, 8.0)), 1.0)    # nothing deflects
+        self.assertEqual(magnification(results, states(-1e-4, 0.0)), 10000.0)
+
 
 if __name__ == "__main__":
     unittest.main(argv=[sys.argv[0]], verbosity=2)

@@ -285,6 +285,38 @@ TEST(ContactResting, ACantileverTipRestingOnABeamSharesTheLoadAsTwoSpringsInSeri
   expect_equilibrium(model, r.steps.back());
 }
 
+TEST(ContactResting, ALoadRidingOnABeamFollowsItsInfluenceLine) {
+  // A node drawn at the gap (5 cm) above a simply supported beam (10 m), its ux prescribed (1 → 9
+  // m) and its uy free, pressed down by λ·10 kN: held across the beam by its contact alone (it
+  // was refused as "held by no element"). At every step it rides the beam's surface: its uy is
+  // the beam's deflection under a point load λP at x = 1 + 8λ,
+  // P a²b²/(3EIL) + P a b/(L GA_s), and the contact carries λP — to the geometric effects
+  // (the surface's slope, the gap's lever): 1e-3 here.
+  json m = {{"materials", {{"steel", {{"E", 2e11}, {"G", 7.7e10}}}}},
+            {"sections", {{"s", {{"A", 0.004}, {"I", 2e-5}, {"shear_area", 0.002}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
+                                   {{"id", 9}, {"x", 1.0}, {"y", 0.05}}})},
+            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 20}, {"element", "timoshenko"},
+                                      {"material", "steel"}, {"section", "s"}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}}})},
+            {"loads", json::array({{{"node", 9}, {"fy", -1e4}}})},
+            {"prescribed", json::array({{{"node", 9}, {"ux", 8.0}}})},
+            {"contacts", json::array({{{"node", 9}, {"members", "all"}, {"gap", 0.05}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 16}}}}}};
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  ASSERT_EQ(r.steps.size(), 16u);
+  const double EI = 2e11 * 2e-5, GAs = 7.7e10 * 2e-3, L = 10.0;
+  for (const StepRecord& s : r.steps) {
+    const double P = 1e4 * s.load_factor, a = 1.0 + 8.0 * s.load_factor, b = L - a;
+    const double deflection = P * a * a * b * b / (3.0 * EI * L) + P * a * b / (L * GAs);
+    EXPECT_NEAR(node_displacement(model, s, 9)[1], -deflection, 1e-3 * deflection) << "step " << s.step;
+    EXPECT_NEAR(contact_of(s).force, P, 1e-3 * P) << "step " << s.step;
+    expect_equilibrium(model, s);
+  }
+}
+
 TEST(ContactResting, OnlyAHeldNodeDrawnAtTheGapOffTheBeamRestsOnIt) {
   json m = beam_on_knife_edges(-1e3, 1);
   const tsm::Model model = tsm::io::read_model(m);
@@ -295,6 +327,14 @@ TEST(ContactResting, OnlyAHeldNodeDrawnAtTheGapOffTheBeamRestsOnIt) {
   EXPECT_EQ(resting->side, -1);  // below the beam (n is +y for a beam drawn along +x)
   EXPECT_NEAR(resting->point.x(), 1.25, 1e-12);
   EXPECT_NEAR(resting->point.y(), 0.0, 1e-12);
+  json free = m;  // free both ways: its contact cannot hold it along the beam (frictionless)
+  free["supports"][0] = {{"node", 7}, {"fix", {"rz"}}};
+  try {
+    tsm::io::read_model(free);
+    ADD_FAILURE() << "a contact node free along the beam was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("node 7 is held by no element"), std::string::npos) << e.what();
+  }
   for (const double y : {-0.0, -0.051, 0.06}) {  // on the axis (no side yet), beyond the gap, above beyond it
     json moved = m;
     moved["nodes"][3]["y"] = y;

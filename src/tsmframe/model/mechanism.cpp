@@ -37,14 +37,23 @@ std::optional<std::string> find_mechanism(const Model& model, bool resting_conta
   }
   for (int k = 0; k < n; ++k) {
     if (held[k]) continue;
-    const bool contact_node = std::any_of(model.contacts.begin(), model.contacts.end(),
-                                          [&](const ContactSpec& c) { return c.node == k; });
+    const auto spec = std::find_if(model.contacts.begin(), model.contacts.end(), [&](const ContactSpec& c) { return c.node == k; });
+    const bool contact_node = spec != model.contacts.end();
+    // A contact node resting on a beam as drawn is held by it along the normal there: enough if
+    // that is its one free translation's direction, in part (a load riding on a beam: ux
+    // prescribed, uy free).
+    int free_translations = 0, free_dof = -1;
+    for (const int dof : {ux, uy})
+      if (!model.constrained[dofs_per_node * k + dof]) ++free_translations, free_dof = dof;
+    if (resting_contacts_hold && contact_node && free_translations == 1 && model.constrained[dofs_per_node * k + rz])
+      if (const auto r = resting_contact(model, *spec); r && std::abs(r->normal[free_dof]) > 1e-6) continue;
     for (int dof = 0; dof < dofs_per_node; ++dof)
       if (!model.constrained[dofs_per_node * k + dof])
         return "structure is a mechanism: node " + std::to_string(model.nodes[k].id) +
                " is held by no element and its " + dof_name(dof) + " is not supported" +
-               (contact_node ? std::string(" (a contact node must be held without its contact: prescribe its motion, "
-                                           "or make it a node of a beam)")
+               (contact_node ? std::string(" (a contact node is held by its contact only if drawn at its \"gap\" from the "
+                                           "beam and free in one direction only, across the beam: else prescribe its "
+                                           "motion, or make it a node of a beam)")
                              : std::string());
   }
   std::vector<std::vector<int>> parts(n);
