@@ -153,12 +153,15 @@ std::vector<ContactState> ContactTracker::initial_states() const {
   const Eigen::VectorXd D = Eigen::VectorXd::Zero(model_.dof_count());
   const std::vector<double> rotations(model_.elements.size(), 0.0);
   std::vector<ContactState> states(specs_.size());
+  std::vector<char> occupied(model_.elements.size(), 0);
   for (size_t k = 0; k < specs_.size(); ++k) {
     states[k].reference_side.assign(specs_[k].candidates.size(), 0);
     reset_sides(specs_[k], D, rotations, 0, states[k]);
     // Resting on an element as drawn (model/resting_contact): in contact from the start, so a
-    // structure held only by its contacts has a tangent to start from.
-    if (const auto r = resting_contact(model_, model_.contacts[k])) {
+    // structure held only by its contacts has a tangent to start from (one contact per element,
+    // as always: a second one on the same element starts at the first update instead).
+    if (const auto r = resting_contact(model_, model_.contacts[k]); r && !occupied[r->element]) {
+      occupied[r->element] = 1;
       states[k].active = true;
       states[k].element = r->element;
       states[k].side = r->side;
