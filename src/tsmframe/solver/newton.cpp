@@ -320,10 +320,11 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
   for (const int k : holding_contacts_) {
     const contact::ContactState& c = state.contacts[k];
     // Released, or held at a free end it has gone past (α beyond [0, 1] after the hand-over).
-    if (!c.active || c.alpha < 0.0 || c.alpha > 1.0) {
-      out.message += "; the structure is held only by the contacts resting on it and the one at node " +
-                     std::to_string(model.nodes[model.contacts[k].node].id) +
-                     (c.active ? " has slid off the beam's end" : " let go") + ": nothing else supports it";
+    if (!c.active || c.alpha < 0.0 || c.alpha > 1.0) {  // the cause first: what Newton then met follows from it
+      out.message = "the structure is held only by the contacts resting on it and the one at node " +
+                    std::to_string(model.nodes[model.contacts[k].node].id) +
+                    (c.active ? " has slid off the beam's end" : " let go") + ": nothing else supports it (then " +
+                    out.message + ")";
       break;
     }
   }
