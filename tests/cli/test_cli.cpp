@@ -154,6 +154,15 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
        "supports: structure is a mechanism: the part holding node 1 and the 4 nodes joined to it is free to rotate about (0, 0) "
        "(add a support that stops it); a contact holds it from the start only if its node is held and drawn at the contact's "
        "\"gap\" from the beam's centre line"},
+      {"two contacts resting on one element",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 2.2}, {"y", -0.05}});
+         m["nodes"].push_back({{"id", 6}, {"x", 2.8}, {"y", -0.05}});
+         m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
+         m["supports"].push_back({{"node", 6}, {"type", "fixed"}});
+         m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"gap", 0.05}}, {{"node", 6}, {"members", "all"}, {"gap", 0.05}}});
+       },
+       "contacts[1]: rests on element 3, as contacts[0] does: one contact per element (give that member more divisions)"},
       {"load on missing node", [](json& m) { m["loads"][0]["node"] = 42; }, "loads[0].node: unknown node 42"},
       {"contact on missing node",
        [](json& m) { m["contacts"] = json::array({{{"node", 42}, {"members", "all"}}}); },

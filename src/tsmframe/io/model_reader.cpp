@@ -12,6 +12,7 @@
 
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/model/mechanism.hpp"
+#include "tsmframe/model/resting_contact.hpp"
 
 namespace tsm::io {
 namespace {
@@ -159,6 +160,7 @@ class Reader {
     read_prescribed();
     fix_free_rotations();
     read_contacts();
+    check_resting_contacts();
     read_analysis();
     if (auto mechanism = find_mechanism(model_)) fail("supports", *mechanism);
     if (!model_.reference_prescribed.any()) model_.reference_prescribed.resize(0);  // nothing prescribed moves
@@ -449,6 +451,21 @@ class Reader {
   }
 
   /// A node that no beam element holds has its rotation fixed (FORMAT.md: a rigid pusher).
+  /// Contacts resting on a beam as drawn start in contact, one per element (as at every
+  /// update): two resting on one element cannot both hold it.
+  void check_resting_contacts() {
+    std::vector<int> resting_on(model_.elements.size(), -1);
+    for (int k = 0; k < static_cast<int>(model_.contacts.size()); ++k) {
+      const auto r = resting_contact(model_, model_.contacts[k]);
+      if (!r) continue;
+      if (resting_on[r->element] >= 0)
+        fail("contacts[" + std::to_string(k) + "]",
+             "rests on element " + std::to_string(model_.elements[r->element].id) + ", as contacts[" +
+                 std::to_string(resting_on[r->element]) + "] does: one contact per element (give that member more divisions)");
+      resting_on[r->element] = k;
+    }
+  }
+
   void fix_free_rotations() {
     std::vector<bool> held(model_.node_count(), false);
     for (const Element& e : model_.elements) held[e.start] = held[e.end] = true;
