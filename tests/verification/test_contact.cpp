@@ -884,6 +884,39 @@ TEST(ContactDetection, ANodeDraggedIntoAColumnInOneStepStopsAtIt) {
   }
 }
 
+TEST(ContactDetection, TwoNodesPressingOneElementFailSayingSoNotThroughTheBeam) {
+  // Two pushers 0.4 m apart over one 2.5 m element of a pinned beam, both pushed 10 cm down: the
+  // tracker gives an element one contact element, so a node that found its element taken went
+  // through the beam unnoticed. Now the step fails naming both nodes and what to do.
+  json m = {{"materials", {{"steel", {{"E", 2e11}, {"G", 7.7e10}}}}},
+            {"sections", {{"s", {{"A", 0.004}, {"I", 2e-5}, {"shear_area", 0.002}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
+                                   {{"id", 8}, {"x", 3.0}, {"y", 0.001}}, {{"id", 9}, {"x", 2.6}, {"y", 0.001}}})},
+            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 4}, {"element", "timoshenko"},
+                                      {"material", "steel"}, {"section", "s"}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}},
+                                      {{"node", 8}, {"fix", {"ux"}}}, {{"node", 9}, {"fix", {"ux"}}}})},
+            {"prescribed", json::array({{{"node", 8}, {"uy", -0.1}}, {{"node", 9}, {"uy", -0.1}}})},
+            {"contacts", json::array({{{"node", 8}, {"members", "all"}}, {{"node", 9}, {"members", "all"}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 5}}}}}};
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_NE(r.status, tsm::solver::Status::converged) << "converged with a node through the beam";
+  EXPECT_NE(r.message.find("which contact node"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("one contact per element (give that member more divisions)"), std::string::npos) << r.message;
+  // With 0.25 m elements each node has elements of its own, and the answer shows why the coarse
+  // run could not settle: pushed at 2.6 m the beam sags more at 3.0 m than 10 cm, so only node 9
+  // touches, and node 8 ends above the beam.
+  m["members"][0]["divisions"] = 40;
+  const RunResult fine = run(m, model);
+  ASSERT_EQ(fine.status, tsm::solver::Status::converged) << fine.message;
+  EXPECT_LT(contact_of(fine.steps.back(), 0).element, 0);
+  EXPECT_GE(contact_of(fine.steps.back(), 1).element, 0);
+  const int under_8 = beam_node_at(model, 3.0);
+  ASSERT_GE(under_8, 0);
+  EXPECT_LT(node_displacement(model, fine.steps.back(), model.nodes[under_8].id)[1], -0.1);
+}
+
 TEST(ContactDetection, ANodeJustOutsideAnArchReadsItsSideOffTheElementUnderIt) {
   // A clamped half-circle arch (radius 5 m, 40 elements) and a pusher starting 0.1 mm outside it,
   // inside the sagitta of the chords (3.9 mm): just past an element's end the next chord's line

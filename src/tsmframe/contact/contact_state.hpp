@@ -11,6 +11,9 @@ inline constexpr signed char no_side = 2;
 struct ContactState {
   bool active = false;
   int element = -1;   ///< element carrying the contact (index), −1 when inactive
+  /// Inactive: an element the node has reached that another contact is on (one contact per
+  /// element), at the last update; −1 none.
+  int blocked_element = -1;
   int side = 0;       ///< side of that element's chord the node is on: +1 along n, −1 against
   double alpha = 0.0; ///< α = l_ic / l at the last evaluation
   double force = 0.0; ///< compression −side·Y (≥ 0 when converged); at a vertex, of the resultant

@@ -514,12 +514,12 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
       continue;
     }
     // Detection: the node has reached or crossed an element's deflected centre line.
+    state.blocked_element = -1;
     if (state.released_in_step) continue;
     int best = -1, best_side = 0;
     double best_gap = INFINITY, best_alpha = 0.0;
     for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
       const int f = spec.candidates[ci];
-      if (occupied[f]) continue;
       const NodeOnElement where = locate(spec, f, D, rotations);
       if (where.alpha < -alpha_tolerance || where.alpha > 1.0 + alpha_tolerance) continue;
       const int reference = state.reference_side[ci];
@@ -530,6 +530,10 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
         if (reference * where.gap <= spec.gap) side = reference;
       } else if (std::abs(where.gap) > touch_tolerance_) {
         side = -sign(where.gap);  // it left the centre line: it pushes the way it moves
+      }
+      if (side != 0 && occupied[f]) {  // another contact holds this element: one per element
+        state.blocked_element = f;
+        continue;
       }
       if (side != 0 && std::abs(where.gap) < best_gap) {
         best = f;
@@ -549,6 +553,7 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
       }
     }
     if (best >= 0) {
+      state.blocked_element = -1;
       state.active = true;
       state.element = best;
       state.side = best_side;
@@ -583,6 +588,12 @@ bool ContactTracker::node_passed_through(size_t k, const Eigen::VectorXd& D, con
     if (where.alpha >= 0.0 && where.alpha <= 1.0 && expected * where.gap < -touch_tolerance_) return true;
   }
   return false;
+}
+
+std::pair<int, int> ContactTracker::blocked(const std::vector<ContactState>& states) const {
+  for (size_t k = 0; k < states.size(); ++k)
+    if (!states[k].active && states[k].blocked_element >= 0) return {static_cast<int>(k), states[k].blocked_element};
+  return {-1, -1};
 }
 
 bool ContactTracker::passed_through(const Eigen::VectorXd& D, const std::vector<double>& rotations,

@@ -72,6 +72,9 @@ class ContactTracker {
   /// not start again within the step): the converged state is then not acceptable.
   bool passed_through(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
                       const std::vector<ContactState>& states) const;
+  /// A contact (index) whose node reached an element another contact is on — which the tracker
+  /// cannot give two contact elements — and that element; {−1, −1} if none.
+  std::pair<int, int> blocked(const std::vector<ContactState>& states) const;
   /// Lets every contact released during this step whose node has passed through a beam touch
   /// again (the next update() starts it from its side at the step's start); returns how many.
   /// With several contacts pressing one beam, releasing all that pull at once can let another

@@ -331,6 +331,13 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
   return out;
 }
 
+int NewtonSolver::contact_on(const State& state, int element) const {
+  for (size_t k = 0; k < state.contacts.size(); ++k)
+    if (state.contacts[k].active && (state.contacts[k].element == element || state.contacts[k].partner == element))
+      return static_cast<int>(k);
+  return -1;
+}
+
 bool NewtonSolver::carries_nothing(const ResidualScale& scale, const State& state) const {
   const assembly::RoundingFloor floor = system_.rounding_floor(state.displacements, state.chord_rotations, {});
   return scale.force <= floor_ratio * floor.force && scale.moment <= floor_ratio * floor.moment;
@@ -563,6 +570,18 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
         std::ostringstream os;
         os << "an element end turned " << eval_.largest_end_rotation
            << " rad against its chord, beyond what an element describes (refine the mesh or take smaller steps)";
+        out.message = iterate_text(os.str().c_str(), it);
+        return out;
+      }
+      if (const auto [k, element] = contacts_ ? contacts_->blocked(state.contacts) : std::pair{-1, -1}; k >= 0) {
+        // Its node lies through an element another contact is on: the state is not acceptable,
+        // and no iterate can change that (one contact element per element).
+        const int other = contact_on(state, element);
+        out.status = Status::diverged;
+        std::ostringstream os;
+        os << "contact node " << model.nodes[model.contacts[k].node].id << " reached element " << model.elements[element].id
+           << ", which contact node " << (other >= 0 ? model.nodes[model.contacts[other].node].id : -1)
+           << " is on: one contact per element (give that member more divisions)";
         out.message = iterate_text(os.str().c_str(), it);
         return out;
       }

@@ -128,6 +128,8 @@ class NewtonSolver {
   /// ratio × the plain elements' rounding floor (contacts left out: a stiff contact's floor can
   /// dwarf the force it carries).
   bool carries_nothing(const ResidualScale& scale, const State& state) const;
+  /// The active contact (index) on `element`, −1 if none.
+  int contact_on(const State& state, int element) const;
   /// step() without the note a failure gets when the structure lost the contacts holding it.
   NewtonOutcome iterate_step(const PathConstraint& constraint, State& state);
   /// Translational part of dot products for the arc-length constraint.
