@@ -100,11 +100,8 @@ NodeOnElement ContactTracker::locate(const Spec& spec, int element, const Eigen:
 NodeOnElement ContactTracker::on_chord(const Spec& spec, int element, const Eigen::VectorXd& D) const {
   const Element& e = model_.elements[element];
   const auto position = [&](int n) -> Eigen::Vector2d { return model_.nodes[n].position + D.segment<2>(dofs_per_node * n); };
-  const Eigen::Vector2d xi = position(e.start), chord = position(e.end) - xi, r = position(spec.node) - xi;
-  const double length2 = chord.squaredNorm();
-  if (!(length2 > 0.0)) return {0.0, 0.0};
-  const double length = std::sqrt(length2);
-  return {r.dot(chord) / length2, (chord.x() * r.y() - chord.y() * r.x()) / length};  // n = e turned +90°
+  const ChordPlace place = place_on_chord(position(e.start), position(e.end), position(spec.node));
+  return {place.alpha, place.across};
 }
 
 int ContactTracker::swept_crossing(const Spec& spec, const ContactState& state, const Eigen::VectorXd& D,

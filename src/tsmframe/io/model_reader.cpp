@@ -450,7 +450,6 @@ class Reader {
     }
   }
 
-  /// A node that no beam element holds has its rotation fixed (FORMAT.md: a rigid pusher).
   /// Contacts resting on a beam as drawn start in contact, one per element (as at every
   /// update): two resting on one element cannot both hold it.
   void check_resting_contacts() {
@@ -466,6 +465,7 @@ class Reader {
     }
   }
 
+  /// A node that no beam element holds has its rotation fixed (FORMAT.md: a rigid pusher).
   void fix_free_rotations() {
     std::vector<bool> held(model_.node_count(), false);
     for (const Element& e : model_.elements) held[e.start] = held[e.end] = true;

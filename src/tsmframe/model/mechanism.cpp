@@ -113,12 +113,11 @@ std::optional<std::string> find_mechanism(const Model& model, bool resting_conta
       os << "rotate about (" << pole.x() << ", " << pole.y() << ") (add a support that stops it)";
     }
     // Contacts on this part count only where they rest on it as drawn.
-    bool touched_by_contact = false;
+    std::vector<bool> contact_member(model.member_count, false);
     for (const ContactSpec& c : model.contacts)
-      for (const Element& e : model.elements)
-        if (find_root(parent, e.start) == root && std::find(c.members.begin(), c.members.end(), e.member) != c.members.end())
-          touched_by_contact = true;
-    if (touched_by_contact)
+      for (const int m : c.members) contact_member[m] = true;
+    if (std::any_of(model.elements.begin(), model.elements.end(),
+                    [&](const Element& e) { return contact_member[e.member] && find_root(parent, e.start) == root; }))
       os << "; a contact holds it from the start only if its node is held and drawn at the contact's \"gap\" "
             "from the beam's centre line, on the side it supports";
     return os.str();

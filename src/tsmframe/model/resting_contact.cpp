@@ -5,6 +5,13 @@
 
 namespace tsm {
 
+ChordPlace place_on_chord(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& x) {
+  const Eigen::Vector2d chord = b - a, r = x - a;
+  const double length2 = chord.squaredNorm();
+  if (!(length2 > 0.0)) return {};
+  return {r.dot(chord) / length2, (chord.x() * r.y() - chord.y() * r.x()) / std::sqrt(length2)};
+}
+
 std::optional<RestingContact> resting_contact(const Model& model, const ContactSpec& contact) {
   const double tolerance = 1e-10 * model.size;  // as the contact tracker's "on the centre line"
   std::vector<bool> in_set(model.member_count, false);
@@ -15,16 +22,14 @@ std::optional<RestingContact> resting_contact(const Model& model, const ContactS
   for (int k = 0; k < static_cast<int>(model.elements.size()); ++k) {
     const Element& e = model.elements[k];
     if (!in_set[e.member] || e.start == contact.node || e.end == contact.node) continue;
-    const Eigen::Vector2d a = model.nodes[e.start].position, chord = model.nodes[e.end].position - a;
-    const double length = chord.norm();
-    if (!(length > 0.0)) continue;
-    const Eigen::Vector2d t = chord / length, n(-t.y(), t.x());
-    const double alpha = (x - a).dot(t) / length, across = (x - a).dot(n);
+    const Eigen::Vector2d a = model.nodes[e.start].position, b = model.nodes[e.end].position;
+    const auto [alpha, across] = place_on_chord(a, b, x);
     const double distance = std::abs(across);
     if (alpha < 0.0 || alpha > 1.0 || distance <= tolerance || distance > contact.gap + tolerance) continue;
     if (distance >= best_distance) continue;
     best_distance = distance;
-    best = RestingContact{k, alpha, across > 0.0 ? 1 : -1, a + alpha * chord, n};
+    const Eigen::Vector2d t = (b - a).normalized();
+    best = RestingContact{k, alpha, across > 0.0 ? 1 : -1, a + alpha * (b - a), Eigen::Vector2d(-t.y(), t.x())};
   }
   return best;
 }

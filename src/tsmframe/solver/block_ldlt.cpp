@@ -276,6 +276,7 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   // In parallel only where the rows above the tasks are many (else a barrier per stage costs
   // more than it saves).
   parallel_top_ = top_rows_.size() >= parallel_rows_above;
+  parallel_tasks_ = tasks > 1 && n >= util::smallest_shared_model;
   // Stages of the rows above the tasks: each level of several rows, and each run of single-row
   // levels — a path of the tree, where every row's pattern below the path is final before the
   // path starts (its other descendants sit in lower levels). A path row's split: its first
@@ -413,7 +414,7 @@ bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
   // Rows of one subtree touch only that subtree's columns (their patterns are descendants):
   // the tasks run concurrently, each in ascending order.
   const int tasks = static_cast<int>(task_start_.size()) - 1;
-  const bool tasks_ok = util::parallel_all_dynamic(0, tasks, tasks > 1 && size_ >= util::smallest_shared_model, [&](int t) {
+  const bool tasks_ok = util::parallel_all_dynamic(0, tasks, parallel_tasks_, [&](int t) {
     for (int r = task_start_[t]; r < task_start_[t + 1]; ++r)
       if (!factorize_row(a, task_rows_[r], forward)) return false;
     return true;
@@ -512,9 +513,8 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
   // before them. The partition depends only on the pattern: bit-identical for any thread count.
   const BlockMatrix& a = *factor_;
   const int tasks = static_cast<int>(task_start_.size()) - 1;
-  const bool parallel = tasks > 1 && size_ >= util::smallest_shared_model;
   // L y = b
-  util::parallel_for_dynamic(0, tasks, parallel, [&](int t) {
+  util::parallel_for_dynamic(0, tasks, parallel_tasks_, [&](int t) {
     const int root = task_rows_[task_start_[t + 1] - 1];
     for (int q = task_start_[t]; q < task_start_[t + 1]; ++q) {
       const int i = task_rows_[q];
@@ -544,7 +544,6 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
 void BlockLDLT::finish_solve(Eigen::VectorXd& b) const {
   const BlockMatrix& a = *factor_;
   const int tasks = static_cast<int>(task_start_.size()) - 1;
-  const bool parallel = tasks > 1 && size_ >= util::smallest_shared_model;
   const int levels = static_cast<int>(level_start_.size()) - 1;
   // D z = y and Lᵀ x = z in one pass: x_i = D_i⁻¹ y_i − Σ L(p, i)ᵀ x_p, a dot product down each
   // column (D_i⁻¹ heads it), the rows above the tasks first.
@@ -562,7 +561,7 @@ void BlockLDLT::finish_solve(Eigen::VectorXd& b) const {
       for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) backward(top_rows_[q]);
     }
   }
-  util::parallel_for_dynamic(0, tasks, parallel, [&](int t) {
+  util::parallel_for_dynamic(0, tasks, parallel_tasks_, [&](int t) {
     for (int q = task_start_[t + 1] - 1; q >= task_start_[t]; --q) backward(task_rows_[q]);
   });
 }

@@ -108,6 +108,7 @@ class BlockLDLT {
   std::vector<int> top_rows_;    ///< rows in no task, level by level (ascending within a level)
   std::vector<int> level_start_; ///< level l: top_rows_[level_start_[l] .. level_start_[l+1])
   bool parallel_top_ = false;    ///< enough rows above the tasks to run their stages in parallel
+  bool parallel_tasks_ = false;  ///< several tasks, in a matrix big enough to share out (util::smallest_shared_model)
   bool parallel_top_levels_ = false;  ///< the solves: the levels hold enough rows side by side
   /// Stages of top_rows_ [begin, end): a level of several rows, or a path of single-row levels.
   struct Stage {
