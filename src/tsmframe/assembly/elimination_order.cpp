@@ -41,8 +41,11 @@ std::vector<int> elimination_order(const NodeGraph& g) {
   std::vector<char> joint(n), visited(n, 0);
   for (int k = 0; k < n; ++k) joint[k] = degree[k] == 0 || degree[k] >= 3;
 
-  std::vector<int> order;
-  order.reserve(n);
+  // Each path's nodes in their elimination order (path_nodes[path_start[q] .. path_start[q + 1])),
+  // and the joints at its ends (dead_end where it has none).
+  std::vector<int> path_nodes, path_start(1, 0);
+  std::vector<std::pair<int, int>> path_ends;
+  path_nodes.reserve(n);
   std::vector<std::pair<int, int>> joint_pairs;  // (node, node) joined once the paths are gone
   std::vector<int> ahead, behind, path;
 
@@ -92,16 +95,18 @@ std::vector<int> elimination_order(const NodeGraph& g) {
     }
     const int m = static_cast<int>(path.size());
     if (front == dead_end && back != dead_end) {  // from the dead end toward the joint: no fill
-      order.insert(order.end(), path.begin(), path.end());
+      path_nodes.insert(path_nodes.end(), path.begin(), path.end());
     } else if (back == dead_end && front != dead_end) {
-      order.insert(order.end(), path.rbegin(), path.rend());
+      path_nodes.insert(path_nodes.end(), path.rbegin(), path.rend());
     } else {  // both ends alike: from both ends toward the middle, two branches
       const int h = m / 2;
-      for (int i = 0; i < h; ++i) order.push_back(path[i]);
-      for (int i = m - 1; i > h; --i) order.push_back(path[i]);
-      order.push_back(path[h]);
+      for (int i = 0; i < h; ++i) path_nodes.push_back(path[i]);
+      for (int i = m - 1; i > h; --i) path_nodes.push_back(path[i]);
+      path_nodes.push_back(path[h]);
       if (front != dead_end && front != back) joint_pairs.emplace_back(front, back);
     }
+    path_start.push_back(static_cast<int>(path_nodes.size()));
+    path_ends.emplace_back(front, back);
   }
 
   // The joints, by minimum degree on the graph of joints: elements between joints and the
@@ -120,7 +125,39 @@ std::vector<int> elimination_order(const NodeGraph& g) {
     }
   for (const auto& [a, b] : joint_pairs) edges.emplace_back(joint_index[a], joint_index[b]);
   const std::vector<int> ordered_joints = order_joints(joints, edges);
-  order.insert(order.end(), ordered_joints.begin(), ordered_joints.end());
+  // Each path just before the first of its end joints to be eliminated: its nodes touch only
+  // one another and those joints, so anywhere before both gives the same fill and the same
+  // tree, and there the factorisation forms the joint's row while the path's columns are still
+  // in cache (a lattice's joints read their members' columns scattered over the whole factor
+  // otherwise). Paths without a joint come first.
+  std::vector<int> rank(n, -1);
+  for (size_t r = 0; r < ordered_joints.size(); ++r) rank[ordered_joints[r]] = static_cast<int>(r);
+  const int paths = static_cast<int>(path_ends.size());
+  std::vector<int> anchored_start(ordered_joints.size() + 1, 0), anchored;
+  std::vector<int> anchor(paths, -1);
+  std::vector<int> order;
+  order.reserve(n);
+  for (int q = 0; q < paths; ++q) {
+    const auto [front, back] = path_ends[q];
+    int first = -1;
+    for (const int end : {front, back})
+      if (end != dead_end && (first < 0 || rank[end] < first)) first = rank[end];
+    anchor[q] = first;
+    if (first < 0) order.insert(order.end(), path_nodes.begin() + path_start[q], path_nodes.begin() + path_start[q + 1]);
+    else ++anchored_start[first + 1];
+  }
+  for (size_t r = 0; r < ordered_joints.size(); ++r) anchored_start[r + 1] += anchored_start[r];
+  anchored.resize(anchored_start.back());
+  std::vector<int> next(anchored_start.begin(), anchored_start.end() - 1);
+  for (int q = 0; q < paths; ++q)
+    if (anchor[q] >= 0) anchored[next[anchor[q]]++] = q;  // ascending q within a joint
+  for (size_t r = 0; r < ordered_joints.size(); ++r) {
+    for (int e = anchored_start[r]; e < anchored_start[r + 1]; ++e) {
+      const int q = anchored[e];
+      order.insert(order.end(), path_nodes.begin() + path_start[q], path_nodes.begin() + path_start[q + 1]);
+    }
+    order.push_back(ordered_joints[r]);
+  }
   return order;
 }
 
