@@ -1,6 +1,6 @@
 // The elimination order by members (assembly/elimination_order): a permutation for any node
 // graph (chains, rings, stars, isolated nodes, repeated elements, a lattice), members' paths
-// from both ends toward their middle with no fill, the joints last.
+// from both ends toward their middle with no fill, each right before the first of its joints.
 #include <gtest/gtest.h>
 
 #include <Eigen/OrderingMethods>
