@@ -1,8 +1,8 @@
 #pragma once
 // Numbering of the free (unknown) dofs. Constrained dofs (fixed or prescribed) get −1. Free
 // dofs are numbered node by node in a fill-reducing order (elimination_order: members' paths
-// from both ends, the joints by minimum degree, each path before its first joint; computed once), so the factorisation needs
-// no permutation of its own.
+// from both ends, the joints by minimum degree, each path before its first joint; computed
+// once), so the factorisation needs no permutation of its own.
 
 #include <vector>
 
