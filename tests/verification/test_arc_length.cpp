@@ -138,10 +138,10 @@ TEST(ArcLength, LeesFrameLimitLoadAndSnapBack) {
 // hinged at the other, vertical load at the apex, EI = 1e6, EA = 1e8. Limit load P R²/EI = 8.97
 // (DaDeppo & Schmidt, J. Appl. Mech. 42, 1975, 894–896), i.e. P = 897.
 
-TEST(ArcLength, DeepArchLimitLoad) {
+json deep_arch(const json& control) {
   const double R = 100.0, half = 107.5 * std::numbers::pi / 180.0;
   const double right = std::numbers::pi / 2 - half, left = std::numbers::pi / 2 + half;
-  const json m = {
+  return json{
       {"materials", {{"m", {{"E", 1e6}}}}},
       {"sections", {{"s", {{"A", 100.0}, {"I", 1.0}}}}},
       {"nodes", json::array({{{"id", 1}, {"x", R * std::cos(right)}, {"y", R * std::sin(right)}},
@@ -153,17 +153,41 @@ TEST(ArcLength, DeepArchLimitLoad) {
                                 {"arc", {{"center", {0.0, 0.0}}, {"sweep", half}}}}})},
       {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 3}, {"type", "pinned"}}})},
       {"loads", json::array({{{"node", 2}, {"fy", -1.0}}})},
-      {"analysis", {{"control", {{"type", "arc-length"}, {"initial_increment", 1.0}, {"max_increment", 2.0},
-                                 {"max_steps", 1000}, {"until", {{"node", 2}, {"dof", "uy"}, {"value", -120.0}}}}},
-                    {"output", "last"}}},
+      {"analysis", {{"control", control}, {"output", "last"}}},
   };
+}
+
+TEST(ArcLength, DeepArchLimitLoad) {
   tsm::Model model;
-  const RunResult r = run(m, model);
+  const RunResult r = run(deep_arch({{"type", "arc-length"}, {"initial_increment", 1.0}, {"max_increment", 2.0},
+                                     {"max_steps", 1000}, {"until", {{"node", 2}, {"dof", "uy"}, {"value", -120.0}}}}),
+                          model);
   ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
   ASSERT_FALSE(r.limit_points.empty());
   ASSERT_TRUE(r.limit_points[0].maximum);
   std::printf("[figure] 215 deg arch: limit load P = %.2f (published 897)\n", r.limit_points[0].load_factor);
   EXPECT_NEAR(r.limit_points[0].load_factor, 897.0, 0.01 * 897.0);
+}
+
+TEST(ArcLength, ADeepArchLoadedPastItsMaximumUnderLoadControlIsToldToUseArcLength) {
+  // 2,000 in two steps, each past the limit load: cutback converges ever closer below 897, then
+  // fails. The arch softens from the first step on, so a converged step's secant stiffness
+  // |Δλ|/‖ΔD‖ just below the maximum was still a quarter of the first step's and the run did not
+  // say why it stopped; the tangent's (the first iterate's) is 3 % of it. (In one step Newton
+  // lands on the arch snapped through, which carries 2,000: an equilibrium, not this path's.)
+  tsm::Model model;
+  json m = deep_arch({{"type", "load"}, {"steps", 2}});
+  m["loads"][0]["fy"] = -2000.0;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::cutback_limit) << r.message;
+  ASSERT_FALSE(r.steps.empty());
+  double reached = 0.0;  // the largest converged load, below the maximum
+  for (const StepRecord& s : r.steps)
+    if (s.converged) reached = std::max(reached, 2000.0 * s.load_factor);
+  EXPECT_LT(reached, 897.0 * 1.01);
+  EXPECT_GT(reached, 897.0 * 0.95);
+  EXPECT_NE(r.message.find("the load seems to have reached a maximum (a limit point"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("use arc-length control"), std::string::npos) << r.message;
 }
 
 // ---- Williams' toggle ----

@@ -25,7 +25,8 @@ bool keeps_state(const OutputSelection& output, int step) {
   return true;
 }
 
-constexpr double limit_point_stiffness = 0.1;  // a path stiffness below this × the first step's: near a maximum
+constexpr double contact_at_element_end = 1e-3;  // α this close to 0 or 1: the contact point is at the element's end
+constexpr double limit_point_stiffness = 0.1;  // a current stiffness below this × the first step's: near a maximum
 
 std::string format_ratio(double ratio) {
   std::ostringstream os;
@@ -155,15 +156,6 @@ class StepStart {
     state.contacts = own_.contacts;
   }
   double load_factor() const { return own_.load_factor; }
-  /// ‖ΔD‖₂ over the translations from this start to `state` (before release()).
-  double translation_change(const State& state) const {
-    const Eigen::VectorXd& start = recorded_ ? *recorded_ : own_.displacements;
-    if (start.size() != state.displacements.size()) return 0.0;
-    double sum = 0.0;
-    for (Eigen::Index dof = 0; dof < start.size(); ++dof)
-      if (dof % dofs_per_node != rz) sum += (state.displacements[dof] - start[dof]) * (state.displacements[dof] - start[dof]);
-    return std::sqrt(sum);
-  }
   /// The step converged: its start is not needed any more (its own copy goes before the step is
   /// recorded, so that the two never coexist).
   void release() { own_.displacements.resize(0); }
@@ -240,8 +232,10 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   Recorder recorder(model, newton, observer, result, true);
 
   StepStart saved;  // reused: no allocation per step
-  // The current stiffness parameter |Δλ| / ‖ΔD‖ of the first converged step and of the newest
-  // (Bergan): near a largest load it falls towards zero.
+  // The current stiffness parameter |Δλ| / ‖ΔD‖ of the first iterate (the tangent's) at the
+  // first step's start and at the newest (Bergan): near a largest load it falls towards zero. A
+  // converged step's secant would not: a deep arch's last step below its maximum still had a
+  // quarter of the first step's.
   double first_stiffness = 0.0, newest_stiffness = 0.0;
   while (grid_index < grid_steps) {
     const double next_grid = static_cast<double>(grid_index + 1) / control.steps;
@@ -257,14 +251,11 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     StepRecord record = recorder.start(outcome, halvings);
     record.increment = (value(t_end) - value(t)) * (by_displacement ? control.target : 1.0);
 
+    if (!by_displacement && outcome.start_stiffness > 0.0) {  // each attempt starts from a converged state
+      newest_stiffness = outcome.start_stiffness;
+      if (first_stiffness == 0.0) first_stiffness = newest_stiffness;
+    }
     if (outcome.status == Status::converged) {
-      if (!by_displacement) {
-        const double moved = saved.translation_change(state);
-        if (moved > 0.0) {
-          newest_stiffness = std::abs(state.load_factor - saved.load_factor()) / moved;
-          if (first_stiffness == 0.0) first_stiffness = newest_stiffness;
-        }
-      }
       t = t_end;
       if (reaches_grid) ++grid_index;
       halvings = 0;
@@ -289,12 +280,19 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     const double from = value(t) * (by_displacement ? control.target : 1.0);
     const double to = value(t_end) * (by_displacement ? control.target : 1.0);
     NewtonOutcome failed = outcome;
-    // A largest load: cut back and still failing, the path's stiffness down to a tenth of its
+    // A largest load: cut back and still failing, the current stiffness down to a tenth of its
     // first step's, and the tangent — positive definite at the step's start — indefinite at its
-    // iterates. Load control cannot pass it.
+    // iterates. Load control cannot pass it. Not where a contact point stands at the end of its
+    // element (state is the step's start again): the edge, where the contact element's stiffness
+    // changes abruptly, is then as likely the cause (Fig. 7's `paper` rows, which cannot hand over).
+    const auto at_element_end = [&] {
+      return std::any_of(state.contacts.begin(), state.contacts.end(), [](const contact::ContactState& c) {
+        return c.active && std::min(c.alpha, 1.0 - c.alpha) < contact_at_element_end;
+      });
+    };
     if (!by_displacement && halvings > 0 && failed.start_negative_pivots == 0 && failed.most_negative_pivots > 0 &&
-        first_stiffness > 0.0 && newest_stiffness < limit_point_stiffness * first_stiffness)
-      failed.message += "; the load seems to have reached a maximum (a limit point: the path's stiffness |Δλ|/‖ΔD‖ is down to " +
+        first_stiffness > 0.0 && newest_stiffness < limit_point_stiffness * first_stiffness && !at_element_end())
+      failed.message += "; the load seems to have reached a maximum (a limit point: the current stiffness |Δλ|/‖ΔD‖ is down to " +
                         format_ratio(newest_stiffness / first_stiffness) +
                         " of the first step's, and the tangent lost its positive definiteness within the step), "
                         "which load control cannot pass: use arc-length control";

@@ -489,6 +489,10 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
       dlambda = (constraint.target - state.displacements[dofs.dof(k)] - b[k]) / a[k];
       correction = b + dlambda * a;
     }
+    if (it == 1 && dlambda != 0.0) {
+      const double moved = std::sqrt(arc_dot(correction, correction));
+      if (moved > 0.0) out.start_stiffness = std::abs(dlambda) / moved;
+    }
     if (it == 1) {  // iterate 0: the out-of-balance force that drives the step, at the target λ
       start_scale = dlambda == 0.0 ? pass.scale : scale(state.load_factor + dlambda);
       if (constraint.kind != PathConstraint::Kind::load_increment) {  // R is still the step's start

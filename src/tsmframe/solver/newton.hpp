@@ -51,6 +51,10 @@ struct NewtonOutcome {
   /// Negative eigenvalues of the tangent (its symmetric part) at the step's first factorisation
   /// (−1: unknown) and the most at any later one in the step.
   int start_negative_pivots = -1, most_negative_pivots = 0;
+  /// Bergan's current stiffness at the step's start: |Δλ| / ‖ΔD‖ of the first iterate (the
+  /// tangent's own response to the load, translations only); 0 where the first iterate moved
+  /// nothing or changed no λ.
+  double start_stiffness = 0.0;
 };
 
 /// Force and moment scales of the convergence test (unit-consistent: each kind on its own).
