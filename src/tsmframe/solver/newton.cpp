@@ -56,9 +56,12 @@ struct Larger {
 // Equations run in elimination order, the model's vectors in node order: a loop over the
 // equations reads them in runs (a member's nodes) with jumps between, and each jump missed the
 // cache (the lattice of bench/: 0.83 ms an update_residual, the chains 0.31). Each loop fetches
-// the entry this many equations ahead. Written out in each loop: GCC drops a call to a helper
-// that only prefetches (no side effects, so a dead call), and the prefetch with it.
+// the entry this many equations ahead — in models whose vectors outgrow the core's caches
+// (from 2¹⁵ equations, 256 kB a vector): below, the extra instructions cost a 10³-element
+// chain 3 % an iteration. Written out in each loop: GCC drops a call to a helper that only
+// prefetches (no side effects, so a dead call), and the prefetch with it.
 constexpr Eigen::Index gather_ahead = 32;
+constexpr Eigen::Index gather_from = Eigen::Index{1} << 15;
 
 std::string iterate_text(const char* what, int iteration) {
   std::ostringstream os;
@@ -156,10 +159,11 @@ ResidualScale NewtonSolver::scale(double load_factor) const {
   const double* F = eval_.internal_force.data();
   const double* P = system_.model().reference_load.data();
   const int* free_dof = dofs.free_dofs().data();
+  const bool gather = dofs.free_count() >= gather_from;
   const std::array<double, 4> free =
       chunked_reduce<4>(dofs.free_count(), [&](Eigen::Index begin, Eigen::Index end, std::array<double, 4>& sum) {
         for (Eigen::Index eq = begin; eq < end; ++eq) {
-          if (eq + gather_ahead < end) {
+          if (gather && eq + gather_ahead < end) {
             __builtin_prefetch(F + free_dof[eq + gather_ahead]);
             __builtin_prefetch(P + free_dof[eq + gather_ahead]);
           }
@@ -203,13 +207,14 @@ NewtonSolver::ResidualPass NewtonSolver::update_residual(double load_factor) {
   const double* P = system_.model().reference_load.data();
   const int* free_dof = dofs.free_dofs().data();
   double* R = residual_.data();
+  const bool gather = n >= gather_from;
   // Squared sums per kind (forces, moments) over the free equations: R, applied loads, internal forces.
   const std::array<double, 6> free = chunked_reduce<6>(n, [&](Eigen::Index begin, Eigen::Index end, std::array<double, 6>& sum) {
     // Six running sums in registers, not an array indexed by the kind: through memory every
     // term would wait for the previous one's store. The other kind's sum gains +0.0 (exact).
     double r0 = 0.0, r1 = 0.0, p0 = 0.0, p1 = 0.0, f0 = 0.0, f1 = 0.0;
     for (Eigen::Index eq = begin; eq < end; ++eq) {
-      if (eq + gather_ahead < end) {
+      if (gather && eq + gather_ahead < end) {
         __builtin_prefetch(F + free_dof[eq + gather_ahead]);
         __builtin_prefetch(P + free_dof[eq + gather_ahead]);
       }
@@ -273,6 +278,7 @@ double NewtonSolver::relative_norm(const std::array<double, 2>& norms, const Res
 NewtonSolver::Correction NewtonSolver::apply_correction(const Eigen::VectorXd& correction, State& state) const {
   const int* free_dof = system_.dofs().free_dofs().data();
   double* D = state.displacements.data();
+  const bool gather = correction.size() >= gather_from;
   // Maxima (the same whatever the order) of |c| and |D| per kind, and a fifth entry 1 where a
   // chunk's c is not finite (a NaN would pass through the maxima unnoticed).
   const std::array<double, 5> most = chunked_reduce<5>(
@@ -281,7 +287,7 @@ NewtonSolver::Correction NewtonSolver::apply_correction(const Eigen::VectorXd& c
         double translation = 0.0, rotation = 0.0, largest_translation = 0.0, largest_rotation = 0.0;
         bool finite = true;
         for (Eigen::Index eq = begin; eq < end; ++eq) {
-          if (eq + gather_ahead < end) __builtin_prefetch(D + free_dof[eq + gather_ahead], 1);
+          if (gather && eq + gather_ahead < end) __builtin_prefetch(D + free_dof[eq + gather_ahead], 1);
           const double c = correction[eq], d = D[free_dof[eq]] + c;
           D[free_dof[eq]] = d;
           finite = finite && std::isfinite(c);
