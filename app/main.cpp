@@ -118,6 +118,7 @@ int run(const RunOptions& options) {
     converged_steps += step.converged ? 1 : 0;
     iterations += step.iterations;
   }
+  for (const std::string& note : result.notes) std::cerr << options.model << ": note: " << note << '\n';
   if (result.status != tsm::solver::Status::converged) {
     std::cerr << options.model << ": did not converge (" << tsm::solver::status_name(result.status)
               << "): " << result.message << "; " << converged_steps << " converged steps written to "

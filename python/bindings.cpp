@@ -43,6 +43,7 @@ py::dict run_json(const std::string& text, int threads) {
   py::dict out;
   out["status"] = tsm::solver::status_name(result.status);
   out["message"] = result.message;
+  out["notes"] = result.notes;
   std::vector<int> node_ids, element_ids, element_nodes, element_members;
   std::vector<double> node_xy;
   std::vector<std::string> element_kinds;

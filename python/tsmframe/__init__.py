@@ -139,6 +139,7 @@ class Result:
     S = every step including a failed last attempt, C = converged steps, K = steps with state).
 
     status, message            how the run ended ("converged", "diverged", …)
+    notes                      remarks on the path (list of sentences; e.g. a jump across a snap-back)
     node_ids (n,), node_xy (n, 2), element_ids (m,), element_nodes (m, 2) node ids
     step (S,), load_factor (S,), iterations (S,), converged (S,), residual_norms: S arrays, criterion: S strings
     state_steps (K,)           step numbers that carry full state (analysis.output)

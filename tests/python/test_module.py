@@ -77,6 +77,28 @@ def test_non_convergence_is_a_status_not_an_exception():
     assert r.converged.tolist() == [0]
 
 
+def test_a_jump_across_a_snap_back_is_a_note():
+    # DaDeppo & Schmidt's 215° arch as 60 straight elements, its crown driven down 150 under
+    # displacement control: past the maximum (P R²/EI 8.97) the path snaps back and a step
+    # lands on another branch. The run converges; r.notes says so, as results.json does.
+    R, half, N = 100.0, math.radians(107.5), 60
+    nodes = [{"id": i + 1, "x": R * math.sin(-half + 2 * half * i / N), "y": R * math.cos(-half + 2 * half * i / N)}
+             for i in range(N + 1)]
+    members = [{"from": i + 1, "to": i + 2, "material": "m", "section": "s"} for i in range(N)]
+    doc = {"materials": {"m": {"E": 1e6}}, "sections": {"s": {"A": 100.0, "I": 1.0}}, "nodes": nodes,
+           "members": members, "supports": [{"node": 1, "type": "pinned"}, {"node": N + 1, "type": "fixed"}],
+           "loads": [{"node": N // 2 + 1, "fy": -100.0}],
+           "analysis": {"control": {"type": "displacement", "node": N // 2 + 1, "dof": "uy", "target": -150,
+                                    "steps": 30}}}
+    r = tf.run(doc)
+    assert r.ok, r.message
+    assert max(r.load_factor) == pytest.approx(8.97, rel=0.01)
+    assert len(r.notes) == 1 and "snap back" in r.notes[0]
+    assert json.loads(r.results_json)["notes"] == r.notes
+    doc["analysis"]["control"]["target"] = -100  # before the maximum: nothing to note
+    assert tf.run(doc).notes == []
+
+
 def test_model_built_in_code_rolls_into_a_circle():
     L, EI = 10.0, 2.05e11 * 8.333e-6
     m = tf.Model("circle").material("steel", E=2.05e11, G=7.9e10).section("s", A=1e-2, I=8.333e-6, shear_area=8.33e-3)

@@ -190,6 +190,33 @@ TEST(ArcLength, ADeepArchLoadedPastItsMaximumUnderLoadControlIsToldToUseArcLengt
   EXPECT_NE(r.message.find("use arc-length control"), std::string::npos) << r.message;
 }
 
+TEST(ArcLength, DisplacementControlAcrossTheDeepArchsSnapBackJumpsAndSaysSo) {
+  // The crown driven down 150 in 30 steps: past the maximum (897 at a crown drop of ~115) the
+  // crown's displacement turns back along the path, so a step lands on another branch and λ
+  // leaps to below zero. The run converges — and notes the leap, pointing to arc-length control.
+  tsm::Model model;
+  const RunResult r =
+      run(deep_arch({{"type", "displacement"}, {"node", 2}, {"dof", "uy"}, {"target", -150.0}, {"steps", 30}}), model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  ASSERT_FALSE(r.limit_points.empty());
+  EXPECT_NEAR(r.limit_points[0].load_factor, 897.0, 0.02 * 897.0);
+  ASSERT_EQ(r.notes.size(), 1u);
+  EXPECT_NE(r.notes[0].find("the path may snap back here"), std::string::npos) << r.notes[0];
+  EXPECT_NE(r.notes[0].find("arc-length control follows it"), std::string::npos) << r.notes[0];
+}
+
+TEST(ArcLength, DisplacementControlThroughTheTrussSnapThroughNotesNothing) {
+  // The von Mises truss under displacement control: its apex drop is monotonic along the path
+  // (a snap-through, no snap-back). In 10 steps λ turns at the minimum and climbs back to zero
+  // in one step of the same size as the first: no leap.
+  tsm::Model model;
+  const RunResult r =
+      run(truss_model({{"type", "displacement"}, {"node", 2}, {"dof", "uy"}, {"target", -0.25}, {"steps", 10}}), model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  ASSERT_EQ(r.limit_points.size(), 2u);
+  EXPECT_TRUE(r.notes.empty()) << r.notes.front();
+}
+
 // ---- Williams' toggle ----
 // Two equal aluminium bars, clamped at both supports and rigidly joined at the apex, apex load P
 // (Williams, "An approach to the non-linear behaviour of the members of a rigid jointed plane

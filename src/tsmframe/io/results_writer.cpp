@@ -118,6 +118,10 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
     w.end_object();
   }
   w.end_array();
+  // Remarks on the path (a jump across a snap-back under displacement control); usually none.
+  w.newline().key("notes").begin_array();
+  for (const std::string& note : result.notes) w.value(note);
+  w.end_array();
   w.newline().end_object();
   out << '\n';
 }

@@ -181,6 +181,33 @@ std::vector<LimitPoint> limit_points(const std::vector<StepRecord>& steps) {
   return points;
 }
 
+/// Under displacement control a path that snaps back (the controlled displacement turns back)
+/// cannot be followed: a step lands on another branch, and λ leaps back in one step. Noted where
+/// a converged step moves λ towards (or past) zero by more than half of its largest magnitude so
+/// far and by more than three times any earlier step's change — along the path itself λ changes
+/// at a rate like the earlier steps' (a smooth snap-through turns λ round gradually).
+std::vector<std::string> jump_notes(const std::vector<StepRecord>& steps) {
+  std::vector<std::string> notes;
+  double before = 0.0, largest = 0.0, largest_change = 0.0;  // λ at the previous converged step; maxima so far
+  for (const StepRecord& s : steps) {
+    if (!s.converged) continue;
+    const double change = s.load_factor - before;
+    if (largest > 0.0 && change * before < 0.0 && std::abs(change) > 0.5 * largest &&
+        std::abs(change) > 3.0 * largest_change) {
+      std::ostringstream os;
+      os << "step " << s.step << ": the load factor leapt from " << before << " to " << s.load_factor
+         << " in one step (largest so far " << largest
+         << "): the path may snap back here (the controlled displacement turning back), which "
+            "displacement control jumps across onto another branch; arc-length control follows it";
+      notes.push_back(os.str());
+    }
+    largest = std::max(largest, std::abs(s.load_factor));
+    largest_change = std::max(largest_change, std::abs(change));
+    before = s.load_factor;
+  }
+  return notes;
+}
+
 RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
                          const StepObserver& observer);
 
@@ -301,11 +328,13 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     recorder.finish(state);  // state is the newest converged step's again
     recorder.failed(std::move(record), failed.message);
     result.limit_points = limit_points(result.steps);
+    if (by_displacement) result.notes = jump_notes(result.steps);
     return result;
   }
   recorder.finish(state);
   result.status = Status::converged;
   result.limit_points = limit_points(result.steps);
+  if (by_displacement) result.notes = jump_notes(result.steps);
   return result;
 }
 

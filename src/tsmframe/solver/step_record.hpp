@@ -53,6 +53,9 @@ struct RunResult {
   std::string message;  ///< a sentence when the run did not reach its end
   std::vector<StepRecord> steps;
   std::vector<LimitPoint> limit_points;  ///< in path order
+  /// Remarks on the path, converged or not: a sentence each (e.g. a jump across a snap-back
+  /// under displacement control).
+  std::vector<std::string> notes;
 };
 
 }  // namespace tsm::solver
