@@ -190,6 +190,19 @@ TEST(ArcLength, ADeepArchLoadedPastItsMaximumUnderLoadControlIsToldToUseArcLengt
   EXPECT_NE(r.message.find("use arc-length control"), std::string::npos) << r.message;
 }
 
+TEST(ArcLength, AnArcLengthFarLongerThanTheStructureIsToldSo) {
+  // Δs = 10⁶ on an arch 200 wide: ten cutbacks leave 977, and no arc that long meets the path.
+  // The failure names the arc's size against the structure's and what to give instead.
+  tsm::Model model;
+  const RunResult r = run(deep_arch({{"type", "arc-length"}, {"initial_increment", 1e6}, {"max_increment", 1e6},
+                                     {"max_steps", 20}, {"until", {{"node", 2}, {"dof", "uy"}, {"value", -120.0}}}}),
+                          model);
+  ASSERT_NE(r.status, tsm::solver::Status::converged);
+  EXPECT_NE(r.message.find("× the structure's size"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("give initial_increment and max_increment a few per cent of it"), std::string::npos)
+      << r.message;
+}
+
 TEST(ArcLength, DisplacementControlAcrossTheDeepArchsSnapBackJumpsAndSaysSo) {
   // The crown driven down 150 in 30 steps: past the maximum (897 at a crown drop of ~115) the
   // crown's displacement turns back along the path, so a step lands on another branch and λ

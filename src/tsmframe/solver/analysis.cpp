@@ -26,6 +26,7 @@ bool keeps_state(const OutputSelection& output, int step) {
 }
 
 constexpr double contact_at_element_end = 1e-3;  // α this close to 0 or 1: the contact point is at the element's end
+constexpr double large_arc_of_size = 0.5;  // a failed arc length above this × the model's size: too long a start
 constexpr double limit_point_stiffness = 0.1;  // a current stiffness below this × the first step's: near a maximum
 
 std::string format_ratio(double ratio) {
@@ -443,6 +444,12 @@ RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, Newto
     os << "step " << record.step << " (arc length " << arc << " from load factor " << saved.load_factor
        << ") failed: " << outcome.message;
     if (halvings > 0) os << ", after " << halvings << " cutbacks in a row";
+    // Δs is a length (translations): a step still as long as half the structure after its
+    // cutbacks was given far too long an arc to start with (the usual cause of "no real root").
+    if (arc > large_arc_of_size * model.size)
+      os << "; the arc length is still " << format_ratio(arc / model.size)
+         << " × the structure's size (" << model.size
+         << ", its bounding box's diagonal): give initial_increment and max_increment a few per cent of it";
     result.message = os.str();
     recorder.failed(std::move(record), outcome.message);
     result.limit_points = limit_points(result.steps);
