@@ -147,7 +147,8 @@ TEST(EliminationOrder, ALatticesMembersComeRightBeforeTheirFirstJointWithNoMoreF
   expect_permutation(order, next);
   // Corner joints have two neighbours: they lie on paths. Every member node comes before both
   // joints its member ends at (no fill beyond joining them), and the first joint after it in the
-  // order is one of those two: each member right before its first joint, for the cache.
+  // order is one of those two: each member right before its first joint, for the cache; and
+  // along the member from that joint's side.
   std::vector<int> position(next);
   for (int k = 0; k < next; ++k) position[order[k]] = k;
   auto degree = [&](int k) { return g.start[k + 1] - g.start[k] - 1; };
@@ -156,10 +157,11 @@ TEST(EliminationOrder, ALatticesMembersComeRightBeforeTheirFirstJointWithNoMoreF
   int members_checked = 0;
   for (int k = 0; k < next; ++k) {
     if (degree(k) >= 3) continue;
-    std::vector<int> ends;  // the joints reached walking the path both ways
+    std::vector<int> ends, towards;  // the joints reached walking the path both ways, and the first step to each
     for (int p = g.start[k]; p < g.start[k + 1]; ++p) {
       int previous = k, current = g.neighbours[p];
       if (current == k) continue;
+      const int first_step = current;
       while (degree(current) < 3) {
         int step = -1;
         for (int r = g.start[current]; r < g.start[current + 1]; ++r)
@@ -168,11 +170,20 @@ TEST(EliminationOrder, ALatticesMembersComeRightBeforeTheirFirstJointWithNoMoreF
         previous = current;
         current = step;
       }
-      if (degree(current) >= 3) ends.push_back(current);
+      if (degree(current) >= 3) {
+        ends.push_back(current);
+        towards.push_back(first_step);
+      }
     }
     for (const int joint : ends) EXPECT_LT(position[k], position[joint]) << "node " << k;
     if (ends.empty()) continue;
     EXPECT_TRUE(std::find(ends.begin(), ends.end(), next_joint[position[k]]) != ends.end()) << "node " << k;
+    // Eliminated from the first joint's side: the member's nodes come in order along it, so the
+    // later joint's row holds only the member's last node (the earlier joint's, all of them).
+    if (ends.size() == 2) {
+      const int later = position[ends[0]] > position[ends[1]] ? 0 : 1;
+      EXPECT_GT(position[towards[later]], position[k]) << "node " << k;
+    }
     ++members_checked;
   }
   EXPECT_GT(members_checked, 2 * bays * bays * (divisions - 1));
