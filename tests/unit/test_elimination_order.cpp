@@ -48,14 +48,13 @@ void expect_permutation(const std::vector<int>& order, int n) {
   for (int k = 0; k < n; ++k) ASSERT_EQ(sorted[k], k);
 }
 
-// Blocks in the given order, the lower pattern of the graph, with its fill: how many entries
-// elimination adds.
-size_t fill_of(const NodeGraph& g, const std::vector<int>& order) {
+// Blocks in the given order: the lower pattern of the graph, with its fill (add_fill); `entries`
+// gets the count before the fill.
+tsm::solver::BlockMatrix pattern_in(const NodeGraph& g, const std::vector<int>& order, size_t* entries = nullptr) {
   const int n = static_cast<int>(order.size());
   std::vector<int> position(n);
   for (int k = 0; k < n; ++k) position[order[k]] = k;
   std::vector<std::vector<int>> rows(n);
-  size_t entries = 0;
   for (int node = 0; node < n; ++node)
     for (int p = g.start[node]; p < g.start[node + 1]; ++p) {
       const int a = position[node], b = position[g.neighbours[p]];
@@ -67,11 +66,38 @@ size_t fill_of(const NodeGraph& g, const std::vector<int>& order) {
   for (auto& r : rows) {
     std::sort(r.begin(), r.end());
     m.row.insert(m.row.end(), r.begin(), r.end());
-    entries += r.size();
     m.column.push_back(static_cast<int>(m.row.size()));
   }
+  if (entries) *entries = m.row.size();
   tsm::solver::add_fill(m);
+  return m;
+}
+
+// How many entries elimination in the given order adds.
+size_t fill_of(const NodeGraph& g, const std::vector<int>& order) {
+  size_t entries = 0;
+  const tsm::solver::BlockMatrix m = pattern_in(g, order, &entries);
   return m.row.size() - entries;
+}
+
+// A grid of bays × bays members of `divisions` elements each, its joints numbered first.
+NodeGraph lattice(int bays, int divisions) {
+  const int joints = (bays + 1) * (bays + 1);
+  std::vector<std::pair<int, int>> edges;
+  int next = joints;
+  auto member = [&](int a, int b) {
+    int previous = a;
+    for (int d = 1; d < divisions; ++d) {
+      edges.emplace_back(previous, next);
+      previous = next++;
+    }
+    edges.emplace_back(previous, b);
+  };
+  for (int y = 0; y <= bays; ++y)
+    for (int x = 0; x < bays; ++x) member(y * (bays + 1) + x, y * (bays + 1) + x + 1);
+  for (int y = 0; y < bays; ++y)
+    for (int x = 0; x <= bays; ++x) member(y * (bays + 1) + x, (y + 1) * (bays + 1) + x);
+  return graph(next, edges);
 }
 
 TEST(EliminationOrder, AChainGoesFromBothEndsToItsMiddleWithoutFill) {
@@ -84,23 +110,8 @@ TEST(EliminationOrder, AChainGoesFromBothEndsToItsMiddleWithoutFill) {
   EXPECT_EQ(order.back(), n / 2);  // the middle last
   EXPECT_EQ(fill_of(g, order), 0u);
   // Its elimination tree has two branches of ~n/2: two parallel tasks.
-  std::vector<int> position(n);
-  for (int k = 0; k < n; ++k) position[order[k]] = k;
-  tsm::solver::BlockMatrix m;
-  m.size = n;
-  m.column.push_back(0);
-  for (int k = 0; k < n; ++k) {
-    const int node = order[k];
-    std::vector<int> r;
-    for (int p = g.start[node]; p < g.start[node + 1]; ++p)
-      if (position[g.neighbours[p]] >= k) r.push_back(position[g.neighbours[p]]);
-    std::sort(r.begin(), r.end());
-    m.row.insert(m.row.end(), r.begin(), r.end());
-    m.column.push_back(static_cast<int>(m.row.size()));
-  }
-  tsm::solver::add_fill(m);
   tsm::solver::BlockLDLT ldlt;
-  ldlt.analyze(m);
+  ldlt.analyze(pattern_in(g, order));
   EXPECT_EQ(ldlt.task_count(), 2);
   EXPECT_EQ(ldlt.rows_above_tasks(), 1);
 }
@@ -127,33 +138,25 @@ TEST(EliminationOrder, AnyGraphGivesAPermutation) {
 
 TEST(EliminationOrder, ALatticesMembersComeRightBeforeTheirFirstJointWithNoMoreFillThanMinimumDegree) {
   // A 12 × 12-bay grid of members of 5 elements each.
-  const int bays = 12, divisions = 5, joints = (bays + 1) * (bays + 1);
-  std::vector<std::pair<int, int>> edges;
-  int next = joints;
-  auto member = [&](int a, int b) {
-    int previous = a;
-    for (int d = 1; d < divisions; ++d) {
-      edges.emplace_back(previous, next);
-      previous = next++;
-    }
-    edges.emplace_back(previous, b);
-  };
-  for (int y = 0; y <= bays; ++y)
-    for (int x = 0; x < bays; ++x) member(y * (bays + 1) + x, y * (bays + 1) + x + 1);
-  for (int y = 0; y < bays; ++y)
-    for (int x = 0; x <= bays; ++x) member(y * (bays + 1) + x, (y + 1) * (bays + 1) + x);
-  const NodeGraph g = graph(next, edges);
+  const int bays = 12, divisions = 5;
+  const NodeGraph g = lattice(bays, divisions);
+  const int next = static_cast<int>(g.start.size()) - 1;
   const std::vector<int> order = tsm::assembly::elimination_order(g);
   expect_permutation(order, next);
   // Corner joints have two neighbours: they lie on paths. Every member node comes before both
   // joints its member ends at (no fill beyond joining them), and the first joint after it in the
   // order is one of those two: each member right before its first joint, for the cache; and
-  // along the member from that joint's side.
+  // along the member from that joint's side. Except where that joint is one of the joints the
+  // order ends with (the last separator, kept consecutive for its dense factorisation): then
+  // the member comes before all of those.
   std::vector<int> position(next);
   for (int k = 0; k < next; ++k) position[order[k]] = k;
   auto degree = [&](int k) { return g.start[k + 1] - g.start[k] - 1; };
   std::vector<int> next_joint(next + 1, -1);  // by position: the first joint at or after it
   for (int q = next - 1; q >= 0; --q) next_joint[q] = degree(order[q]) >= 3 ? order[q] : next_joint[q + 1];
+  int last_joints = next;  // where the order's final run of joints starts
+  while (last_joints > 0 && degree(order[last_joints - 1]) >= 3) --last_joints;
+  EXPECT_GE(next - last_joints, bays / 2);  // a separator's worth (11 of the 13 × 13 joints' grid)
   int members_checked = 0;
   for (int k = 0; k < next; ++k) {
     if (degree(k) >= 3) continue;
@@ -177,7 +180,9 @@ TEST(EliminationOrder, ALatticesMembersComeRightBeforeTheirFirstJointWithNoMoreF
     }
     for (const int joint : ends) EXPECT_LT(position[k], position[joint]) << "node " << k;
     if (ends.empty()) continue;
-    EXPECT_TRUE(std::find(ends.begin(), ends.end(), next_joint[position[k]]) != ends.end()) << "node " << k;
+    const int first_end = ends.size() == 2 && position[ends[1]] < position[ends[0]] ? ends[1] : ends[0];
+    if (position[first_end] >= last_joints) EXPECT_EQ(next_joint[position[k]], order[last_joints]) << "node " << k;
+    else EXPECT_TRUE(std::find(ends.begin(), ends.end(), next_joint[position[k]]) != ends.end()) << "node " << k;
     // Eliminated from the first joint's side: the member's nodes come in order along it, so the
     // later joint's row holds only the member's last node (the earlier joint's, all of them).
     if (ends.size() == 2) {
@@ -200,6 +205,18 @@ TEST(EliminationOrder, ALatticesMembersComeRightBeforeTheirFirstJointWithNoMoreF
   std::printf("[figure] 12x12 lattice, 5 elements per member: fill %zu (minimum degree: %zu) for %d nodes\n", fill,
               amd_fill, next);
   EXPECT_LE(fill, amd_fill * 11 / 10);
+}
+
+TEST(EliminationOrder, ALatticesLastSeparatorIsFactorisedAsOneDenseBlock) {
+  // 40 × 40 bays: the last separator of the joints' grid is ~40 joints, whose rows fill in to a
+  // dense triangle. Kept consecutive and last (no member between them), they are factorised as
+  // one dense matrix, in parallel — with one element per member as with several.
+  for (const int divisions : {1, 3}) {
+    const NodeGraph g = lattice(40, divisions);
+    tsm::solver::BlockLDLT ldlt;
+    ldlt.analyze(pattern_in(g, tsm::assembly::elimination_order(g)));
+    EXPECT_GE(ldlt.rows_in_dense_paths(), 32) << divisions << " elements per member";
+  }
 }
 
 }  // namespace

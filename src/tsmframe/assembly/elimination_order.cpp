@@ -31,6 +31,47 @@ std::vector<int> order_joints(const std::vector<int>& joints, std::vector<std::p
   return nodes;
 }
 
+/// Where the top path of the joints' elimination tree starts, in the joints' order: the last
+/// joints each of which is the only child of the next (a separator that ends up one dense block,
+/// BlockLDLT's dense path). `ordered` is the joints' elimination order (nodes), `joint_index`
+/// maps a node to its joint index, `edges` is the joints' graph in joint indices.
+int top_path_start(const std::vector<int>& ordered, const std::vector<int>& joint_index,
+                   const std::vector<std::pair<int, int>>& edges) {
+  const int m = static_cast<int>(ordered.size());
+  if (m == 0) return 0;
+  std::vector<int> rank_of(m);  // joint index -> place in the order
+  for (int r = 0; r < m; ++r) rank_of[joint_index[ordered[r]]] = r;
+  std::vector<int> start(m + 1, 0), lower;  // per rank: the neighbours of lower rank
+  for (const auto& [a, b] : edges) {
+    const int ra = rank_of[a], rb = rank_of[b];
+    if (ra != rb) ++start[std::max(ra, rb) + 1];
+  }
+  for (int r = 0; r < m; ++r) start[r + 1] += start[r];
+  lower.resize(start[m]);
+  std::vector<int> next(start.begin(), start.end() - 1);
+  for (const auto& [a, b] : edges) {
+    const int ra = rank_of[a], rb = rank_of[b];
+    if (ra != rb) lower[next[std::max(ra, rb)]++] = std::min(ra, rb);
+  }
+  // Liu's elimination tree with path compression, and each joint's number of children.
+  std::vector<int> parent(m, -1), ancestor(m, -1), children(m, 0);
+  for (int r = 0; r < m; ++r)
+    for (int e = start[r]; e < start[r + 1]; ++e)
+      for (int i = lower[e]; i != -1 && i < r;) {
+        const int up = ancestor[i];
+        ancestor[i] = r;
+        if (up == -1) {
+          parent[i] = r;
+          ++children[r];
+          break;
+        }
+        i = up;
+      }
+  int r = m - 1;
+  while (r > 0 && children[r] == 1 && parent[r - 1] == r) --r;
+  return r;
+}
+
 }  // namespace
 
 std::vector<int> elimination_order(const NodeGraph& g) {
@@ -131,6 +172,7 @@ std::vector<int> elimination_order(const NodeGraph& g) {
     }
   for (const auto& [a, b] : joint_pairs) edges.emplace_back(joint_index[a], joint_index[b]);
   const std::vector<int> ordered_joints = order_joints(joints, edges);
+  const int top_start = top_path_start(ordered_joints, joint_index, edges);
   // Each path just before the first of its end joints to be eliminated: its nodes touch only
   // one another and those joints, so anywhere before both gives the same fill and the same
   // tree, and there the factorisation forms the joint's row while the path's columns are still
@@ -151,6 +193,9 @@ std::vector<int> elimination_order(const NodeGraph& g) {
     int first = -1;
     for (const int end : {front, back})
       if (end != dead_end && (first < 0 || rank[end] < first)) first = rank[end];
+    // Not between the joints of the top path: they stay consecutive, so that BlockLDLT factorises
+    // them as one dense block (a lattice's last separator); its members come before all of them.
+    if (first > top_start) first = top_start;
     anchor[q] = first;
     if (first < 0) order.insert(order.end(), path_nodes.begin() + path_start[q], path_nodes.begin() + path_start[q + 1]);
     else ++anchored_start[first + 1];

@@ -252,14 +252,25 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   // The rows above the tasks, by level: one more than the highest level among a row's children
   // above the tasks (1 if none). Rows of one level are not ancestors of one another, so their
   // patterns — and the columns they read and write — are disjoint: they run concurrently.
+  // The tree's top chain: the last rows, each the parent of the one before (a frame's last
+  // separator, numbered consecutively by elimination_order). Its rows take one level each after
+  // every other row's, so that they form the final path stage whatever the levels of the
+  // branches beside them (a member hanging off one of its joints would otherwise share a level
+  // with it and cut the chain into pieces too short to factorise as one dense block).
+  int chain = n;
+  if (n > 0 && task[n - 1] < 0) {
+    chain = n - 1;
+    while (chain > 0 && parent[chain - 1] == chain && task[chain - 1] < 0) --chain;
+  }
   std::vector<int> level(n, 0);
   int levels = 0;
-  for (int k = 0; k < n; ++k) {  // ascending: children first
+  for (int k = 0; k < chain; ++k) {  // ascending: children first
     if (task[k] >= 0) continue;
     level[k] = std::max(level[k], 1);
     levels = std::max(levels, level[k]);
     if (parent[k] >= 0) level[parent[k]] = std::max(level[parent[k]], level[k] + 1);
   }
+  for (int k = chain; k < n; ++k) level[k] = ++levels;
   level_start_.assign(levels + 1, 0);
   for (int k = 0; k < n; ++k)
     if (task[k] < 0) ++level_start_[level[k]];
@@ -274,8 +285,10 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   for (int l = 0; l < levels; ++l)
     if (level_start_[l + 1] - level_start_[l] > 1) shared += level_start_[l + 1] - level_start_[l];
   // In parallel only where the rows above the tasks are many (else a barrier per stage costs
-  // more than it saves).
-  parallel_top_ = top_rows_.size() >= parallel_rows_above;
+  // more than it saves), or where the top chain is long enough for a dense block: a lattice of
+  // one element per member has ~230 rows above its tasks, 74 % of the work, most of it in the
+  // last separator (factorisation 7.7 → 5.6 ms on two threads; bench/README "Eleventh session").
+  parallel_top_ = top_rows_.size() >= parallel_rows_above || n - chain >= dense_path_rows;
   parallel_tasks_ = tasks > 1 && n >= util::smallest_shared_model;
   // Stages of the rows above the tasks: each level of several rows, and each run of single-row
   // levels — a path of the tree, where every row's pattern below the path is final before the
@@ -316,9 +329,19 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
     const int begin = level_start_[l], end = level_start_[m];
     int run = end - 1;  // the run of consecutive rows at the path's top, from its lowest
     while (run > begin && top_rows_[run - 1] == top_rows_[run] - 1) --run;
-    if (parallel_top_ && end - run >= dense_path_rows) {
-      if (run > begin) add_path(begin, run, false);
-      add_path(run, end, true);
+    // Of that run, the longest top part whose lower triangle is at least half filled (the one
+    // factorised dense): the run's lower rows may be a member's nodes, one entry each, hanging
+    // from the separator's first joint. The part from row q on holds the entries of its columns
+    // up to the path's last row.
+    int dense_from = end;
+    for (int q = end - 1, entries = 0; q >= run; --q) {
+      const int k = top_rows_[q], last = top_rows_[end - 1], rows = end - q;
+      for (int p = a.column[k] + 1; p < a.column[k + 1] && a.row[p] <= last; ++p) ++entries;
+      if (4 * static_cast<long>(entries) >= static_cast<long>(rows) * (rows - 1)) dense_from = q;
+    }
+    if (parallel_top_ && end - dense_from >= dense_path_rows) {
+      if (dense_from > begin) add_path(begin, dense_from, false);
+      add_path(dense_from, end, true);
     } else {
       add_path(begin, end, false);
     }
