@@ -165,9 +165,18 @@ int study(const StudyOptions& options) {
     std::cerr << "tsmframe: " << e.what() << '\n';
     return exit_bad_input;
   }
+  const auto bad = [](const tsm::study::CaseResult& r) { return r.status == "bad-input"; };
   const size_t failed = std::count_if(rows.begin(), rows.end(), [](const auto& r) { return !r.converged; });
-  std::cerr << options.study << ": " << rows.size() << " cases, " << failed << " did not converge; rows in " << options.out
-            << "/study.csv and study.json\n";
+  const size_t invalid = std::count_if(rows.begin(), rows.end(), bad);
+  std::cerr << options.study << ": " << rows.size() << " cases, " << failed - invalid << " did not converge";
+  // A model the sweep made invalid is most often a typo in the study (a path to a key the model
+  // does not have): the first such case's reason, on the terminal, not only in the rows.
+  if (invalid > 0) {
+    const auto first = std::find_if(rows.begin(), rows.end(), bad);
+    std::cerr << ", " << invalid << " had a model the sweep made invalid (bad-input; case " << first->index + 1 << ": "
+              << first->message << ")";
+  }
+  std::cerr << "; rows in " << options.out << "/study.csv and study.json\n";
   return failed == 0 ? exit_converged : exit_not_converged;
 }
 

@@ -78,6 +78,11 @@ TEST_F(Study, ABadCaseModelIsARowNotACrash) {
   ASSERT_EQ(r["cases"].size(), 2u);
   EXPECT_EQ(r["cases"][1]["status"], "bad-input");
   EXPECT_NE(r["cases"][1]["message"].get<std::string>().find("members[0].divisions"), std::string::npos);
+  // The summary tells the invalid case from one that did not converge, with its reason.
+  EXPECT_NE(o.output.find("2 cases, 0 did not converge, 1 had a model the sweep made invalid (bad-input; case 2: "
+                          "members[0].divisions"),
+            std::string::npos)
+      << o.output;
 }
 
 TEST_F(Study, BadStudyInputExitsTwoWithThePath) {
