@@ -77,15 +77,28 @@ def main(directory):
     with open(os.path.join(directory, "steps.csv"), newline="") as f:
         rows = list(csv.DictReader(f))
     columns = [c for c in (rows[0].keys() if rows else []) if c[:3] in ("ux_", "uy_", "rz_")]
+    translations = [c for c in columns if c[:2] != "rz"]
+    rotations = [c for c in columns if c[:2] == "rz"]
     fig, ax = plt.subplots(figsize=(8, 5))
     lam = [0.0] + [float(r["load_factor"]) for r in rows]
-    for c in columns:
-        ax.plot([0.0] + [float(r[c]) for r in rows], lam, ".-", ms=3, lw=1, label=f"{c[:2]} of node {c[3:]}")
-    ax.set_xlabel("displacement (ux, uy) or rotation (rz)")
+    # Rotations (radians) on an axis of their own, at the top, when there are translations too:
+    # on one axis a frame's metres or millimetres squash them flat, or they squash the metres.
+    rotation_ax = ax.twiny() if translations and rotations else ax
+    lines = []
+    for i, c in enumerate(columns):  # colours by column: the second axis would restart the cycle
+        on = rotation_ax if c in rotations else ax
+        style = "x--" if on is not ax else ".-"
+        lines += on.plot([0.0] + [float(r[c]) for r in rows], lam, style, ms=3, lw=1, color=f"C{i % 10}",
+                         label=f"{c[:2]} of node {c[3:]}")
+    if rotation_ax is ax:
+        ax.set_xlabel("rotation rz (rad)" if not translations else "displacement (ux, uy)")
+    else:
+        ax.set_xlabel("displacement (ux, uy), bottom axis")
+        rotation_ax.set_xlabel("rotation rz (rad), top axis, dashed")
     ax.set_ylabel("load factor λ")
     ax.grid(True, alpha=0.3)
     if columns:
-        ax.legend(fontsize=8)
+        ax.legend(lines, [line.get_label() for line in lines], fontsize=8)
     ax.set_title("load–displacement")
     for ext in ("png", "svg"):
         fig.savefig(os.path.join(plots, f"load-displacement.{ext}"), dpi=130, bbox_inches="tight")
