@@ -11,6 +11,8 @@
 
 #include "support/models.hpp"
 #include "tsmframe/assembly/global_system.hpp"
+#include "tsmframe/assembly/dof_map.hpp"
+#include "tsmframe/solver/block_ldlt.hpp"
 #include "tsmframe/element/beam_element.hpp"
 #include "tsmframe/util/parallel_for.hpp"
 
@@ -63,11 +65,10 @@ TEST(Threads, OneAndTwoThreadsGiveBitIdenticalResults) {
   EXPECT_NEAR(tip[2], M * 10.0 / (2e11 * 1e-5), 1e-8);
 }
 
-TEST(Threads, AGridFrameGivesBitIdenticalResults) {
-  // 16 × 16 bays, 5 elements per member (2,720 elements, past util::smallest_shared_model): its
-  // elimination tree leaves hundreds of rows above the subtree tasks, run level by level in
-  // parallel.
-  const int bays = 16, n = bays + 1;
+// A grid frame of bays × bays members, `divisions` Timoshenko elements each, the bottom row
+// clamped and the top row pushed sideways and down.
+tsm::Model grid_frame(int bays, int divisions) {
+  const int n = bays + 1;
   json m = {{"materials", {{"steel", {{"E", 2.05e11}, {"G", 7.9e10}}}}},
             {"sections", {{"sq", {{"A", 1e-2}, {"I", 8.333e-6}, {"shear_area", 8.33e-3}}}}},
             {"nodes", json::array()}, {"members", json::array()}, {"supports", json::array()}, {"loads", json::array()},
@@ -76,7 +77,8 @@ TEST(Threads, AGridFrameGivesBitIdenticalResults) {
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) m["nodes"].push_back({{"id", id(x, y)}, {"x", double(x)}, {"y", double(y)}});
   auto member = [&](int a, int b) {
-    m["members"].push_back({{"from", a}, {"to", b}, {"divisions", 5}, {"element", "timoshenko"}, {"material", "steel"}, {"section", "sq"}});
+    m["members"].push_back(
+        {{"from", a}, {"to", b}, {"divisions", divisions}, {"element", "timoshenko"}, {"material", "steel"}, {"section", "sq"}});
   };
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < bays; ++x) member(id(x, y), id(x + 1, y));
@@ -86,14 +88,39 @@ TEST(Threads, AGridFrameGivesBitIdenticalResults) {
     m["supports"].push_back({{"node", id(x, 0)}, {"type", "fixed"}});
     m["loads"].push_back({{"node", id(x, bays)}, {"fx", 2e5}, {"fy", -2e5}});
   }
-  const tsm::Model model = tsm::io::read_model(m);
+  return tsm::io::read_model(m);
+}
+
+TEST(Threads, AGridFrameGivesBitIdenticalResults) {
+  // 16 × 16 bays, 5 elements per member (2,720 elements, past util::smallest_shared_model): its
+  // elimination tree leaves hundreds of rows above the subtree tasks, run level by level in
+  // parallel.
+  const int bays = 16;
+  const tsm::Model model = grid_frame(bays, 5);
   ASSERT_GE(static_cast<int>(model.elements.size()), tsm::util::smallest_shared_model) << "else every loop runs on one thread";
 
   const auto [one, two] = run_with_one_and_two_threads(model);
   ASSERT_EQ(one.status, tsm::solver::Status::converged) << one.message;
   expect_bit_identical(one, two);
   for (const auto& step : one.steps) expect_global_equilibrium(model, step);
-  EXPECT_GT(node_displacement(model, one.steps.back(), id(bays, bays))[0], 0.1);  // it sways far
+  EXPECT_GT(node_displacement(model, one.steps.back(), (bays + 1) * (bays + 1))[0], 0.1);  // it sways far
+}
+
+TEST(Threads, AGridFrameWhoseLastSeparatorIsDenseGivesBitIdenticalResults) {
+  // 40 × 40 bays of one element each: the last separator (58 rows) is factorised as one dense
+  // block, its prefix passes and the block shared out over the threads.
+  const tsm::Model model = grid_frame(40, 1);
+  const tsm::assembly::DofMap dofs(model);
+  const tsm::assembly::GlobalSystem system(model, dofs);
+  tsm::solver::BlockLDLT ldlt;
+  ldlt.analyze(system.tangent());
+  ASSERT_GE(ldlt.rows_in_dense_paths(), 32) << "else the dense block is not exercised";
+
+  const auto [one, two] = run_with_one_and_two_threads(model);
+  ASSERT_EQ(one.status, tsm::solver::Status::converged) << one.message;
+  expect_bit_identical(one, two);
+  // To the run's own tolerance (1e-8): 41 loaded joints sum their residuals into the balance.
+  for (const auto& step : one.steps) expect_global_equilibrium(model, step, 1e-8);
 }
 
 TEST(Threads, AContactSlidingThroughElementEndsGivesBitIdenticalResults) {
