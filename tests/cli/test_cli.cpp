@@ -152,8 +152,8 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
          m["contacts"] = json::array({{{"node", 5}, {"members", "all"}}});
        },
        "supports: structure is a mechanism: the part holding node 1 and the 4 nodes joined to it is free to rotate about (0, 0) "
-       "(add a support that stops it); a contact holds it from the start only if its node is held and drawn at the contact's "
-       "\"gap\" from the beam's centre line"},
+       "(add a support that stops it); a contact holds it from the start only if its node is drawn at the contact's "
+       "\"gap\" from the beam's centre line, on the side it supports, and the node or the beam is held"},
       {"two contacts resting on one element",
        [](json& m) {
          m["nodes"].push_back({{"id", 5}, {"x", 2.2}, {"y", -0.05}});

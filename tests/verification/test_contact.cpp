@@ -344,6 +344,67 @@ TEST(ContactResting, OnlyAHeldNodeDrawnAtTheGapOffTheBeamRestsOnIt) {
   }
 }
 
+// A beam lying on another: the lower one simply supported (pinned, roller), the upper one drawn
+// 50 mm above it, its two end nodes resting on it as contact nodes (gap 50 mm) and only its
+// left end's ux fixed; each end loaded down by P.
+json beam_on_beam(double P) {
+  json m = {{"materials", {{"steel", {{"E", 2.1e11}}}}},
+            {"sections", {{"s", {{"A", 0.0012}, {"I", 1.5e-6}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 2.0}, {"y", 0.0}},
+                                   {{"id", 10}, {"x", 0.5}, {"y", 0.05}}, {{"id", 11}, {"x", 1.5}, {"y", 0.05}}})},
+            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 10}, {"material", "steel"}, {"section", "s"}},
+                                     {{"from", 10}, {"to", 11}, {"divisions", 4}, {"material", "steel"}, {"section", "s"}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}},
+                                      {{"node", 10}, {"fix", {"ux"}}}})},
+            {"loads", json::array({{{"node", 10}, {"fy", -P}}, {{"node", 11}, {"fy", -P}}})},
+            {"contacts", json::array({{{"node", 10}, {"members", {0}}, {"gap", 0.05}},
+                                      {{"node", 11}, {"members", {0}}, {"gap", 0.05}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 2}}}}}};
+  return m;
+}
+
+TEST(ContactResting, ABeamLyingOnASupportedBeamIsHeldByItsRestingNodes) {
+  // Before, refused as a mechanism ("free to move along y"): its resting nodes are held by no
+  // support, only by their beam. Now a part that is held (the lower beam) holds, along the
+  // normal, the part whose nodes rest on it. Each end carries P into the lower beam, which
+  // deflects under the two loads as by P a² (3L − 4a)/6EI at a = 0.5, L = 2.
+  const double P = 1e3, a = 0.5, L = 2.0, EI = 2.1e11 * 1.5e-6;
+  tsm::Model model;
+  const RunResult r = run(beam_on_beam(P), model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const StepRecord& last = r.steps.back();
+  for (size_t k = 0; k < 2; ++k) EXPECT_NEAR(contact_of(last, k).force, P, 1e-6 * P) << "contact " << k;
+  const double expected = -P * a * a * (3 * L - 4 * a) / (6 * EI);
+  for (const int node : {10, 11}) EXPECT_NEAR(node_displacement(model, last, node)[1], expected, 1e-4 * -expected);
+  expect_equilibrium(model, last);
+  // Without the ux the upper beam is free to slide along (frictionless); resting on one node
+  // only, it is free to turn about it: both still refused, saying why.
+  json free = beam_on_beam(P);
+  free["supports"].erase(2);
+  try {
+    tsm::io::read_model(free);
+    ADD_FAILURE() << "a beam free to slide on the other was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("is free to move along x"), std::string::npos) << e.what();
+  }
+  json one = beam_on_beam(P);
+  one["contacts"].erase(1);
+  try {
+    tsm::io::read_model(one);
+    ADD_FAILURE() << "a beam resting on one node was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("is free to rotate"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("the node or the beam is held"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ContactResting, ABeamLyingOnABeamLiftedOffFailsSayingNothingHoldsIt) {
+  tsm::Model model;
+  const RunResult r = run(beam_on_beam(-1e3), model);  // pulled up: the contacts would pull
+  EXPECT_NE(r.status, tsm::solver::Status::converged);
+  EXPECT_NE(r.message.find("held only by the contacts resting on it"), std::string::npos) << r.message;
+}
+
 TEST(ContactGap, ContactStartsAtTheGapAndTheForceFollowsTheClosing) {
   // A pusher 10 mm below the beam with a 4 mm gap (say, the beam's half depth): it touches after
   // 6 mm and then presses with 3EI(h − 6 mm)/a³.

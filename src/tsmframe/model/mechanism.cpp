@@ -59,47 +59,94 @@ std::optional<std::string> find_mechanism(const Model& model, bool resting_conta
   std::vector<std::vector<int>> parts(n);
   for (int k = 0; k < n; ++k)
     if (held[k]) parts[find_root(parent, k)].push_back(k);
-  // A contact resting on a part (resting_contact) whose node is held in both translations holds
-  // that part along the element's normal at the touch point (bilaterally, for this check: it
-  // lets go only if it would pull, which a solve finds out).
-  std::vector<std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>> resting(n);  // per part root: (point, normal)
+  // A contact resting on a part as drawn (resting_contact) holds that part along the element's
+  // normal at the touch point where its node is held — in both translations by supports (a knife
+  // edge), or as a node of a part that is itself held (a beam lying on a supported one) — and,
+  // the other way round, holds its node's part where the part it rests on is held. Bilaterally,
+  // for this check: a contact lets go only if it would pull, which a solve finds out. Parts held
+  // so hold others in turn, until nothing changes.
+  struct Touch {
+    int node_part, element_part;  // roots; node_part −1: a node held by supports, in no part
+    Eigen::Vector2d point, normal;
+  };
+  std::vector<Touch> touches;
   for (const ContactSpec& c : model.contacts) {
     if (!resting_contacts_hold) break;
-    if (!model.constrained[dofs_per_node * c.node + ux] || !model.constrained[dofs_per_node * c.node + uy]) continue;
+    const bool fixed = model.constrained[dofs_per_node * c.node + ux] && model.constrained[dofs_per_node * c.node + uy];
+    if (!fixed && !held[c.node]) continue;
     if (const auto r = resting_contact(model, c))
-      resting[find_root(parent, model.elements[r->element].start)].push_back({r->point, r->normal});
+      touches.push_back({fixed ? -1 : find_root(parent, c.node), find_root(parent, model.elements[r->element].start),
+                         r->point, r->normal});
   }
-
-  for (const std::vector<int>& part : parts) {
-    if (part.empty()) continue;
-    const int root = find_root(parent, part.front());
-    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  std::vector<std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>> resting(n);  // per part root: (point, normal)
+  std::vector<char> part_held(n, 0), used(touches.size(), 0);
+  // The part's rigid-body modes against its supports: the Gram matrix of the constraint rows
+  // (translation x, y; rotation about the centre, scaled by the part's extent so the columns are
+  // commensurate), one row per constrained dof and per contact holding it.
+  struct Modes {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    Eigen::Vector2d centre;
+    double extent = 1.0;
+    bool stable() const { return eig.eigenvalues()[0] > 1e-10 * std::max(1.0, eig.eigenvalues()[2]); }
+  };
+  auto modes_of = [&](const std::vector<int>& part, int root) {
+    Modes m;
+    m.centre = Eigen::Vector2d::Zero();
     Eigen::Vector2d lo = model.nodes[part.front()].position, hi = lo;
     for (int k : part) {
       const Eigen::Vector2d& p = model.nodes[k].position;
-      centre += p;
+      m.centre += p;
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
-    centre /= static_cast<double>(part.size());
-    const double extent = std::max((hi - lo).norm(), 1e-300);
-    // Each constrained dof is one row of the rigid-body modes (translation x, y; rotation about
-    // the centre, scaled by the part's extent so the columns are commensurate).
+    m.centre /= static_cast<double>(part.size());
+    m.extent = std::max((hi - lo).norm(), 1e-300);
     Eigen::Matrix3d gram = Eigen::Matrix3d::Zero();
     for (int k : part) {
-      const Eigen::Vector2d p = (model.nodes[k].position - centre) / extent;
+      const Eigen::Vector2d p = (model.nodes[k].position - m.centre) / m.extent;
       const Eigen::Vector3d rows[3] = {{1.0, 0.0, -p.y()}, {0.0, 1.0, p.x()}, {0.0, 0.0, 1.0}};
       for (int dof = 0; dof < dofs_per_node; ++dof)
         if (model.constrained[dofs_per_node * k + dof]) gram += rows[dof] * rows[dof].transpose();
     }
     for (const auto& [point, normal] : resting[root]) {
-      const Eigen::Vector2d p = (point - centre) / extent;
+      const Eigen::Vector2d p = (point - m.centre) / m.extent;
       const Eigen::Vector3d row(normal.x(), normal.y(), -normal.x() * p.y() + normal.y() * p.x());
       gram += row * row.transpose();
     }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(gram);
-    if (eig.eigenvalues()[0] > 1e-10 * std::max(1.0, eig.eigenvalues()[2])) continue;
-    const Eigen::Vector3d mode = eig.eigenvectors().col(0);  // (a, b, ω·extent)
+    m.eig.compute(gram);
+    return m;
+  };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (size_t t = 0; t < touches.size(); ++t) {
+      if (used[t]) continue;
+      const Touch& touch = touches[t];
+      const bool node_held = touch.node_part < 0 || part_held[touch.node_part];
+      if (node_held && touch.node_part != touch.element_part) {
+        resting[touch.element_part].push_back({touch.point, touch.normal});
+      } else if (part_held[touch.element_part] && touch.node_part >= 0 && touch.node_part != touch.element_part) {
+        resting[touch.node_part].push_back({touch.point, touch.normal});
+      } else {
+        continue;
+      }
+      used[t] = 1;
+      changed = true;
+    }
+    for (const std::vector<int>& part : parts) {
+      if (part.empty()) continue;
+      const int root = find_root(parent, part.front());
+      if (!part_held[root] && modes_of(part, root).stable()) part_held[root] = 1, changed = true;
+    }
+  }
+
+  for (const std::vector<int>& part : parts) {
+    if (part.empty()) continue;
+    const int root = find_root(parent, part.front());
+    if (part_held[root]) continue;
+    const Modes m = modes_of(part, root);
+    const Eigen::Vector3d mode = m.eig.eigenvectors().col(0);  // (a, b, ω·extent)
+    const double extent = m.extent;
+    const Eigen::Vector2d centre = m.centre;
     std::ostringstream os;
     os << "structure is a mechanism: the part holding " << part_name(model, part) << " is free to ";
     if (std::abs(mode[2]) < 1e-6) {
@@ -112,14 +159,19 @@ std::optional<std::string> find_mechanism(const Model& model, bool resting_conta
       const Eigen::Vector2d pole = centre + Eigen::Vector2d(-mode[1] / omega, mode[0] / omega);
       os << "rotate about (" << pole.x() << ", " << pole.y() << ") (add a support that stops it)";
     }
-    // Contacts on this part count only where they rest on it as drawn.
+    // Contacts on this part, or from its nodes, count only where they rest as drawn.
     std::vector<bool> contact_member(model.member_count, false);
     for (const ContactSpec& c : model.contacts)
       for (const int m : c.members) contact_member[m] = true;
-    if (std::any_of(model.elements.begin(), model.elements.end(),
-                    [&](const Element& e) { return contact_member[e.member] && find_root(parent, e.start) == root; }))
-      os << "; a contact holds it from the start only if its node is held and drawn at the contact's \"gap\" "
-            "from the beam's centre line, on the side it supports";
+    const bool touches_part =
+        std::any_of(model.elements.begin(), model.elements.end(),
+                    [&](const Element& e) { return contact_member[e.member] && find_root(parent, e.start) == root; }) ||
+        std::any_of(model.contacts.begin(), model.contacts.end(),
+                    [&](const ContactSpec& c) { return held[c.node] && find_root(parent, c.node) == root; });
+    if (touches_part)
+      os << "; a contact holds it from the start only if its node is drawn at the contact's \"gap\" from the "
+            "beam's centre line, on the side it supports, and the node or the beam is held (by supports, or by a "
+            "part that is)";
     return os.str();
   }
   return std::nullopt;
