@@ -379,23 +379,23 @@ TEST(ContactResting, ABeamLyingOnASupportedBeamIsHeldByItsRestingNodes) {
   expect_equilibrium(model, last);
   // Without the ux the upper beam is free to slide along (frictionless); resting on one node
   // only, it is free to turn about it: both still refused, saying why.
+  const auto refusal = [](const json& m) -> std::string {  // the reader's reason, or "" if accepted
+    try {
+      tsm::io::read_model(m);
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "";
+  };
   json free = beam_on_beam(P);
   free["supports"].erase(2);
-  try {
-    tsm::io::read_model(free);
-    ADD_FAILURE() << "a beam free to slide on the other was accepted";
-  } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("is free to move along x"), std::string::npos) << e.what();
-  }
+  const std::string slides = refusal(free);
+  EXPECT_NE(slides.find("is free to move along x"), std::string::npos) << "refusal: " << slides;
   json one = beam_on_beam(P);
   one["contacts"].erase(1);
-  try {
-    tsm::io::read_model(one);
-    ADD_FAILURE() << "a beam resting on one node was accepted";
-  } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("is free to rotate"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("the node or the beam is held"), std::string::npos) << e.what();
-  }
+  const std::string turns = refusal(one);
+  EXPECT_NE(turns.find("is free to rotate"), std::string::npos) << "refusal: " << turns;
+  EXPECT_NE(turns.find("the node or the beam is held"), std::string::npos) << "refusal: " << turns;
 }
 
 TEST(ContactResting, ABeamLyingOnABeamLiftedOffFailsSayingNothingHoldsIt) {
