@@ -102,6 +102,7 @@ class Recorder {
     record.load_factor = state.load_factor;
     record.converged = true;
     record.criterion = outcome.criterion;
+    record.carried_nothing = outcome.carried_nothing;
     record.has_state = true;
     record.monitored.resize(dofs_per_node * static_cast<int>(settings.monitor.size()));
     for (size_t m = 0; m < settings.monitor.size(); ++m)
@@ -238,6 +239,33 @@ std::vector<std::string> jump_notes(const std::vector<StepRecord>& steps) {
   return notes;
 }
 
+/// Steps accepted on round-off because the structure carried next to nothing (a contact let go
+/// and nothing else loads it, or λ is back at zero): their relative residual, up to ~1, is the
+/// ratio of two rounding errors. One note for them all, so that the log's large residuals are
+/// not read as a failure.
+std::vector<std::string> nothing_carried_notes(const std::vector<StepRecord>& steps) {
+  std::vector<int> quiet;
+  for (const StepRecord& s : steps)
+    if (s.converged && s.carried_nothing) quiet.push_back(s.step);
+  if (quiet.empty()) return {};
+  std::ostringstream os;
+  if (quiet.size() == 1) os << "step " << quiet.front();
+  else if (quiet.size() == 2) os << "steps " << quiet.front() << " and " << quiet.back();
+  else os << quiet.size() << " steps from " << quiet.front() << " to " << quiet.back();
+  os << ": the structure carried next to nothing (its internal forces at rounding level: a contact let go and "
+        "nothing else loads it, or the load is zero), so the relative residual there is rounding noise; "
+     << (quiet.size() == 1 ? "it was" : "they were") << " accepted on round-off";
+  return {os.str()};
+}
+
+/// What the result says about its path besides the steps: the limit points, and the notes.
+void close_path(RunResult& result, bool by_displacement) {
+  result.limit_points = limit_points(result.steps);
+  result.notes = nothing_carried_notes(result.steps);
+  if (by_displacement)
+    for (std::string& note : jump_notes(result.steps)) result.notes.push_back(std::move(note));
+}
+
 RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
                          const StepObserver& observer);
 
@@ -358,14 +386,12 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
                      short_element_hint(model);
     recorder.finish(state);  // state is the newest converged step's again
     recorder.failed(std::move(record), failed.message);
-    result.limit_points = limit_points(result.steps);
-    if (by_displacement) result.notes = jump_notes(result.steps);
+    close_path(result, by_displacement);
     return result;
   }
   recorder.finish(state);
   result.status = Status::converged;
-  result.limit_points = limit_points(result.steps);
-  if (by_displacement) result.notes = jump_notes(result.steps);
+  close_path(result, by_displacement);
   return result;
 }
 
@@ -438,7 +464,7 @@ RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, Newto
         newton.reset(state);  // keep the arc-length step that passed the target
       }
       result.status = Status::converged;
-      result.limit_points = limit_points(result.steps);
+      close_path(result, false);
       return result;
     }
     state = saved;
@@ -482,10 +508,10 @@ RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, Newto
          << ", its bounding box's diagonal): give initial_increment and max_increment a few per cent of it";
     result.message = os.str() + short_element_hint(model);
     recorder.failed(std::move(record), outcome.message);
-    result.limit_points = limit_points(result.steps);
+    close_path(result, false);
     return result;
   }
-  result.limit_points = limit_points(result.steps);
+  close_path(result, false);
   if (watching) {
     result.status = Status::step_limit;
     std::ostringstream os;

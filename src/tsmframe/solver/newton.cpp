@@ -557,11 +557,16 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
     const bool at_round_off = step_size[0] <= round_off_ratio * std::max(model.size, largest[0]) &&
                               step_size[1] <= round_off_ratio * std::max(1.0, largest[1]);
     const bool stagnating = relative >= stagnation * out.residual_norms[out.residual_norms.size() - 2];
-    const char* criterion = relative <= settings_.tolerance ? "force"
-                            : !contacts_changed && ((at_round_off && (relative < floor_check_below || carries_nothing(pass.scale, state))) ||
-                                                    (stagnating && relative < floor_check_below && within_floor(pass.norms, state)))
-                                ? "round-off"
-                                : nullptr;
+    const char* criterion = nullptr;
+    bool nothing_carried = false;  // round-off because the structure carries next to nothing
+    if (relative <= settings_.tolerance) {
+      criterion = "force";
+    } else if (!contacts_changed) {
+      if (at_round_off && (relative < floor_check_below || (nothing_carried = carries_nothing(pass.scale, state))))
+        criterion = "round-off";
+      else if (stagnating && relative < floor_check_below && within_floor(pass.norms, state))
+        criterion = "round-off";
+    }
     if (criterion) {
       if (release_pulling_contacts(state)) {  // converged with a contact pulling: iterate on without it
         ++unsettled;
@@ -613,6 +618,7 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
         return out;
       }
       out.criterion = criterion;
+      out.carried_nothing = nothing_carried;
       if (contacts_) contacts_->accept(state.displacements, state.chord_rotations, state.contacts);
       return out;
     }

@@ -27,6 +27,7 @@ struct StepRecord {
   int iterations = 0;                  ///< Newton solves, the predictor included
   std::vector<double> residual_norms;  ///< relative ‖R‖ of each iterate, iterate 0 first
   std::string criterion;               ///< "force" or "round-off" (converged steps)
+  bool carried_nothing = false;        ///< round-off because the structure carried next to nothing
   int cutbacks = 0;                    ///< failed attempts halved away before this step
   double increment = 0.0;              ///< Δλ (load and arc-length control) or the controlled dof's increment
   double arc_length = 0.0;             ///< Δs of the step (arc-length control; 0 otherwise)
