@@ -99,6 +99,18 @@ def test_a_jump_across_a_snap_back_is_a_note():
     assert tf.run(doc).notes == []
 
 
+def test_a_three_hinged_arch_built_in_code_has_the_thrust_of_statics():
+    # Two members hinged at the crown (release), pinned feet: H = P L / (4 h).
+    m = tf.Model("three-hinged arch").material("s", E=2e11).section("x", A=0.01, I=1e-4)
+    m.node(1, 0, 0).node(2, 5, 2).node(3, 10, 0)
+    m.member(1, 2, "s", "x", divisions=10, release="end").member(2, 3, "s", "x", divisions=10, release="start")
+    m.support(1, "pinned").support(3, "pinned").load(2, fy=-1000.0)
+    r = tf.run(m)
+    assert r.ok, r.message
+    left = r.reactions[-1, list(r.node_ids).index(1)]
+    assert left[0] == pytest.approx(1250.0, rel=1e-4) and left[1] == pytest.approx(500.0, rel=1e-6)
+
+
 def test_model_built_in_code_rolls_into_a_circle():
     L, EI = 10.0, 2.05e11 * 8.333e-6
     m = tf.Model("circle").material("steel", E=2.05e11, G=7.9e10).section("s", A=1e-2, I=8.333e-6, shear_area=8.33e-3)

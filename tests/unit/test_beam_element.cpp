@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "tsmframe/element/beam_element.hpp"
+#include "tsmframe/element/force_law.hpp"
 
 namespace {
 
@@ -74,6 +75,41 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{0.0, 3 * pi, 0.05, 2.5, -1.7}, Case{0.0, -3 * pi, -0.03, -2.9, 2.2},
                       Case{0.05, 3 * pi, 0.05, 2.5, -1.7}, Case{0.05, 1.0, -0.02, 3.1, 3.1},
                       Case{0.5, -3 * pi + 0.3, 0.01, -1.2, 2.7}));
+
+// A hinged element (a member "release"): k0 with the released end's rotation condensed out.
+struct Hinged {
+  double shear_flexibility;
+  bool at_i, at_j;
+};
+
+class HingedTangent : public ::testing::TestWithParam<Hinged> {};
+
+TEST_P(HingedTangent, MatchesFiniteDifferencesAndCarriesNoMomentAtTheHinge) {
+  const Hinged& p = GetParam();
+  const InitialChord chord = initial_chord({0.3, -0.2}, {2.3, 0.8});
+  const SectionStiffness section{.EA = 200.0, .EI = 3.0, .shear_flexibility = p.shear_flexibility};
+  const Matrix3 s = released_stiffness(basic_stiffness_terms(section, chord.length), p.at_i, p.at_j);
+  for (const double angle : {0.4, 3 * pi}) {
+    const Vector6 d = deformed(chord, angle, 0.02, 2.5, -1.7);
+    const BeamResponse r = beam_response(chord, s, d, angle + 0.01);
+    if (p.at_i) EXPECT_EQ(r.forces[1], 0.0);
+    if (p.at_j) EXPECT_EQ(r.forces[2], 0.0);
+    const Matrix6 fd = finite_difference_tangent(chord, s, d, angle + 0.01);
+    EXPECT_LE((r.tangent - fd).cwiseAbs().maxCoeff(), 1e-6 * r.tangent.cwiseAbs().maxCoeff()) << r.tangent << "\n" << fd;
+    if (p.at_i) EXPECT_EQ(r.tangent.row(2).norm(), 0.0) << "node i's rotation is not the element's";
+  }
+  // One hinge: the other end's bending stiffness is k_jj − k_ij²/k_ii — 3EI/l0 for
+  // Euler–Bernoulli, 12EI/(l0 (4 + q)) for Timoshenko (the propped cantilever's end stiffness).
+  if (p.at_i != p.at_j) {
+    const double l0 = chord.length, q = 12.0 * p.shear_flexibility / (l0 * l0);
+    const int kept = p.at_i ? 2 : 1;
+    EXPECT_NEAR(s(kept, kept), 12.0 * 3.0 / (l0 * (4.0 + q)), 1e-12);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Releases, HingedTangent,
+                         ::testing::Values(Hinged{0.0, true, false}, Hinged{0.0, false, true}, Hinged{0.0, true, true},
+                                           Hinged{0.05, true, false}, Hinged{0.05, false, true}));
 
 TEST(BeamElement, RigidMotionGivesNoForce) {
   const InitialChord chord = initial_chord({1.0, 2.0}, {4.0, -2.0});

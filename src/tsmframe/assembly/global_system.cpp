@@ -72,6 +72,8 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
     r.length = chord.length;
     r.angle = chord.angle;
     r.k0 = element::basic_stiffness_terms(e.section, chord.length);
+    r.release_i = e.release_start;
+    r.release_j = e.release_end;
   }
 
   build_pattern();
@@ -267,13 +269,13 @@ double GlobalSystem::evaluate_element(int q, const Eigen::VectorXd& displacement
     return 0.0;
   }
   const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-  const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0, d, previous_rotations[k], with_tangent);
+  const element::BeamResponse r = slot.respond(d, previous_rotations[k], with_tangent);
   out.chord_rotations[k] = r.chord.rotation;
   for (int a = 0; a < 3; ++a) {
     if (at_i) force[g[a]] = slot.first_i ? r.nodal_forces[a] : force[g[a]] + r.nodal_forces[a];
     if (at_j) force[g[3 + a]] = slot.first_j ? r.nodal_forces[3 + a] : force[g[3 + a]] + r.nodal_forces[3 + a];
   }
-  const double end_rotation = std::max(std::abs(r.deformations[1]), std::abs(r.deformations[2]));
+  const double end_rotation = slot.end_rotation(r);
   if (!with_tangent) return end_rotation;
   auto put = [&](int entry, bool first, const auto& block) {
     if (first) value[entry] = block;
@@ -303,8 +305,7 @@ double GlobalSystem::end_rotation(int q, const Eigen::VectorXd& displacements,
   const int k = element_order_[q];
   if (replaced_[k]) return 0.0;
   const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-  const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0, d, previous_rotations[k], false);
-  return std::max(std::abs(r.deformations[1]), std::abs(r.deformations[2]));
+  return slot.end_rotation(slot.respond(d, previous_rotations[k], false));
 }
 
 void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen::VectorXd& displacements,
@@ -475,7 +476,7 @@ Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacement
     const ElementRecord& slot = records_[q];
     const int k = element_order_[q];
     const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-    forces.segment<3>(3 * k) = element::beam_response(slot.chord(), slot.k0, d, rotations[k], false).forces;
+    forces.segment<3>(3 * k) = slot.respond(d, rotations[k], false).forces;
   });
   for (const contact::ActiveContact& a : contacts) {
     const contact::Vector9 d = gather(displacements, contact_dofs(model_.elements[a.element], a.node));
@@ -501,8 +502,8 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
       const int k = element_order_[q];
       if (replaced[k]) continue;
       const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-      const element::BeamResponse r = element::beam_response(slot.chord(), slot.k0, d, rotations[k], false);
-      const element::RoundOffFloor f = element::round_off_floor(slot.chord(), slot.k0.matrix(), d, r);
+      const element::BeamResponse r = slot.respond(d, rotations[k], false);
+      const element::RoundOffFloor f = element::round_off_floor(slot.chord(), slot.stiffness(), d, r);
       force += 4.0 * f.force * f.force;  // two nodes, two translations each
       moment += 2.0 * f.moment * f.moment;
     }

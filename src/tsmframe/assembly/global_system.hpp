@@ -137,11 +137,27 @@ class GlobalSystem {
     /// and j's internal forces: it assigns instead of adding, so nothing is cleared before the
     /// loop (0 + a = a exactly: the sums are the same as with clearing).
     bool first_ii : 1 = false, first_jj : 1 = false, first_ij : 1 = false, first_i : 1 = false, first_j : 1 = false;
+    bool release_i : 1 = false, release_j : 1 = false;  ///< a hinge at that end (Element::release_start/end)
     double delta0[2] = {0.0, 0.0};      ///< X_j − X_i
     double length = 0.0, angle = 0.0;   ///< l0, φ0
-    element::BasicStiffness k0;         ///< Eq. 3 / 4, fixed
+    element::BasicStiffness k0;         ///< Eq. 3 / 4, fixed (without its releases)
     element::InitialChord chord() const {
       return {element::Vector2::Zero(), element::Vector2(delta0[0], delta0[1]), length, angle};
+    }
+    /// k0 as the element uses it: with its releases condensed.
+    element::Matrix3 stiffness() const {
+      return release_i || release_j ? element::released_stiffness(k0, release_i, release_j) : k0.matrix();
+    }
+    /// The element's response: the common case on the fixed-form k0, a hinged element on its
+    /// condensed one.
+    element::BeamResponse respond(const element::Vector6& d, double previous_rotation, bool with_tangent) const {
+      if (release_i || release_j) return element::beam_response(chord(), stiffness(), d, previous_rotation, with_tangent);
+      return element::beam_response(chord(), k0, d, previous_rotation, with_tangent);
+    }
+    /// The larger end rotation against the chord that the element describes (a hinged end's
+    /// rotation is not the element's: it is left out).
+    double end_rotation(const element::BeamResponse& r) const {
+      return std::max(release_i ? 0.0 : std::abs(r.deformations[1]), release_j ? 0.0 : std::abs(r.deformations[2]));
     }
   };
   static_assert(sizeof(ElementRecord) == 80, "no padding: the element loop streams these records");

@@ -16,4 +16,17 @@ Matrix3 basic_stiffness(const SectionStiffness& section, double l0) {
   return basic_stiffness_terms(section, l0).matrix();
 }
 
+Matrix3 released_stiffness(const BasicStiffness& k0, bool at_i, bool at_j) {
+  Matrix3 k = k0.matrix();
+  if (at_i && at_j) {
+    k.bottomRightCorner<2, 2>().setZero();
+  } else if (at_i || at_j) {
+    const int kept = at_i ? 2 : 1;
+    k(kept, kept) = k0.direct - k0.cross * k0.cross / k0.direct;  // static condensation of M = 0
+    k(1, 2) = k(2, 1) = 0.0;
+    k(3 - kept, 3 - kept) = 0.0;
+  }
+  return k;
+}
+
 }  // namespace tsm::element

@@ -41,4 +41,10 @@ BasicStiffness basic_stiffness_terms(const SectionStiffness& section, double l0)
 /// k0 of Eq. 4 (Timoshenko); with Ψ = 0 it is exactly Eq. 3 (Euler–Bernoulli).
 Matrix3 basic_stiffness(const SectionStiffness& section, double l0);
 
+/// k0 with the moment released at end i and/or j (a hinge): the released end's rotation is
+/// condensed out of the bending block (its moment stays 0), e.g. at i the bending stiffness at j
+/// becomes k_jj − k_ij²/k_ii (3EI/l0 for Euler–Bernoulli, 12EI/(l0(4 + q)) for Timoshenko);
+/// released at both ends the element is a bar.
+Matrix3 released_stiffness(const BasicStiffness& k0, bool at_i, bool at_j);
+
 }  // namespace tsm::element

@@ -284,7 +284,7 @@ class Reader {
       const std::string path = child("members", k);
       const json& m = members[k];
       expect_object(m, path);
-      check_keys(m, path, {"from", "to", "divisions", "element", "material", "section", "arc"});
+      check_keys(m, path, {"from", "to", "divisions", "element", "material", "section", "arc", "release"});
       if (!m.contains("from")) fail(child(path, "from"), "missing (required)");
       if (!m.contains("to")) fail(child(path, "to"), "missing (required)");
       const int from = node_ref(m["from"], child(path, "from"));
@@ -300,6 +300,15 @@ class Reader {
         else if (kind != "euler-bernoulli") fail(child(path, "element"), "unknown element " + quote_text(kind) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
       }
       const element::SectionStiffness section = section_stiffness(m, path, theory);
+      bool release_from = false, release_to = false;  // hinges at the member's ends
+      if (m.contains("release")) {
+        const std::string where = string(m["release"], child(path, "release"));
+        if (where == "start" || where == "both") release_from = true;
+        if (where == "end" || where == "both") release_to = true;
+        if (!release_from && !release_to)
+          fail(child(path, "release"), "unknown release " + quote_text(where) + " (expected \"start\", \"end\" or \"both\")");
+        released_members_.insert(static_cast<int>(k));
+      }
 
       const Eigen::Vector2d a = model_.nodes[from].position, b = model_.nodes[to].position;
       std::vector<Eigen::Vector2d> interior;
@@ -323,6 +332,8 @@ class Reader {
         e.end = current;
         e.member = static_cast<int>(k);
         e.theory = theory;
+        e.release_start = release_from && d == 1;
+        e.release_end = release_to && d == divisions;
         e.section = section;
         model_.elements.push_back(e);
         previous = current;
@@ -465,12 +476,24 @@ class Reader {
     }
   }
 
-  /// A node that no beam element holds has its rotation fixed (FORMAT.md: a rigid pusher).
+  /// A node whose rotation no element end holds has it fixed: a node no element holds (FORMAT.md:
+  /// a rigid pusher), or a hinge where every element end is released. A moment applied there
+  /// would act on nothing.
   void fix_free_rotations() {
-    std::vector<bool> held(model_.node_count(), false);
-    for (const Element& e : model_.elements) held[e.start] = held[e.end] = true;
-    for (int k = 0; k < model_.node_count(); ++k)
-      if (!held[k]) model_.constrained[dofs_per_node * k + rz] = true;
+    std::vector<bool> held(model_.node_count(), false), turned(model_.node_count(), false);  // an end turns with it
+    for (const Element& e : model_.elements) {
+      held[e.start] = held[e.end] = true;
+      if (!e.release_start) turned[e.start] = true;
+      if (!e.release_end) turned[e.end] = true;
+    }
+    for (int k = 0; k < model_.node_count(); ++k) {
+      if (turned[k]) continue;
+      const int dof = dofs_per_node * k + rz;
+      if (held[k] && model_.reference_load[dof] != 0.0 && !model_.constrained[dof])
+        fail("loads", "a moment at node " + std::to_string(model_.nodes[k].id) +
+                          ", where every element end is released (a hinge carries no moment)");
+      model_.constrained[dof] = true;
+    }
   }
 
   void read_contacts() {
@@ -492,14 +515,16 @@ class Reader {
         if (e.start == spec.node || e.end == spec.node) holding.insert(e.member);
       if (members.is_string()) {
         if (members.get<std::string>() != "all") fail(mpath, "expected \"all\" or a list of member indices");
-        for (int m = 0; m < model_.member_count; ++m)
-          if (!holding.count(m)) spec.members.push_back(m);
+        for (int m = 0; m < model_.member_count; ++m)  // hinged members carry no contact
+          if (!holding.count(m) && !released_members_.count(m)) spec.members.push_back(m);
       } else {
         expect_array(members, mpath);
         for (size_t m = 0; m < members.size(); ++m) {
           const long index = integer(members[m], child(mpath, m));
           if (index < 0 || index >= model_.member_count) fail(child(mpath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
           if (holding.count(static_cast<int>(index))) fail(child(mpath, m), "the contact node belongs to member " + std::to_string(index));
+          if (released_members_.count(static_cast<int>(index)))
+            fail(child(mpath, m), "member " + std::to_string(index) + " has a moment release: contacts on hinged members are not supported");
           spec.members.push_back(static_cast<int>(index));
         }
       }
@@ -655,6 +680,7 @@ class Reader {
   Model model_;
   std::map<std::string, Material> materials_;
   std::map<std::string, Section> sections_;
+  std::set<int> released_members_;  ///< members with a moment release ("release")
   std::unordered_map<int, int> ids_;
 };
 

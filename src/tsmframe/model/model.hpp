@@ -30,6 +30,9 @@ struct Element {
   int end = 0;      ///< index of node j
   int member = 0;   ///< index of the member it was generated from
   BeamTheory theory = BeamTheory::euler_bernoulli;
+  /// A hinge at that end: the element carries no moment there (M_i or M_j = 0, its end rotation
+  /// condensed out of k0), so the node's rotation is not the element's.
+  bool release_start = false, release_end = false;
   element::SectionStiffness section;
 };
 

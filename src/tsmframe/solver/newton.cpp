@@ -401,7 +401,14 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
     };
     const auto singular = [&] {
       out.status = Status::singular;
-      out.message = iterate_text("the tangent stiffness is singular (a limit or bifurcation point)", it);
+      // Hinges can leave a mechanism inside a part (pinned bars in a row) that the supports'
+      // check, which looks at parts as rigid bodies, does not see.
+      const bool hinged = std::any_of(model.elements.begin(), model.elements.end(),
+                                      [](const Element& e) { return e.release_start || e.release_end; });
+      out.message = iterate_text(hinged ? "the tangent stiffness is singular (a limit or bifurcation point, or the member "
+                                          "releases leave a mechanism, e.g. three hinges in a line)"
+                                        : "the tangent stiffness is singular (a limit or bifurcation point)",
+                                 it);
       return out;
     };
     // dR/dλ = F_dir = F_ref − K_fp D_p,ref: how the load factor drives the free dofs.
