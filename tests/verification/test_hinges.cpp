@@ -1,6 +1,7 @@
 // Member releases (hinges, "release" on a member): the von Mises truss with real pins against its
-// closed form through the snap-through; a three-hinged arch's thrust against statics; the reader's
-// checks (a moment at a hinge, contacts on hinged members, a bar left free to turn).
+// closed form through the snap-through; a three-hinged arch's thrust against statics; a clamped
+// column hinged at its ends buckling as a pinned one; the reader's checks (a moment at a hinge,
+// contacts on hinged members, a bar left free to turn).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -94,6 +95,34 @@ TEST(Hinges, AThreeHingedArchCarriesItsCrownLoadWithTheThrustOfStatics) {
   EXPECT_EQ(last.element_forces[3 * 10 + 1], 0.0);
   for (int e = 0; e < 20; ++e) EXPECT_LE(std::abs(last.element_forces[3 * e + 1]), 1e-6 * P) << "element " << e;
   expect_global_equilibrium(model, last);
+}
+
+TEST(Hinges, AColumnHingedAtItsClampedEndsBucklesAsAPinnedOne) {
+  // 1.2 times the Euler load with a small side push at mid-height, far into the post-buckling
+  // range: hinges at the ends of a column whose ends are clamped (rotation fixed) give the
+  // pinned column's path — the supports' rotations hold nothing through a hinge.
+  const double E = 2e11, I = 1e-6, L = 5.0, Pcr = std::pow(std::acos(-1.0), 2) * E * I / (L * L);
+  json m = {{"materials", {{"s", {{"E", E}}}}},
+            {"sections", {{"x", {{"A", 1e-3}, {"I", I}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 0.0}, {"y", L}},
+                                   {{"id", 3}, {"x", 0.0}, {"y", L / 2}}})},
+            {"members", json::array({{{"from", 1}, {"to", 3}, {"divisions", 10}, {"material", "s"}, {"section", "x"}},
+                                     {{"from", 3}, {"to", 2}, {"divisions", 10}, {"material", "s"}, {"section", "x"}}})},
+            {"loads", json::array({{{"node", 2}, {"fy", -1.2 * Pcr}}, {{"node", 3}, {"fx", 1e-3 * Pcr}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 20}}}}}};
+  json pinned = m, hinged = m;
+  pinned["supports"] = json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-y"}}});
+  hinged["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 2}, {"fix", {"ux", "rz"}}}});
+  hinged["members"][0]["release"] = "start";
+  hinged["members"][1]["release"] = "end";
+  tsm::Model a, b;
+  const RunResult ra = run(pinned, a), rb = run(hinged, b);
+  ASSERT_EQ(ra.status, tsm::solver::Status::converged) << ra.message;
+  ASSERT_EQ(rb.status, tsm::solver::Status::converged) << rb.message;
+  const Eigen::Vector3d mid_a = node_displacement(a, ra.steps.back(), 3), mid_b = node_displacement(b, rb.steps.back(), 3);
+  EXPECT_GT(std::abs(mid_a[0]), 0.25 * L);  // buckled far
+  EXPECT_NEAR(mid_b[0], mid_a[0], 1e-9 * L);
+  EXPECT_NEAR(mid_b[1], mid_a[1], 1e-9 * L);
 }
 
 TEST(Hinges, TheReaderChecksWhatAHingeCannotDo) {
