@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "support/models.hpp"
+#include "tsmframe/io/results_writer.hpp"
 
 namespace {
 
@@ -95,6 +97,13 @@ TEST(Hinges, AThreeHingedArchCarriesItsCrownLoadWithTheThrustOfStatics) {
   EXPECT_EQ(last.element_forces[3 * 10 + 1], 0.0);
   for (int e = 0; e < 20; ++e) EXPECT_LE(std::abs(last.element_forces[3 * e + 1]), 1e-6 * P) << "element " << e;
   expect_global_equilibrium(model, last);
+  // results.json names the hinged elements' ends.
+  std::ostringstream out;
+  tsm::io::write_results_json(out, model, r);
+  const json written = json::parse(out.str());
+  EXPECT_EQ(written["elements"][9]["release"], "end");
+  EXPECT_EQ(written["elements"][10]["release"], "start");
+  EXPECT_FALSE(written["elements"][0].contains("release"));
 }
 
 TEST(Hinges, AColumnHingedAtItsClampedEndsBucklesAsAPinnedOne) {

@@ -104,6 +104,8 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
     w.key("nodes").begin_array().value(model.nodes[e.start].id).value(model.nodes[e.end].id).end_array();
     w.key("element").value(theory_name(e.theory));
     w.key("member").value(e.member);
+    if (e.release_start || e.release_end)  // a hinge at that end: no moment there
+      w.key("release").value(e.release_start && e.release_end ? "both" : e.release_start ? "start" : "end");
     w.end_object();
   }
   w.end_array();
