@@ -109,6 +109,17 @@ def test_a_three_hinged_arch_built_in_code_has_the_thrust_of_statics():
     assert r.ok, r.message
     left = r.reactions[-1, list(r.node_ids).index(1)]
     assert left[0] == pytest.approx(1250.0, rel=1e-4) and left[1] == pytest.approx(500.0, rel=1e-6)
+    # A distributed load on the members (force per unit length, lumped at the element ends) in
+    # place of the point load: the feet carry its total, w times the members' length.
+    m = tf.Model("arch under its weight").material("s", E=2e11).section("x", A=0.01, I=1e-4)
+    m.node(1, 0, 0).node(2, 5, 2).node(3, 10, 0)
+    m.member(1, 2, "s", "x", divisions=10, release="end", load=(0.0, -100.0))
+    m.member(2, 3, "s", "x", divisions=10, release="start", load=(0.0, -100.0))
+    m.support(1, "pinned").support(3, "pinned")
+    r = tf.run(m)
+    assert r.ok, r.message
+    feet = r.reactions[-1, [list(r.node_ids).index(1), list(r.node_ids).index(3)], 1].sum()
+    assert feet == pytest.approx(100.0 * 2 * math.hypot(5.0, 2.0), rel=1e-8)  # to the run's tolerance
 
 
 def test_model_built_in_code_rolls_into_a_circle():

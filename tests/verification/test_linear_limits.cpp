@@ -3,6 +3,7 @@
 // load approached by a slightly imperfect pinned column under displacement control.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 
 #include "support/models.hpp"
@@ -115,5 +116,35 @@ TEST_P(ImperfectColumn, LoadApproachesEulerLoad) {
 INSTANTIATE_TEST_SUITE_P(Meshes, ImperfectColumn,
                          ::testing::Values(std::make_tuple(16, "euler-bernoulli"), std::make_tuple(32, "euler-bernoulli"),
                                            std::make_tuple(16, "timoshenko")));
+
+// A member's distributed load ("load": force per unit length), lumped at its elements' ends: a
+// small uniform load on a simply supported beam and on a cantilever, against 5wL⁴/384EI and
+// wL⁴/8EI. Lumping errs by O(1/n²) at the nodes (40 elements: 6e-4); the supports carry wL.
+TEST(DistributedLoad, AUniformLoadBendsABeamAsTheLinearFormulasSay) {
+  const double E = 2e11, I = 1e-6, L = 4.0, w = -1e-3;
+  for (const bool cantilever : {false, true}) {
+    json m = {{"materials", {{"s", {{"E", E}}}}},
+              {"sections", {{"x", {{"A", 1e-3}, {"I", I}}}}},
+              {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", L}, {"y", 0.0}},
+                                     {{"id", 3}, {"x", L / 2}, {"y", 0.0}}})},
+              {"members", json::array({{{"from", 1}, {"to", 3}, {"divisions", 20}, {"material", "s"}, {"section", "x"},
+                                        {"load", {{"fy", w}}}},
+                                       {{"from", 3}, {"to", 2}, {"divisions", 20}, {"material", "s"}, {"section", "x"},
+                                        {"load", {{"fy", w}}}}})},
+              {"analysis", {{"control", {{"type", "load"}, {"steps", 1}}}}}};
+    m["supports"] = cantilever ? json::array({{{"node", 1}, {"type", "fixed"}}})
+                               : json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}}});
+    const tsm::Model model = tsm::io::read_model(m);
+    const auto result = tsm::solver::run_analysis(model);
+    ASSERT_EQ(result.status, tsm::solver::Status::converged) << result.message;
+    const auto& last = result.steps.back();
+    const double exact = cantilever ? w * std::pow(L, 4) / (8 * E * I) : 5 * w * std::pow(L, 4) / (384 * E * I);
+    const int node = cantilever ? 2 : 3;  // the tip, or mid-span
+    EXPECT_NEAR(node_displacement(model, last, node)[1], exact, 1e-3 * std::abs(exact)) << (cantilever ? "cantilever" : "simply supported");
+    double carried = 0.0;
+    for (int k = 0; k < model.node_count(); ++k) carried += last.reactions[3 * k + 1];
+    EXPECT_NEAR(carried, -w * L, 1e-8 * std::abs(w * L));  // to the run's tolerance
+  }
+}
 
 }  // namespace

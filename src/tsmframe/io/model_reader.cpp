@@ -284,7 +284,7 @@ class Reader {
       const std::string path = child("members", k);
       const json& m = members[k];
       expect_object(m, path);
-      check_keys(m, path, {"from", "to", "divisions", "element", "material", "section", "arc", "release"});
+      check_keys(m, path, {"from", "to", "divisions", "element", "material", "section", "arc", "release", "load"});
       if (!m.contains("from")) fail(child(path, "from"), "missing (required)");
       if (!m.contains("to")) fail(child(path, "to"), "missing (required)");
       const int from = node_ref(m["from"], child(path, "from"));
@@ -300,6 +300,15 @@ class Reader {
         else if (kind != "euler-bernoulli") fail(child(path, "element"), "unknown element " + quote_text(kind) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
       }
       const element::SectionStiffness section = section_stiffness(m, path, theory);
+      std::array<double, 2> distributed{0.0, 0.0};  // "load": force per unit length (global x, y)
+      if (m.contains("load")) {
+        const std::string lpath = child(path, "load");
+        expect_object(m["load"], lpath);
+        check_keys(m["load"], lpath, {"fx", "fy"});
+        if (auto fx = optional_number(m["load"], "fx", lpath)) distributed[0] = *fx;
+        if (auto fy = optional_number(m["load"], "fy", lpath)) distributed[1] = *fy;
+        if (distributed[0] == 0.0 && distributed[1] == 0.0) fail(lpath, "give fx or fy (force per unit length)");
+      }
       bool release_from = false, release_to = false;  // hinges at the member's ends
       if (m.contains("release")) {
         const std::string where = string(m["release"], child(path, "release"));
@@ -336,6 +345,10 @@ class Reader {
         e.release_end = release_to && d == divisions;
         e.section = section;
         model_.elements.push_back(e);
+        if (m.contains("load")) {  // per unit length along the drawn element, half to each end
+          const double length = (model_.nodes[e.end].position - model_.nodes[e.start].position).norm();
+          member_loads_.push_back({e.start, e.end, distributed[0] * length / 2.0, distributed[1] * length / 2.0});
+        }
         previous = current;
       }
     }
@@ -420,6 +433,12 @@ class Reader {
   }
 
   void read_loads() {
+    for (const MemberLoad& l : member_loads_) {  // members' distributed loads, lumped at the element ends
+      model_.reference_load[dofs_per_node * l.start + ux] += l.fx;
+      model_.reference_load[dofs_per_node * l.start + uy] += l.fy;
+      model_.reference_load[dofs_per_node * l.end + ux] += l.fx;
+      model_.reference_load[dofs_per_node * l.end + uy] += l.fy;
+    }
     if (!doc_.contains("loads")) return;
     const json& loads = doc_["loads"];
     expect_array(loads, "loads");
@@ -681,6 +700,11 @@ class Reader {
   std::map<std::string, Material> materials_;
   std::map<std::string, Section> sections_;
   std::set<int> released_members_;  ///< members with a moment release ("release")
+  struct MemberLoad {
+    int start, end;  ///< an element's nodes
+    double fx, fy;   ///< the share of its distributed load each of them takes
+  };
+  std::vector<MemberLoad> member_loads_;  ///< members' "load", element by element
   std::unordered_map<int, int> ids_;
 };
 
