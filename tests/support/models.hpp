@@ -2,6 +2,7 @@
 // Model files for the tests, built as JSON so every test also goes through the file contract.
 
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "tsmframe/io/model_reader.hpp"
 #include "tsmframe/solver/analysis.hpp"
@@ -28,6 +29,22 @@ inline json beam_model(const BeamSpec& b) {
                                 {"material", "m"}, {"section", "s"}}})},
       {"analysis", {{"control", {{"type", "load"}, {"steps", 1}}}}},
   };
+}
+
+/// Reads the model file `m` into `model` and runs it.
+inline solver::RunResult run(const json& m, Model& model) {
+  model = io::read_model(m);
+  return solver::run_analysis(model);
+}
+
+/// The reader's reason for refusing `m` (file: path: reason), or "" if it accepts it.
+inline std::string refusal(const json& m) {
+  try {
+    io::read_model(m);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
 }
 
 /// Displacements (u, v, Θ) of a node id in a converged step.

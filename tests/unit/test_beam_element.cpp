@@ -46,6 +46,7 @@ struct Case {
   double angle;
   double stretch;
   double theta_i, theta_j;
+  bool hinge_i = false, hinge_j = false;  ///< a member "release" at that end (released_stiffness)
 };
 
 class BeamTangent : public ::testing::TestWithParam<Case> {};
@@ -53,10 +54,15 @@ class BeamTangent : public ::testing::TestWithParam<Case> {};
 TEST_P(BeamTangent, MatchesFiniteDifferences) {
   const Case& p = GetParam();
   const InitialChord chord = initial_chord({0.3, -0.2}, {2.3, 0.8});
-  const Matrix3 s = basic_stiffness({.EA = 200.0, .EI = 3.0, .shear_flexibility = p.shear_flexibility}, chord.length);
+  const SectionStiffness section{.EA = 200.0, .EI = 3.0, .shear_flexibility = p.shear_flexibility};
+  const Matrix3 s = p.hinge_i || p.hinge_j ? released_stiffness(basic_stiffness_terms(section, chord.length), p.hinge_i, p.hinge_j)
+                                           : basic_stiffness(section, chord.length);
   const Vector6 d = deformed(chord, p.angle, p.stretch, p.theta_i, p.theta_j);
   const double previous = p.angle + 0.01;  // the previous iterate's β, close to the current one
   const BeamResponse r = beam_response(chord, s, d, previous);
+  if (p.hinge_i) EXPECT_EQ(r.forces[1], 0.0) << "a hinge carries no moment";
+  if (p.hinge_j) EXPECT_EQ(r.forces[2], 0.0) << "a hinge carries no moment";
+  if (p.hinge_i) EXPECT_EQ(r.tangent.row(2).norm(), 0.0) << "node i's rotation is not the element's";
   EXPECT_NEAR(r.chord.rotation, p.angle, 1e-12);
   const Matrix6 fd = finite_difference_tangent(chord, s, d, previous);
   const double error = (r.tangent - fd).cwiseAbs().maxCoeff() / r.tangent.cwiseAbs().maxCoeff();
@@ -74,42 +80,26 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{0.0, 0.0, 0.0, 0.0, 0.0}, Case{0.0, 0.4, 0.02, 2.5, -1.7},
                       Case{0.0, 3 * pi, 0.05, 2.5, -1.7}, Case{0.0, -3 * pi, -0.03, -2.9, 2.2},
                       Case{0.05, 3 * pi, 0.05, 2.5, -1.7}, Case{0.05, 1.0, -0.02, 3.1, 3.1},
-                      Case{0.5, -3 * pi + 0.3, 0.01, -1.2, 2.7}));
+                      Case{0.5, -3 * pi + 0.3, 0.01, -1.2, 2.7},
+                      // hinged (a member "release"), either end or both, Euler–Bernoulli and Timoshenko
+                      Case{0.0, 0.4, 0.02, 2.5, -1.7, true, false}, Case{0.0, 3 * pi, 0.02, 2.5, -1.7, false, true},
+                      Case{0.0, 0.4, 0.02, 2.5, -1.7, true, true}, Case{0.05, 3 * pi, 0.02, 2.5, -1.7, true, false},
+                      Case{0.05, 0.4, 0.02, 2.5, -1.7, false, true}));
 
-// A hinged element (a member "release"): k0 with the released end's rotation condensed out.
-struct Hinged {
-  double shear_flexibility;
-  bool at_i, at_j;
-};
-
-class HingedTangent : public ::testing::TestWithParam<Hinged> {};
-
-TEST_P(HingedTangent, MatchesFiniteDifferencesAndCarriesNoMomentAtTheHinge) {
-  const Hinged& p = GetParam();
-  const InitialChord chord = initial_chord({0.3, -0.2}, {2.3, 0.8});
-  const SectionStiffness section{.EA = 200.0, .EI = 3.0, .shear_flexibility = p.shear_flexibility};
-  const Matrix3 s = released_stiffness(basic_stiffness_terms(section, chord.length), p.at_i, p.at_j);
-  for (const double angle : {0.4, 3 * pi}) {
-    const Vector6 d = deformed(chord, angle, 0.02, 2.5, -1.7);
-    const BeamResponse r = beam_response(chord, s, d, angle + 0.01);
-    if (p.at_i) EXPECT_EQ(r.forces[1], 0.0);
-    if (p.at_j) EXPECT_EQ(r.forces[2], 0.0);
-    const Matrix6 fd = finite_difference_tangent(chord, s, d, angle + 0.01);
-    EXPECT_LE((r.tangent - fd).cwiseAbs().maxCoeff(), 1e-6 * r.tangent.cwiseAbs().maxCoeff()) << r.tangent << "\n" << fd;
-    if (p.at_i) EXPECT_EQ(r.tangent.row(2).norm(), 0.0) << "node i's rotation is not the element's";
-  }
-  // One hinge: the other end's bending stiffness is k_jj − k_ij²/k_ii — 3EI/l0 for
-  // Euler–Bernoulli, 12EI/(l0 (4 + q)) for Timoshenko (the propped cantilever's end stiffness).
-  if (p.at_i != p.at_j) {
-    const double l0 = chord.length, q = 12.0 * p.shear_flexibility / (l0 * l0);
-    const int kept = p.at_i ? 2 : 1;
-    EXPECT_NEAR(s(kept, kept), 12.0 * 3.0 / (l0 * (4.0 + q)), 1e-12);
+// A hinged element's kept end: k_jj − k_ij²/k_ii, the propped cantilever's end stiffness —
+// 3EI/l0 for Euler–Bernoulli, 12EI/(l0 (4 + q)) for Timoshenko; both ends hinged: a bar.
+TEST(BeamElement, AHingeLeavesTheOtherEndAProppedCantileversStiffness) {
+  const double l0 = 2.0, EI = 3.0;
+  for (const double psi : {0.0, 0.05}) {
+    const BasicStiffness k0 = basic_stiffness_terms({.EA = 200.0, .EI = EI, .shear_flexibility = psi}, l0);
+    const double q = 12.0 * psi / (l0 * l0), kept = 12.0 * EI / (l0 * (4.0 + q));
+    EXPECT_NEAR(released_stiffness(k0, true, false)(2, 2), kept, 1e-12);
+    EXPECT_NEAR(released_stiffness(k0, false, true)(1, 1), kept, 1e-12);
+    const Matrix3 bar = released_stiffness(k0, true, true);
+    EXPECT_EQ((bar.bottomRightCorner<2, 2>().norm()), 0.0);
+    EXPECT_EQ(bar(0, 0), k0.axial);
   }
 }
-
-INSTANTIATE_TEST_SUITE_P(Releases, HingedTangent,
-                         ::testing::Values(Hinged{0.0, true, false}, Hinged{0.0, false, true}, Hinged{0.0, true, true},
-                                           Hinged{0.05, true, false}, Hinged{0.05, false, true}));
 
 TEST(BeamElement, RigidMotionGivesNoForce) {
   const InitialChord chord = initial_chord({1.0, 2.0}, {4.0, -2.0});

@@ -20,11 +20,6 @@ using namespace tsm::test;
 using tsm::solver::RunResult;
 using tsm::solver::StepRecord;
 
-RunResult run(const json& m, tsm::Model& model) {
-  model = tsm::io::read_model(m);
-  return tsm::solver::run_analysis(model);
-}
-
 // ---- Von Mises truss: two bars of EA = 1, half-span b = 1, rise h = 0.1, apex load P ----
 // One beam element per bar (I = 1e-9: bending negligible), so each bar is exactly a truss bar
 // with N = EA (l − l0)/l0; apex drop w: P(w) = 2 EA (L0 − L)/L0 · (h − w)/L, L = √(b² + (h − w)²).

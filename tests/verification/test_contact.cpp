@@ -47,11 +47,6 @@ void expect_equilibrium(const tsm::Model& model, const StepRecord& step) {
   expect_global_equilibrium(model, step, std::max(1e-9, 10.0 * step.residual_norms.back()));
 }
 
-RunResult run(const json& m, tsm::Model& model) {
-  model = tsm::io::read_model(m);
-  return tsm::solver::run_analysis(model);
-}
-
 const tsm::solver::ContactPoint& contact_of(const StepRecord& step, size_t k = 0) { return step.contacts.at(k); }
 
 /// Arc length of the contact point from the clamp on a uniform mesh of n elements of length L/n.
@@ -379,14 +374,6 @@ TEST(ContactResting, ABeamLyingOnASupportedBeamIsHeldByItsRestingNodes) {
   expect_equilibrium(model, last);
   // Without the ux the upper beam is free to slide along (frictionless); resting on one node
   // only, it is free to turn about it: both still refused, saying why.
-  const auto refusal = [](const json& m) -> std::string {  // the reader's reason, or "" if accepted
-    try {
-      tsm::io::read_model(m);
-    } catch (const std::exception& e) {
-      return e.what();
-    }
-    return "";
-  };
   json free = beam_on_beam(P);
   free["supports"].erase(2);
   const std::string slides = refusal(free);

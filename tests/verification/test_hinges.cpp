@@ -17,20 +17,6 @@ using namespace tsm::test;
 using tsm::solver::RunResult;
 using tsm::solver::StepRecord;
 
-RunResult run(const json& m, tsm::Model& model) {
-  model = tsm::io::read_model(m);
-  return tsm::solver::run_analysis(model);
-}
-
-std::string refusal(const json& m) {  // the reader's reason, or "" if accepted
-  try {
-    tsm::io::read_model(m);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
-
 // Two bars of EA = 1 pinned at both ends (I = 1: the hinges, not a vanishing I, make them bars),
 // half-span 1, rise 0.1, apex driven down: P(w) = 2 EA (L0 − L)/L0 · (h − w)/L.
 TEST(Hinges, AVonMisesTrussOfPinnedBarsFollowsItsClosedFormThroughTheSnapThrough) {
