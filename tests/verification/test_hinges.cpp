@@ -90,6 +90,10 @@ TEST(Hinges, AThreeHingedArchCarriesItsCrownLoadWithTheThrustOfStatics) {
   EXPECT_EQ(written["elements"][9]["release"], "end");
   EXPECT_EQ(written["elements"][10]["release"], "start");
   EXPECT_FALSE(written["elements"][0].contains("release"));
+  // Reactions: the two feet, not the crown, whose rotation the reader fixed (a hinge is no support).
+  ASSERT_EQ(written["steps"][0]["reactions"].size(), 2u) << written["steps"][0]["reactions"].dump();
+  EXPECT_TRUE(written["steps"][0]["reactions"].contains("1"));
+  EXPECT_TRUE(written["steps"][0]["reactions"].contains("3"));
 }
 
 TEST(Hinges, AColumnHingedAtItsClampedEndsBucklesAsAPinnedOne) {

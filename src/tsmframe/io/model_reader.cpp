@@ -511,6 +511,7 @@ class Reader {
       if (held[k] && model_.reference_load[dof] != 0.0 && !model_.constrained[dof])
         fail("loads", "a moment at node " + std::to_string(model_.nodes[k].id) +
                           ", where every element end is released (a hinge carries no moment)");
+      if (held[k] && !model_.constrained[dof]) model_.hinge_rotations.push_back(k);
       model_.constrained[dof] = true;
     }
   }

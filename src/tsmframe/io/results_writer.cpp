@@ -76,9 +76,11 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
 }  // namespace
 
 void write_results_json(std::ostream& out, const Model& model, const solver::RunResult& result) {
-  std::vector<bool> supported(model.node_count(), false);
+  // Nodes with a support or a prescribed dof; a hinge's rotation, fixed by the reader, is neither.
+  std::vector<bool> supported(model.node_count(), false), hinge(model.node_count(), false);
+  for (const int k : model.hinge_rotations) hinge[k] = true;
   for (int dof = 0; dof < model.dof_count(); ++dof)
-    if (model.constrained[dof]) supported[dof / dofs_per_node] = true;
+    if (model.constrained[dof] && !(dof % dofs_per_node == rz && hinge[dof / dofs_per_node])) supported[dof / dofs_per_node] = true;
 
   JsonWriter w(out);
   w.begin_object();
