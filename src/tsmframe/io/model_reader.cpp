@@ -548,7 +548,8 @@ class Reader {
           spec.members.push_back(static_cast<int>(index));
         }
       }
-      if (spec.members.empty()) fail(mpath, "no member to touch");
+      if (spec.members.empty())
+        fail(mpath, released_members_.empty() ? "no member to touch" : "no member to touch (hinged members carry no contact)");
       if (c.contains("element")) {
         spec.element = string(c["element"], child(path, "element"));
         if (spec.element != "euler-bernoulli" && spec.element != "timoshenko") fail(child(path, "element"), "unknown element " + quote_text(spec.element) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
