@@ -12,6 +12,7 @@
 
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/model/mechanism.hpp"
+#include "tsmframe/model/hinges.hpp"
 #include "tsmframe/model/resting_contact.hpp"
 
 namespace tsm::io {
@@ -499,19 +500,15 @@ class Reader {
   /// a rigid pusher), or a hinge where every element end is released. A moment applied there
   /// would act on nothing.
   void fix_free_rotations() {
-    std::vector<bool> held(model_.node_count(), false), turned(model_.node_count(), false);  // an end turns with it
-    for (const Element& e : model_.elements) {
-      held[e.start] = held[e.end] = true;
-      if (!e.release_start) turned[e.start] = true;
-      if (!e.release_end) turned[e.end] = true;
-    }
+    const std::vector<char> hinge = hinge_nodes(model_);
+    std::vector<bool> held(model_.node_count(), false);
+    for (const Element& e : model_.elements) held[e.start] = held[e.end] = true;
     for (int k = 0; k < model_.node_count(); ++k) {
-      if (turned[k]) continue;
+      if (held[k] && !hinge[k]) continue;
       const int dof = dofs_per_node * k + rz;
-      if (held[k] && model_.reference_load[dof] != 0.0 && !model_.constrained[dof])
+      if (hinge[k] && model_.reference_load[dof] != 0.0 && !model_.constrained[dof])
         fail("loads", "a moment at node " + std::to_string(model_.nodes[k].id) +
                           ", where every element end is released (a hinge carries no moment)");
-      if (held[k] && !model_.constrained[dof]) model_.hinge_rotations.push_back(k);
       model_.constrained[dof] = true;
     }
   }

@@ -4,6 +4,7 @@
 
 #include "tsmframe/io/atomic_file.hpp"
 #include "tsmframe/io/json_writer.hpp"
+#include "tsmframe/model/hinges.hpp"
 #include "tsmframe/version.hpp"
 
 namespace tsm::io {
@@ -77,8 +78,8 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
 
 void write_results_json(std::ostream& out, const Model& model, const solver::RunResult& result) {
   // Nodes with a support or a prescribed dof; a hinge's rotation, fixed by the reader, is neither.
-  std::vector<bool> supported(model.node_count(), false), hinge(model.node_count(), false);
-  for (const int k : model.hinge_rotations) hinge[k] = true;
+  std::vector<bool> supported(model.node_count(), false);
+  const std::vector<char> hinge = hinge_nodes(model);
   for (int dof = 0; dof < model.dof_count(); ++dof)
     if (model.constrained[dof] && !(dof % dofs_per_node == rz && hinge[dof / dofs_per_node])) supported[dof / dofs_per_node] = true;
 

@@ -1,5 +1,6 @@
 #include "tsmframe/model/mechanism.hpp"
 
+#include "tsmframe/model/hinges.hpp"
 #include "tsmframe/model/resting_contact.hpp"
 
 #include <algorithm>
@@ -30,13 +31,12 @@ std::optional<std::string> find_mechanism(const Model& model, bool resting_conta
   const int n = model.node_count();
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
-  std::vector<bool> held(n, false), turned(n, false);  // turned: an element end turns with the node (no hinge)
+  std::vector<bool> held(n, false);
   for (const Element& e : model.elements) {
     held[e.start] = held[e.end] = true;
-    if (!e.release_start) turned[e.start] = true;
-    if (!e.release_end) turned[e.end] = true;
     parent[find_root(parent, e.start)] = find_root(parent, e.end);
   }
+  const std::vector<char> hinge = hinge_nodes(model);
   for (int k = 0; k < n; ++k) {
     if (held[k]) continue;
     const auto spec = std::find_if(model.contacts.begin(), model.contacts.end(), [&](const ContactSpec& c) { return c.node == k; });
@@ -109,7 +109,7 @@ std::optional<std::string> find_mechanism(const Model& model, bool resting_conta
       const Eigen::Vector3d rows[3] = {{1.0, 0.0, -p.y()}, {0.0, 1.0, p.x()}, {0.0, 0.0, 1.0}};
       // A fixed rotation where every element end is hinged holds nothing of the part.
       for (int dof = 0; dof < dofs_per_node; ++dof)
-        if (model.constrained[dofs_per_node * k + dof] && (dof != rz || turned[k])) gram += rows[dof] * rows[dof].transpose();
+        if (model.constrained[dofs_per_node * k + dof] && (dof != rz || !hinge[k])) gram += rows[dof] * rows[dof].transpose();
     }
     for (const auto& [point, normal] : resting[root]) {
       const Eigen::Vector2d p = (point - m.centre) / m.extent;

@@ -116,10 +116,6 @@ struct Model {
   AnalysisSettings analysis;
   /// Diagonal of the bounding box of the nodes (1 if they all coincide).
   double size = 1.0;
-  /// Nodes (indices, ascending) whose rotation the reader fixed because no element end turns
-  /// with them — hinges where every end is released: no support of the user's (they have no
-  /// reaction to report). Rigid pushers' rotations are not listed: a pusher is a support.
-  std::vector<int> hinge_rotations;
 
   int node_count() const { return static_cast<int>(nodes.size()); }
   int dof_count() const { return dofs_per_node * node_count(); }
