@@ -6,6 +6,8 @@
 #include <iterator>
 #include <utility>
 
+#include "tsmframe/util/elimination_tree.hpp"
+
 namespace tsm::assembly {
 namespace {
 
@@ -53,20 +55,10 @@ int top_path_start(const std::vector<int>& ordered, const std::vector<int>& join
     const int ra = rank_of[a], rb = rank_of[b];
     if (ra != rb) lower[next[std::max(ra, rb)]++] = std::min(ra, rb);
   }
-  // Liu's elimination tree with path compression, and each joint's number of children.
-  std::vector<int> parent(m, -1), ancestor(m, -1), children(m, 0);
+  const std::vector<int> parent = util::elimination_tree(start, lower, m);
+  std::vector<int> children(m, 0);
   for (int r = 0; r < m; ++r)
-    for (int e = start[r]; e < start[r + 1]; ++e)
-      for (int i = lower[e]; i != -1 && i < r;) {
-        const int up = ancestor[i];
-        ancestor[i] = r;
-        if (up == -1) {
-          parent[i] = r;
-          ++children[r];
-          break;
-        }
-        i = up;
-      }
+    if (parent[r] >= 0) ++children[parent[r]];
   int r = m - 1;
   while (r > 0 && children[r] == 1 && parent[r - 1] == r) --r;
   return r;

@@ -1,5 +1,6 @@
 #include "tsmframe/solver/block_ldlt.hpp"
 
+#include "tsmframe/util/elimination_tree.hpp"
 #include "tsmframe/util/first_touch.hpp"
 #include "tsmframe/util/parallel_for.hpp"
 
@@ -96,25 +97,6 @@ Rows rows_of(const BlockMatrix& a) {
   return r;
 }
 
-/// Elimination tree (Liu's algorithm with path compression, cs_etree) from the rows.
-std::vector<int> elimination_tree(const Rows& rows, int n) {
-  std::vector<int> parent(n, -1), ancestor(n, -1);
-  for (int k = 0; k < n; ++k) {
-    for (int t = rows.start[k]; t < rows.start[k + 1]; ++t) {
-      for (int i = rows.column[t]; i != -1 && i < k;) {
-        const int next = ancestor[i];
-        ancestor[i] = k;
-        if (next == -1) {
-          parent[i] = k;
-          break;
-        }
-        i = next;
-      }
-    }
-  }
-  return parent;
-}
-
 /// Blocks i < k on the paths from each entry (k, i) up the elimination tree: the pattern of row
 /// k of L, written to stack[top .. n); returns top (cs_ereach).
 int reach(const Rows& rows, int k, const std::vector<int>& parent, std::vector<int>& flag, std::vector<int>& stack) {
@@ -138,7 +120,7 @@ int reach(const Rows& rows, int k, const std::vector<int>& parent, std::vector<i
 void add_fill(BlockMatrix& a) {
   const int n = a.size;
   const Rows rows = rows_of(a);
-  const std::vector<int> parent = elimination_tree(rows, n);
+  const std::vector<int> parent = util::elimination_tree(rows.start, rows.column, n);
   // Row k of L, for every k: (k, i) pairs, k ascending; then counted into columns.
   std::vector<int> flag(n, -1), stack(n, 0), column(n + 1, 0), entries_row, entries_column;
   for (int k = 0; k < n; ++k) {
