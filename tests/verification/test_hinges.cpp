@@ -46,6 +46,15 @@ TEST(Hinges, AVonMisesTrussOfPinnedBarsFollowsItsClosedFormThroughTheSnapThrough
       EXPECT_EQ(s.element_forces.segment<2>(3 * e + 1).norm(), 0.0) << "element " << e;
   }
   ASSERT_EQ(r.limit_points.size(), 2u);  // the maximum and the minimum of the snap-through
+  // Allowed one iterate, a load step fails; its bars (a section "deeper" than they are long) do
+  // not bend, so the failure does not blame short Euler–Bernoulli elements.
+  json past = m;
+  past["analysis"] = {{"control", {{"type", "load"}, {"steps", 1}}}, {"cutback", false}, {"max_iterations", 1}};
+  past["loads"][0]["fy"] = -3e-4;
+  tsm::Model model_past;
+  const RunResult failed = run(past, model_past);
+  ASSERT_NE(failed.status, tsm::solver::Status::converged);
+  EXPECT_EQ(failed.message.find("Euler–Bernoulli element"), std::string::npos) << failed.message;
 }
 
 // A three-hinged arch: two straight members from pinned supports at (0, 0) and (10, 0) meeting

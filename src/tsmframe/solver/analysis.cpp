@@ -48,7 +48,8 @@ std::string short_element_hint(const Model& model) {
   int count = 0;
   double shortest = INFINITY;
   for (const Element& e : model.elements) {
-    if (e.theory != BeamTheory::euler_bernoulli || !(e.section.EA > 0.0)) continue;
+    // Bars (hinged at both ends) do not bend: their depth says nothing.
+    if (e.theory != BeamTheory::euler_bernoulli || !(e.section.EA > 0.0) || (e.release_start && e.release_end)) continue;
     const double depth = std::sqrt(12.0 * e.section.EI / e.section.EA);
     const double ratio = (model.nodes[e.end].position - model.nodes[e.start].position).norm() / depth;
     if (ratio < short_element_ratio) {
