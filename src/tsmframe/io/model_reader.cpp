@@ -443,6 +443,7 @@ class Reader {
     if (!doc_.contains("loads")) return;
     const json& loads = doc_["loads"];
     expect_array(loads, "loads");
+    const std::vector<char> hinge = hinge_nodes(model_);
     for (size_t k = 0; k < loads.size(); ++k) {
       const std::string path = child("loads", k);
       const json& l = loads[k];
@@ -451,7 +452,12 @@ class Reader {
       const int node = required_node(l, path);
       const char* keys[3] = {"fx", "fy", "mz"};
       for (int dof = 0; dof < dofs_per_node; ++dof)
-        if (auto value = optional_number(l, keys[dof], path)) model_.reference_load[dofs_per_node * node + dof] += *value;
+        if (auto value = optional_number(l, keys[dof], path)) {
+          if (dof == rz && *value != 0.0 && hinge[node] && !model_.constrained[dofs_per_node * node + rz])
+            fail(child(path, "mz"), "node " + std::to_string(model_.nodes[node].id) +
+                                        " is a hinge: every element end there is released, so it carries no moment");
+          model_.reference_load[dofs_per_node * node + dof] += *value;
+        }
     }
   }
 
@@ -497,20 +503,13 @@ class Reader {
   }
 
   /// A node whose rotation no element end holds has it fixed: a node no element holds (FORMAT.md:
-  /// a rigid pusher), or a hinge where every element end is released. A moment applied there
-  /// would act on nothing.
+  /// a rigid pusher), or a hinge where every element end is released.
   void fix_free_rotations() {
     const std::vector<char> hinge = hinge_nodes(model_);
     std::vector<bool> held(model_.node_count(), false);
     for (const Element& e : model_.elements) held[e.start] = held[e.end] = true;
-    for (int k = 0; k < model_.node_count(); ++k) {
-      if (held[k] && !hinge[k]) continue;
-      const int dof = dofs_per_node * k + rz;
-      if (hinge[k] && model_.reference_load[dof] != 0.0 && !model_.constrained[dof])
-        fail("loads", "a moment at node " + std::to_string(model_.nodes[k].id) +
-                          ", where every element end is released (a hinge carries no moment)");
-      model_.constrained[dof] = true;
-    }
+    for (int k = 0; k < model_.node_count(); ++k)  // a moment on a hinge was refused with its load
+      if (!held[k] || hinge[k]) model_.constrained[dofs_per_node * k + rz] = true;
   }
 
   void read_contacts() {
