@@ -11,12 +11,14 @@
 namespace tsm::util {
 
 /// Models smaller than this (elements, or node blocks of the tangent) run every loop on one
-/// thread. An iteration of a 1,000-element chain is ~0.13 ms of work in four parallel regions;
-/// on this VM a region's wake-up of the second thread costs 3–20 µs and the first two regions of a
-/// process ~15 ms (starting the thread), so two threads were 5–20 % slower there in most runs
-/// and faster only in some; from ~4,000 elements on they are faster in every run (bench/README
-/// "Ninth session").
-constexpr int smallest_shared_model = 2000;
+/// thread. A region's wake-up of the second thread costs ~1 µs on this VM while it still spins
+/// and the first regions of a process up to a few ms (starting the thread), so below this the
+/// second thread does not pay. Measured in one process (bench/README "Twelfth session", median of
+/// 40 runs, three alternations): a 1,000-element chain 83–134 ns on two threads against 122 on
+/// one (faster in 2 of 3), 1,500 elements 79 against 123 in all three, 500 elements 97–161
+/// against 120, 250 elements 114–116 against 118–120. (The ninth session measured two threads
+/// slower at 1,000; the factorisation's parallel top and the prefetching have changed that.)
+constexpr int smallest_shared_model = 1000;
 
 /// Whether a loop that `wants` threads gets a parallel region: only if more than one thread is
 /// available (omp_get_max_threads reads a setting; no system call).
