@@ -70,7 +70,7 @@ py::dict run_json(const std::string& text, int threads) {
   out["contact_nodes"] = array<int>({c}, contact_nodes);
 
   // Every step (converged or the failed last attempt): step number, λ, iterations, residuals.
-  std::vector<int> step_numbers, iterations, converged;
+  std::vector<int> step_numbers, iterations, converged, negative_eigenvalues;
   std::vector<double> load_factors;
   py::list residuals, criteria;
   // Converged steps: contacts; steps with state: displacements, element forces, reactions.
@@ -81,6 +81,7 @@ py::dict run_json(const std::string& text, int threads) {
     load_factors.push_back(s.load_factor);
     iterations.push_back(s.iterations);
     converged.push_back(s.converged ? 1 : 0);
+    negative_eigenvalues.push_back(s.converged ? s.negative_eigenvalues : -1);
     residuals.append(array<double>({static_cast<py::ssize_t>(s.residual_norms.size())}, s.residual_norms));
     criteria.append(s.criterion);
     if (s.converged)
@@ -104,6 +105,7 @@ py::dict run_json(const std::string& text, int threads) {
   out["load_factor"] = array<double>({steps}, load_factors);
   out["iterations"] = array<int>({steps}, iterations);
   out["converged"] = array<int>({steps}, converged);
+  out["negative_eigenvalues"] = array<int>({steps}, negative_eigenvalues);
   out["residual_norms"] = residuals;
   out["criterion"] = criteria;
   out["state_steps"] = array<int>({with_state}, state_steps);

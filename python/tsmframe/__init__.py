@@ -149,6 +149,8 @@ class Result:
     notes                      remarks on the path (list of sentences; e.g. a jump across a snap-back)
     node_ids (n,), node_xy (n, 2), element_ids (m,), element_nodes (m, 2) node ids
     step (S,), load_factor (S,), iterations (S,), converged (S,), residual_norms: S arrays, criterion: S strings
+    negative_eigenvalues (S,)  of the tangent at each converged step: 0 stable, > 0 unstable
+                               equilibrium; -1 unknown (a contact active, or a failed attempt)
     state_steps (K,)           step numbers that carry full state (analysis.output)
     displacements (K, n, 3)    ux, uy, rz per node; rz is the true total rotation
     element_forces (K, m, 3)   N, M_i, M_j (chord frame)

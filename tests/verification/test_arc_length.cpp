@@ -208,9 +208,12 @@ TEST(ArcLength, DisplacementControlAcrossTheDeepArchsSnapBackJumpsAndSaysSo) {
   ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
   ASSERT_FALSE(r.limit_points.empty());
   EXPECT_NEAR(r.limit_points[0].load_factor, 897.0, 0.02 * 897.0);
-  ASSERT_EQ(r.notes.size(), 1u);
+  // The leap's note first; then the stability notes (the path past the maximum is unstable under its load).
+  ASSERT_GE(r.notes.size(), 1u);
   EXPECT_NE(r.notes[0].find("the path may snap back here"), std::string::npos) << r.notes[0];
   EXPECT_NE(r.notes[0].find("arc-length control follows it"), std::string::npos) << r.notes[0];
+  for (size_t k = 1; k < r.notes.size(); ++k)
+    EXPECT_NE(r.notes[k].find("unstable equilibri"), std::string::npos) << r.notes[k];
 }
 
 TEST(ArcLength, DisplacementControlThroughTheTrussSnapThroughNotesNothing) {
@@ -222,7 +225,12 @@ TEST(ArcLength, DisplacementControlThroughTheTrussSnapThroughNotesNothing) {
       run(truss_model({{"type", "displacement"}, {"node", 2}, {"dof", "uy"}, {"target", -0.25}, {"steps", 10}}), model);
   ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
   ASSERT_EQ(r.limit_points.size(), 2u);
-  EXPECT_TRUE(r.notes.empty()) << r.notes.front();
+  // No leap; only that the steps between the two limit points are unstable under their loads.
+  ASSERT_EQ(r.notes.size(), 1u);
+  EXPECT_EQ(r.notes[0].find("leapt"), std::string::npos) << r.notes[0];
+  EXPECT_NE(r.notes[0].find("unstable equilibri"), std::string::npos) << r.notes[0];
+  EXPECT_NE(r.notes[0].find("from the load maximum at step " + std::to_string(r.limit_points[0].step)), std::string::npos)
+      << r.notes[0];
 }
 
 // ---- Williams' toggle ----
@@ -327,6 +335,14 @@ TEST(ArcLength, WilliamsToggleAgainstTheExactElastica) {
               r.limit_points[0].load_factor, r.limit_points[1].load_factor, p_max, p_min);
   EXPECT_NEAR(r.limit_points[0].load_factor, p_max, 1e-3 * p_max);
   EXPECT_NEAR(r.limit_points[1].load_factor, p_min, 1e-3 * p_min);
+  // The tangent's inertia (from the factorisation's pivots, not from λ): one negative eigenvalue
+  // strictly between the two limit points, none before the maximum or after the minimum (the
+  // limit steps themselves straddle the singular tangent: either).
+  for (const auto& s : r.steps) {
+    if (s.step == r.limit_points[0].step || s.step == r.limit_points[1].step) continue;
+    const bool between = s.step > r.limit_points[0].step && s.step < r.limit_points[1].step;
+    EXPECT_EQ(s.negative_eigenvalues, between ? 1 : 0) << "step " << s.step;
+  }
 }
 
 // ---- A contact point slipping off a cantilever's free end ----

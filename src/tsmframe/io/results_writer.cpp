@@ -34,6 +34,7 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
   w.key("increment").value(step.increment);
   if (step.arc_length > 0.0) w.key("arc_length").value(step.arc_length);
   w.key("cutbacks").value(step.cutbacks);
+  if (step.converged && step.negative_eigenvalues >= 0) w.key("negative_eigenvalues").value(step.negative_eigenvalues);
   if (!step.converged) w.key("message").value(step.message);
   if (step.has_state) {
     w.key("displacements");

@@ -124,6 +124,14 @@ class Recorder {
     if (observer_) observer_(result_.steps.back());
   }
 
+  /// An attempt that started from the newest converged step's state factorised the tangent there
+  /// first: its inertia is that step's, where it tells the stability (`tells`).
+  void started_from_newest(const NewtonOutcome& outcome, bool tells) {
+    if (last_with_state_ < 0 || !tells || outcome.start_negative_pivots < 0) return;
+    int& negatives = result_.steps[last_with_state_].negative_eigenvalues;
+    if (negatives < 0) negatives = outcome.start_negative_pivots;
+  }
+
   /// Displacements of the newest converged step, held in its record until a later step
   /// converges (null before the first converged step).
   const Eigen::VectorXd* newest_displacements() const {
@@ -259,16 +267,69 @@ std::vector<std::string> nothing_carried_notes(const std::vector<StepRecord>& st
   return {os.str()};
 }
 
+/// Converged steps whose tangent has negative eigenvalues: unstable equilibria under their loads.
+/// One note per run of consecutive such steps, with its cause: the limit point where the run
+/// begins (a snap-through's falling branch), or, where none does, a bifurcation point passed on
+/// the primary path — what a perfect structure does under any control (a straight column
+/// loaded beyond its buckling load stays straight, and converges there in one iteration).
+std::vector<std::string> stability_notes(const std::vector<StepRecord>& steps, const std::vector<LimitPoint>& limits) {
+  struct Run {
+    int first = 0, last = 0, fewest = 0, most = 0;
+  };
+  std::vector<Run> runs;
+  for (const StepRecord& s : steps) {
+    if (!s.converged || s.negative_eigenvalues <= 0) continue;
+    if (!runs.empty() && runs.back().last == s.step - 1) {
+      Run& r = runs.back();
+      r.last = s.step;
+      r.fewest = std::min(r.fewest, s.negative_eigenvalues);
+      r.most = std::max(r.most, s.negative_eigenvalues);
+    } else {
+      runs.push_back({s.step, s.step, s.negative_eigenvalues, s.negative_eigenvalues});
+    }
+  }
+  std::vector<std::string> notes;
+  for (const Run& r : runs) {
+    std::ostringstream os;
+    const bool one = r.first == r.last;
+    if (one) os << "step " << r.first << " ends on an unstable equilibrium under its load";
+    else os << "steps " << r.first << "–" << r.last << " end on unstable equilibria under their loads";
+    os << ": the tangent stiffness there has ";
+    if (r.fewest != r.most) os << r.fewest << " to ";
+    os << r.most << " negative eigenvalue" << (r.most > 1 ? "s" : "");
+    // The limit point the run starts at: the path's step there straddles the singular tangent.
+    const auto limit = std::find_if(limits.begin(), limits.end(),
+                                    [&](const LimitPoint& p) { return std::abs(p.step - r.first) <= 1; });
+    if (limit != limits.end())
+      os << ", from the load " << (limit->maximum ? "maximum" : "minimum") << " at step " << limit->step << " on";
+    else
+      os << "; no limit point precedes " << (one ? "it" : "them") << ", so the path has passed a bifurcation point and keeps to its primary "
+            "branch, as a perfect structure does (a straight column stays straight beyond its buckling load): an "
+            "imperfection or a small disturbing load leads onto the buckled branch";
+    notes.push_back(os.str());
+  }
+  return notes;
+}
+
 /// What the result says about its path besides the steps: the limit points, and the notes.
-void close_path(RunResult& result, bool by_displacement) {
+void close_path(RunResult& result, ControlType control) {
   result.limit_points = limit_points(result.steps);
   result.notes = nothing_carried_notes(result.steps);
-  if (by_displacement)
+  if (control == ControlType::displacement)
     for (std::string& note : jump_notes(result.steps)) result.notes.push_back(std::move(note));
+  for (std::string& note : stability_notes(result.steps, result.limit_points)) result.notes.push_back(std::move(note));
 }
 
 RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
                          const StepObserver& observer);
+RunResult run_stepped(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
+                      const StepObserver& observer);
+
+/// Whether the tangent's inertia tells the stability of `state`: only where no contact is active
+/// (a contact element's sliding term is not symmetric, and the inertia is its symmetric part's).
+bool inertia_tells_stability(const State& state) {
+  return std::none_of(state.contacts.begin(), state.contacts.end(), [](const contact::ContactState& c) { return c.active; });
+}
 
 }  // namespace
 
@@ -290,8 +351,24 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   util::assign_touched(zero_rotations, model.elements.size(), 0.0);
   State state{util::zeros_touched(model.dof_count()), 0.0, std::move(zero_rotations), contacts.initial_states()};
   newton.reset(state);
-  if (control.type == ControlType::arc_length) return run_arc_length(model, dofs, newton, state, observer);
+  RunResult result = control.type == ControlType::arc_length ? run_arc_length(model, dofs, newton, state, observer)
+                                                             : run_stepped(model, dofs, newton, state, observer);
+  // The newest converged step's inertia: each other step's came with the attempt that started
+  // from it. `state` is that step's (every run ends there); the last evaluation was made there
+  // unless the run ended on a failed attempt.
+  const auto newest = std::find_if(result.steps.rbegin(), result.steps.rend(), [](const StepRecord& s) { return s.converged; });
+  if (newest != result.steps.rend() && newest->negative_eigenvalues < 0 && inertia_tells_stability(state))
+    newest->negative_eigenvalues = newton.negative_eigenvalues(state, result.steps.back().converged);
+  close_path(result, control.type);
+  return result;
+}
 
+namespace {
+
+RunResult run_stepped(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
+                      const StepObserver& observer) {
+  const AnalysisSettings& settings = model.analysis;
+  const Control& control = settings.control;
   const bool by_displacement = control.type == ControlType::displacement;
   PathConstraint constraint;
   if (by_displacement) {
@@ -333,7 +410,9 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     else constraint.load_increment = value(t_end) - state.load_factor;
 
     saved.take(state, recorder.newest_displacements());
+    const bool tells_stability = inertia_tells_stability(state);
     const NewtonOutcome outcome = newton.step(constraint, state);
+    recorder.started_from_newest(outcome, tells_stability);
     StepRecord record = recorder.start(outcome, halvings);
     record.increment = (value(t_end) - value(t)) * (by_displacement ? control.target : 1.0);
 
@@ -387,16 +466,12 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
                      short_element_hint(model);
     recorder.finish(state);  // state is the newest converged step's again
     recorder.failed(std::move(record), failed.message);
-    close_path(result, by_displacement);
     return result;
   }
   recorder.finish(state);
   result.status = Status::converged;
-  close_path(result, by_displacement);
   return result;
 }
-
-namespace {
 
 /// The quantity `until` watches, and its target (FORMAT.md `until`).
 double watched(const Control& control, const State& state) {
@@ -424,7 +499,9 @@ RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, Newto
   while (converged_steps < control.max_steps) {
     saved = state;
     constraint.arc_length = arc;
+    const bool tells_stability = inertia_tells_stability(state);
     const NewtonOutcome outcome = newton.step(constraint, state);
+    recorder.started_from_newest(outcome, tells_stability);
     StepRecord record = recorder.start(outcome, halvings);
     record.arc_length = arc;
     if (outcome.status == Status::converged) {
@@ -465,7 +542,6 @@ RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, Newto
         newton.reset(state);  // keep the arc-length step that passed the target
       }
       result.status = Status::converged;
-      close_path(result, false);
       return result;
     }
     state = saved;
@@ -482,6 +558,7 @@ RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, Newto
       PathConstraint jump;
       jump.load_increment = constraint.previous_load_increment;
       const NewtonOutcome across = newton.step(jump, state);
+      recorder.started_from_newest(across, inertia_tells_stability(saved));
       if (across.status == Status::converged) {
         StepRecord crossed = recorder.start(across, halvings);
         crossed.increment = state.load_factor - saved.load_factor;
@@ -509,10 +586,8 @@ RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, Newto
          << ", its bounding box's diagonal): give initial_increment and max_increment a few per cent of it";
     result.message = os.str() + short_element_hint(model);
     recorder.failed(std::move(record), outcome.message);
-    close_path(result, false);
     return result;
   }
-  close_path(result, false);
   if (watching) {
     result.status = Status::step_limit;
     std::ostringstream os;

@@ -127,6 +127,16 @@ bool NewtonSolver::release_pulling_contacts(State& state) {
 
 void NewtonSolver::reset(State& state) { evaluate(state); }
 
+int NewtonSolver::negative_eigenvalues(State& state, bool evaluated) {
+  if (!evaluated) evaluate(state);
+  if (system_.pattern_version() != analysed_pattern_) {
+    solver_.analyze(system_.dofs(), system_.tangent());
+    analysed_pattern_ = system_.pattern_version();
+  }
+  if (!solver_.factorize(system_.tangent_for_factorisation())) return -1;
+  return solver_.negative_pivots();
+}
+
 std::vector<contact::ActiveContact> NewtonSolver::active_contacts(const State& state) const {
   return contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
 }

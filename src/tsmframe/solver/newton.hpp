@@ -78,6 +78,12 @@ class NewtonSolver {
   /// `state` is left at the failed iterate: call reset() with the saved state before retrying.
   NewtonOutcome step(const PathConstraint& constraint, State& state);
 
+  /// Negative eigenvalues of the tangent at `state` (its inertia, by one LDLᵀ factorisation): 0
+  /// where that equilibrium is stable, n > 0 where it is not; −1 if the tangent does not
+  /// factorise. `evaluated`: the last evaluation was at `state` (a step converged there and
+  /// nothing was factorised since), else it is evaluated again. Uses up the tangent: a step
+  /// after it must start with reset().
+  int negative_eigenvalues(State& state, bool evaluated);
   /// The contacts of `state` as reported (element, α, force).
   std::vector<ContactPoint> contact_points(const State& state) const;
   /// Element forces (N, M_i, M_j) at `state` (a converged state: its chord rotations are its
