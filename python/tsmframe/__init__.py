@@ -64,18 +64,24 @@ class Model:
         return self
 
     def member(self, start, end, material, section, divisions=1, element="euler-bernoulli", arc=None, release=None,
-               load=None):
+               load=None, pressure=None):
         """A straight member (or an arc: arc=(centre_x, centre_y, sweep_radians)) of `divisions` elements;
         release: "start", "end" or "both" puts a hinge (no moment) at that end; load=(fx, fy): a
-        distributed load, force per unit length in global directions."""
+        distributed load, force per unit length in global directions; pressure=p: a follower load
+        per unit current length, normal to the deformed member, pushing from its left side (seen
+        from start to end) to its right."""
         entry = {"from": _ref(start), "to": _ref(end), "divisions": divisions, "element": element,
                  "material": material, "section": section}
         if arc is not None:
             entry["arc"] = {"center": [arc[0], arc[1]], "sweep": arc[2]}
         if release is not None:
             entry["release"] = release
+        if load is not None or pressure is not None:
+            entry["load"] = {}
         if load is not None:
-            entry["load"] = {"fx": load[0], "fy": load[1]}
+            entry["load"].update({"fx": load[0], "fy": load[1]})
+        if pressure is not None:
+            entry["load"]["pressure"] = pressure
         self._doc["members"].append(entry)
         return self
 

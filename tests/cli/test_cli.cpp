@@ -136,7 +136,7 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
       {"unknown node", [](json& m) { m["members"][0]["to"] = 7; }, "members[0].to: unknown node 7"},
       {"duplicate id", [](json& m) { m["nodes"][1]["id"] = 1; }, "nodes[1].id: duplicate node id 1"},
       {"zero length", [](json& m) { m["members"][0]["to"] = 1; }, "members[0]: zero-length member"},
-      {"empty member load", [](json& m) { m["members"][0]["load"] = json::object(); }, "members[0].load: give fx or fy"},
+      {"empty member load", [](json& m) { m["members"][0]["load"] = json::object(); }, "members[0].load: give fx, fy or pressure"},
       {"member load typo", [](json& m) { m["members"][0]["load"] = {{"fz", 1.0}}; }, "members[0].load.fz: unknown key"},
       {"unknown release", [](json& m) { m["members"][0]["release"] = "top"; }, "members[0].release: unknown release \"top\""},
       {"no node at point", [](json& m) { m["loads"][0]["node"] = json::array({4.5, 0.0}); }, "loads[0].node: no node at [4.5, 0]"},

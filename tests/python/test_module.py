@@ -123,6 +123,22 @@ def test_a_three_hinged_arch_built_in_code_has_the_thrust_of_statics():
     assert feet == pytest.approx(100.0 * 2 * math.hypot(5.0, 2.0), rel=1e-8)  # to the run's tolerance
 
 
+def test_a_ring_built_in_code_loses_stability_at_its_critical_pressure():
+    # Two half-circle arc members, external pressure (clockwise members: their left side is the
+    # outside): stable below 3EI/R³, two negative eigenvalues (its ovalisation modes) above.
+    def ring(p):
+        m = tf.Model("ring").material("s", E=1.0).section("x", A=1e6, I=1.0)
+        m.node(1, 1.0, 0.0).node(2, -1.0, 0.0)
+        m.member(1, 2, "s", "x", divisions=32, arc=(0.0, 0.0, -math.pi), pressure=p)
+        m.member(2, 1, "s", "x", divisions=32, arc=(0.0, 0.0, -math.pi), pressure=p)
+        m.support(1, "pinned").support(2, fix=["uy"])
+        return tf.run(m)
+    below, above = ring(0.95 * 3.0), ring(1.05 * 3.0)
+    assert below.ok and above.ok
+    assert list(below.negative_eigenvalues) == [0] and list(above.negative_eigenvalues) == [2]
+    assert "bifurcation point" in above.notes[0]
+
+
 def test_model_built_in_code_rolls_into_a_circle():
     L, EI = 10.0, 2.05e11 * 8.333e-6
     m = tf.Model("circle").material("steel", E=2.05e11, G=7.9e10).section("s", A=1e-2, I=8.333e-6, shear_area=8.33e-3)

@@ -76,6 +76,8 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
     r.release_j = e.release_end;
   }
 
+  for (const Element& e : model.elements)
+    if (e.pressure != 0.0) follower_loads_.push_back({e.start, e.end, e.pressure});
   build_pattern();
   block_mask_.assign(n_blocks, 0);
   for (int b = 0; b < n_blocks; ++b)
@@ -374,7 +376,32 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
       chunk_largest_end_rotation_[chunk] = largest;
     });
   }
+  if (!follower_loads_.empty()) add_follower_loads(displacements, with_tangent, out);
   finish_evaluation(displacements, previous_rotations, with_tangent, out, contacts);
+}
+
+void GlobalSystem::add_follower_loads(const Eigen::VectorXd& displacements, bool with_tangent, Evaluation& out) {
+  // A pressure p on the current chord d = x_j − x_i: the force −p l n (n the left normal, l n =
+  // R d with R the quarter turn [0 −1; 1 0]), half to each end: P_i = P_j = −(p/2) R d. So
+  // ∂P_i/∂x_j = ∂P_j/∂x_j = −(p/2) R and ∂P/∂x_i = +(p/2) R, and the tangent gains −λ ∂P/∂D:
+  // K_ij = λ (p/2) R and K_ji = −λ (p/2) R = K_ijᵀ (R is skew), a symmetric coupling; K_ii =
+  // −λ (p/2) R and K_jj = +λ (p/2) R are skew and cancel wherever two elements of equal
+  // pressure meet (a closed ring: the load is conservative). Where they do not (the ends of a
+  // loaded stretch) they are left out: the residual stays exact, Newton converges to the same
+  // state, there a little slower.
+  out.reference_load = model_.reference_load;
+  for (const FollowerLoad& f : follower_loads_) {
+    const Eigen::Vector2d d = model_.nodes[f.end].position + displacements.segment<2>(dofs_per_node * f.end) -
+                              model_.nodes[f.start].position - displacements.segment<2>(dofs_per_node * f.start);
+    const Eigen::Vector2d half = 0.5 * f.pressure * Eigen::Vector2d(d.y(), -d.x());  // −(p/2) R d
+    out.reference_load.segment<2>(dofs_per_node * f.start) += half;
+    out.reference_load.segment<2>(dofs_per_node * f.end) += half;
+    if (!with_tangent) continue;
+    Eigen::Matrix3d coupling = Eigen::Matrix3d::Zero();  // K_ij = λ (p/2) R on the translations
+    coupling(0, 1) = -0.5 * load_factor_ * f.pressure;
+    coupling(1, 0) = 0.5 * load_factor_ * f.pressure;
+    add_block(f.start, f.end, coupling);
+  }
 }
 
 void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,

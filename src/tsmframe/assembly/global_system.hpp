@@ -32,6 +32,10 @@ struct Evaluation {
   std::vector<contact::ContactEvaluation> contacts;
   /// max |θ| over the plain elements' ends: how far an end turns against its chord.
   double largest_end_rotation = 0.0;
+  /// The reference load at this state: Model::reference_load plus the follower loads (members'
+  /// pressure) on the current geometry, at λ = 1. Empty when the model has no follower load
+  /// (the reference load is then Model::reference_load, fixed).
+  Eigen::VectorXd reference_load;
 };
 
 /// Estimated rounding error of the assembled internal forces, per kind (2-norm over dofs):
@@ -64,6 +68,10 @@ class GlobalSystem {
   /// a larger pattern.
   void evaluate_contact_change(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                                Evaluation& out, const std::vector<contact::ActiveContact>& contacts);
+
+  /// λ at which the next evaluations take place: the follower loads' stiffness −λ ∂P/∂D joins
+  /// the tangent (only models with follower loads depend on it).
+  void set_load_factor(double load_factor) { load_factor_ = load_factor; }
 
   /// K_ff from the last evaluation with tangent, as node blocks; the rows and columns of a
   /// block's constrained dofs are zero with 1 on the diagonal (they carry no equation). The
@@ -122,6 +130,17 @@ class GlobalSystem {
   void add_block(int node_a, int node_b, const Eigen::Matrix3d& value);
   void evaluate_contact(const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
                         const std::vector<double>& previous_rotations, bool with_tangent, Evaluation& out);
+  /// out.reference_load at `displacements`, and with `with_tangent` the symmetric part of the
+  /// follower loads' stiffness in the tangent (before the constrained dofs are masked).
+  void add_follower_loads(const Eigen::VectorXd& displacements, bool with_tangent, Evaluation& out);
+
+  /// An element's follower load: its nodes and pressure (Element::pressure).
+  struct FollowerLoad {
+    int start = 0, end = 0;
+    double pressure = 0.0;
+  };
+  std::vector<FollowerLoad> follower_loads_;  ///< in the model's element order; empty: none
+  double load_factor_ = 0.0;                  ///< set_load_factor
 
   const Model& model_;
   const DofMap& dofs_;

@@ -302,13 +302,17 @@ class Reader {
       }
       const element::SectionStiffness section = section_stiffness(m, path, theory);
       std::array<double, 2> distributed{0.0, 0.0};  // "load": force per unit length (global x, y)
+      double pressure = 0.0;                         // … and a follower load normal to the elements
       if (m.contains("load")) {
         const std::string lpath = child(path, "load");
         expect_object(m["load"], lpath);
-        check_keys(m["load"], lpath, {"fx", "fy"});
+        check_keys(m["load"], lpath, {"fx", "fy", "pressure"});
         if (auto fx = optional_number(m["load"], "fx", lpath)) distributed[0] = *fx;
         if (auto fy = optional_number(m["load"], "fy", lpath)) distributed[1] = *fy;
-        if (distributed[0] == 0.0 && distributed[1] == 0.0) fail(lpath, "give fx or fy (force per unit length)");
+        if (auto p = optional_number(m["load"], "pressure", lpath)) pressure = *p;
+        if (distributed[0] == 0.0 && distributed[1] == 0.0 && pressure == 0.0)
+          fail(lpath, "give fx, fy or pressure (force per unit length)");
+        if (pressure != 0.0) pressure_members_.insert(static_cast<int>(k));
       }
       bool release_from = false, release_to = false;  // hinges at the member's ends
       if (m.contains("release")) {
@@ -345,8 +349,9 @@ class Reader {
         e.release_start = release_from && d == 1;
         e.release_end = release_to && d == divisions;
         e.section = section;
+        e.pressure = pressure;
         model_.elements.push_back(e);
-        if (m.contains("load")) {  // per unit length along the drawn element, half to each end
+        if (distributed[0] != 0.0 || distributed[1] != 0.0) {  // per unit length along the drawn element, half to each end
           const double length = (model_.nodes[e.end].position - model_.nodes[e.start].position).norm();
           member_loads_.push_back({e.start, e.end, distributed[0] * length / 2.0, distributed[1] * length / 2.0});
         }
@@ -516,6 +521,9 @@ class Reader {
     if (!doc_.contains("contacts")) return;
     const json& contacts = doc_["contacts"];
     expect_array(contacts, "contacts");
+    if (!pressure_members_.empty() && !contacts.empty())
+      fail(child(child("members", static_cast<size_t>(*pressure_members_.begin())), "load") + ".pressure",
+           "follower loads (pressure) in a model with contacts are not supported");
     for (size_t k = 0; k < contacts.size(); ++k) {
       const std::string path = child("contacts", k);
       const json& c = contacts[k];
@@ -698,6 +706,7 @@ class Reader {
   std::map<std::string, Material> materials_;
   std::map<std::string, Section> sections_;
   std::set<int> released_members_;  ///< members with a moment release ("release")
+  std::set<int> pressure_members_;  ///< members with a follower load ("load": {"pressure"})
   struct MemberLoad {
     int start, end;  ///< an element's nodes
     double fx, fy;   ///< the share of its distributed load each of them takes

@@ -33,6 +33,10 @@ struct Element {
   /// A hinge at that end: the element carries no moment there (M_i or M_j = 0, its end rotation
   /// condensed out of k0), so the node's rotation is not the element's.
   bool release_start = false, release_end = false;
+  /// Follower load (pressure) per unit current length, scaled by λ: normal to the current chord,
+  /// pushing from the element's left side (seen from start to end) towards its right — down on
+  /// an element drawn left to right. Lumped half to each end. 0: none.
+  double pressure = 0.0;
   element::SectionStiffness section;
 };
 

@@ -91,6 +91,7 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
 
 bool NewtonSolver::evaluate(State& state, bool contacts_only) {
   const Model& model = system_.model();
+  system_.set_load_factor(state.load_factor);
   for (int dof : constrained_dofs_) state.displacements[dof] = state.load_factor * model.prescribed(dof);
   constexpr int max_passes = 4;  // contact changes settled per iterate before Newton goes on
   bool changed = false;
@@ -159,7 +160,8 @@ Eigen::VectorXd NewtonSolver::element_forces(const State& state) const {
 Eigen::VectorXd NewtonSolver::reactions(double load_factor) const {
   const Model& model = system_.model();
   Eigen::VectorXd reactions = util::zeros_touched(model.dof_count());
-  for (int dof : constrained_dofs_) reactions[dof] = eval_.internal_force[dof] - load_factor * model.reference_load[dof];
+  const Eigen::VectorXd& P = reference_load();
+  for (int dof : constrained_dofs_) reactions[dof] = eval_.internal_force[dof] - load_factor * P[dof];
   return reactions;
 }
 
@@ -167,7 +169,7 @@ ResidualScale NewtonSolver::scale(double load_factor) const {
   // As in update_residual, without writing R (the scale at a λ other than the state's).
   const assembly::DofMap& dofs = system_.dofs();
   const double* F = eval_.internal_force.data();
-  const double* P = system_.model().reference_load.data();
+  const double* P = reference_load().data();
   const int* free_dof = dofs.free_dofs().data();
   const bool gather = dofs.free_count() >= gather_from;
   const std::array<double, 4> free =
@@ -191,7 +193,7 @@ ResidualScale NewtonSolver::scale_from(std::array<double, 2> load, std::array<do
   // dofs (given over the free ones; the constrained ones are added here).
   const Model& model = system_.model();
   const double* F = eval_.internal_force.data();
-  const double* P = model.reference_load.data();
+  const double* P = reference_load().data();
   double reaction[2] = {0, 0};
   for (const int dof : constrained_dofs_) {
     const int kind = dof % dofs_per_node == rz ? 1 : 0;
@@ -214,7 +216,7 @@ NewtonSolver::ResidualPass NewtonSolver::update_residual(double load_factor) {
   const Eigen::Index n = dofs.free_count();
   util::resize_touched(residual_, n);
   const double* F = eval_.internal_force.data();
-  const double* P = system_.model().reference_load.data();
+  const double* P = reference_load().data();
   const int* free_dof = dofs.free_dofs().data();
   double* R = residual_.data();
   const bool gather = n >= gather_from;
@@ -253,7 +255,7 @@ NewtonSolver::ResidualPass NewtonSolver::update_residual(double load_factor) {
 
 void NewtonSolver::load_direction(Eigen::VectorXd& out) const {
   const assembly::DofMap& dofs = system_.dofs();
-  const double* P = system_.model().reference_load.data();
+  const double* P = reference_load().data();
   out.resize(dofs.free_count());
   for (int eq = 0; eq < dofs.free_count(); ++eq) out[eq] = P[dofs.dof(eq)];
   if (eval_.prescribed_coupling.size() > 0) out -= eval_.prescribed_coupling;
@@ -268,7 +270,7 @@ void NewtonSolver::solve_along_load_and_residual() {
 
 void NewtonSolver::add_load_direction(double dlambda, Eigen::VectorXd& v) const {
   const assembly::DofMap& dofs = system_.dofs();
-  const double* P = system_.model().reference_load.data();
+  const double* P = reference_load().data();
   for (int eq = 0; eq < dofs.free_count(); ++eq) v[eq] += dlambda * P[dofs.dof(eq)];
   if (eval_.prescribed_coupling.size() > 0) v -= dlambda * eval_.prescribed_coupling;
 }

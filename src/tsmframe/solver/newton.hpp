@@ -116,6 +116,11 @@ class NewtonSolver {
   /// forces); adds the constrained dofs' reactions and internal forces.
   ResidualScale scale_from(std::array<double, 2> load, std::array<double, 2> internal, double load_factor) const;
   std::array<double, 2> kind_norms(const Eigen::VectorXd& free_vector) const;  // 2-norms: forces, moments
+  /// The reference load F_ref at the last evaluation's state: the model's, plus its follower
+  /// loads on the current geometry where it has any.
+  const Eigen::VectorXd& reference_load() const {
+    return eval_.reference_load.size() > 0 ? eval_.reference_load : system_.model().reference_load;
+  }
   /// F_dir = F_ref − K_fp D_p,ref over the free equations (dR/dλ), into `out`.
   void load_direction(Eigen::VectorXd& out) const;
   /// K_ff⁻¹ F_dir into along_load_ and K_ff⁻¹ R into along_residual_ (arc-length and
