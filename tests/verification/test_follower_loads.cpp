@@ -1,6 +1,6 @@
-// Follower loads: a member's pressure, normal to its current elements. The tangent holds the
-// symmetric part of the true Jacobian (finite differences: exactly the Jacobian on a closed ring,
-// where the load is conservative); a ring inflated to 1.6 times its radius against the discrete
+// Follower loads: a member's pressure, normal to its current elements. The tangent's blocks hold
+// the symmetric part of the Jacobian (finite differences; all of it on a closed ring, where the
+// load is conservative), its rank-one terms the skew rest at a free end; a ring inflated to 1.6 times its radius against the discrete
 // closed form; the critical external pressure of a ring, 3EI/R³ (a follower load; a load of fixed
 // direction would give 4EI/R³), from the tangent's inertia.
 #include <gtest/gtest.h>
@@ -56,7 +56,9 @@ void check_tangent(const json& m, double free_end_pressure) {
   tsm::assembly::Evaluation e;
   system.evaluate(D, rotations, true, e);
   ASSERT_EQ(e.reference_load.size(), model.dof_count()) << "the follower loads at this state";
-  const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent());
+  const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent(), system.follower_rank_one());
+  const Eigen::MatrixXd symmetric = dense_tangent(dofs, system.tangent());
+  EXPECT_EQ(system.follower_rank_one().empty(), closed) << "skew terms only where a loaded stretch ends";
   const int n = dofs.free_count();
   Eigen::MatrixXd J(n, n);
   const double h = 1e-6;
@@ -72,15 +74,16 @@ void check_tangent(const json& m, double free_end_pressure) {
     const Eigen::VectorXd fm = em.internal_force - lambda * em.reference_load;
     for (int r = 0; r < n; ++r) J(r, c) = (fp[dofs.dof(r)] - fm[dofs.dof(r)]) / (2 * h);
   }
-  const Eigen::MatrixXd expected = closed ? J : Eigen::MatrixXd(0.5 * (J + J.transpose()));
-  EXPECT_LE((K - expected).cwiseAbs().maxCoeff(), 1e-6 * K.cwiseAbs().maxCoeff());
-  // An open arch's load is not conservative: the dropped skew part is its free end's λ (p/2) R.
+  // The tangent with its rank-one terms is the Jacobian; its block part the Jacobian's symmetric
+  // part. An open arch's load is not conservative: the skew part is its free end's λ (p/2) R.
+  EXPECT_LE((K - J).cwiseAbs().maxCoeff(), 1e-6 * K.cwiseAbs().maxCoeff());
+  EXPECT_LE((symmetric - 0.5 * (J + J.transpose())).cwiseAbs().maxCoeff(), 1e-6 * K.cwiseAbs().maxCoeff());
   EXPECT_NEAR((J - J.transpose()).cwiseAbs().maxCoeff(), lambda * std::abs(free_end_pressure), 1e-6);
 }
 
 TEST(FollowerLoad, OnAClosedRingTheTangentIsTheJacobian) { check_tangent(ring(12, 0.8, 50.0), 0.0); }
 
-TEST(FollowerLoad, OnAnOpenArchTheTangentIsTheJacobiansSymmetricPart) {
+TEST(FollowerLoad, OnAnOpenArchTheTangentAndItsSkewTermsAreTheJacobian) {
   check_tangent(ring(10, -0.8, 50.0, 0.8 * pi), -0.8);
 }
 
@@ -119,6 +122,41 @@ TEST(FollowerLoad, ARingUnderExternalPressureBucklesAtThreeEIOverRCubed) {
   EXPECT_EQ(above.steps.back().negative_eigenvalues, 2);
   ASSERT_EQ(above.notes.size(), 1u);
   EXPECT_NE(above.notes[0].find("bifurcation point"), std::string::npos) << above.notes[0];
+}
+
+// A cantilever under a follower pressure strong enough to turn its tip 3.3 rad, in 5 load steps.
+// The load is not conservative (the free end): with the tangent's skew terms Newton converges
+// in ≤ 15 iterations a step (without them: 38 steps after cutbacks, 1,729 iterations). The
+// clamp holds the pressure's resultant on the deformed beam, −λ p R (x_tip − x_root) (the
+// elements' chords add up), and its moment.
+TEST(FollowerLoad, ACantileverUnderPressureRollsUpInFewIterations) {
+  const double p = 30.0;
+  json m = beam_model({.L = 1.0, .E = 1.0, .G = 0.4, .A = 1e4, .I = 1.0, .shear_area = 8e3, .divisions = 40});
+  m["members"][0]["load"] = {{"pressure", p}};
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}});
+  m["analysis"]["control"] = {{"type", "load"}, {"steps", 5}};
+  tsm::Model model;
+  const auto r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  ASSERT_EQ(r.steps.size(), 5u);
+  for (const auto& s : r.steps) EXPECT_LE(s.iterations, 15) << "step " << s.step;
+  const auto& last = r.steps.back();
+  EXPECT_GT(std::abs(node_displacement(model, last, 2)[2]), 3.0);
+  const Eigen::Vector2d chord = node_position(model, last, 2) - node_position(model, last, 1);
+  const Eigen::Vector2d resultant = -p * Eigen::Vector2d(-chord.y(), chord.x());  // −p R (x_tip − x_root)
+  const Eigen::Vector3d reaction = last.reactions.segment<3>(3 * model.node_index(1));
+  EXPECT_NEAR(reaction[0], -resultant.x(), 1e-8 * p);
+  EXPECT_NEAR(reaction[1], -resultant.y(), 1e-8 * p);
+  double moment = 0.0;  // of the lumped forces about the root
+  for (const tsm::Element& e : model.elements) {
+    const Eigen::Vector2d a = node_position(model, last, model.nodes[e.start].id);
+    const Eigen::Vector2d b = node_position(model, last, model.nodes[e.end].id);
+    const Eigen::Vector2d f = 0.5 * p * Eigen::Vector2d((b - a).y(), -(b - a).x());
+    const Eigen::Vector2d root = node_position(model, last, 1);
+    for (const Eigen::Vector2d& x : {a, b}) moment += (x - root).x() * f.y() - (x - root).y() * f.x();
+  }
+  EXPECT_NEAR(reaction[2], -moment, 1e-8 * p);
+  EXPECT_EQ(last.negative_eigenvalues, -1) << "a non-conservative load: the inertia tells nothing";
 }
 
 TEST(FollowerLoad, TheReaderTakesPressureAndRefusesItWithContacts) {

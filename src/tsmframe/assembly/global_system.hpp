@@ -97,6 +97,10 @@ class GlobalSystem {
   /// The contact elements' sliding terms from the same evaluation: K_ff = tangent() + Σ u vᵀ
   /// (their symmetric parts are in tangent()).
   const std::vector<solver::RankOne>& contact_rank_one() const { return contact_rank_one_; }
+  /// The follower loads' stiffness where it is not symmetric (the nodes where a loaded stretch
+  /// ends: a free end, a change of pressure), as rank-one terms: K_ff = tangent() + Σ u vᵀ,
+  /// exactly (no model has both these and contacts). Empty where the load is conservative.
+  const std::vector<solver::RankOne>& follower_rank_one() const { return follower_rank_one_; }
   /// Changes whenever the block pattern of tangent() is rebuilt (a contact couples new nodes):
   /// the linear solver must analyse it again.
   int pattern_version() const { return pattern_version_; }
@@ -130,8 +134,9 @@ class GlobalSystem {
   void add_block(int node_a, int node_b, const Eigen::Matrix3d& value);
   void evaluate_contact(const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
                         const std::vector<double>& previous_rotations, bool with_tangent, Evaluation& out);
-  /// out.reference_load at `displacements`, and with `with_tangent` the symmetric part of the
-  /// follower loads' stiffness in the tangent (before the constrained dofs are masked).
+  /// out.reference_load at `displacements`, and with `with_tangent` the follower loads'
+  /// stiffness: its symmetric part in the tangent (before the constrained dofs are masked), the
+  /// rest as follower_rank_one().
   void add_follower_loads(const Eigen::VectorXd& displacements, bool with_tangent, Evaluation& out);
 
   /// An element's follower load: its nodes and pressure (Element::pressure).
@@ -140,6 +145,8 @@ class GlobalSystem {
     double pressure = 0.0;
   };
   std::vector<FollowerLoad> follower_loads_;  ///< in the model's element order; empty: none
+  std::vector<solver::RankOne> follower_rank_one_;  ///< follower_rank_one()
+  std::vector<double> follower_skew_;               ///< per node: c of its skew block c R (scratch)
   double load_factor_ = 0.0;                  ///< set_load_factor
 
   const Model& model_;

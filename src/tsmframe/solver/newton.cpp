@@ -130,6 +130,7 @@ void NewtonSolver::reset(State& state) { evaluate(state); }
 
 int NewtonSolver::negative_eigenvalues(State& state, bool evaluated) {
   if (!evaluated) evaluate(state);
+  if (!system_.follower_rank_one().empty()) return -1;  // not symmetric: the inertia tells nothing
   if (system_.pattern_version() != analysed_pattern_) {
     solver_.analyze(system_.dofs(), system_.tangent());
     analysed_pattern_ = system_.pattern_version();
@@ -434,13 +435,17 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
     // solved for it in place. Without the terms the symmetric part alone may be singular where
     // the whole is not: then once more with them.
     const auto factorise = [&](Eigen::VectorXd* rhs) {
-      const std::vector<RankOne>& sliding = system_.contact_rank_one();
-      const bool all = it == 1 || sliding.empty() || out.residual_norms.back() < sliding_terms_below;
+      // A follower load's skew terms always join (no model has both them and contacts).
+      const bool follower = !system_.follower_rank_one().empty();
+      const std::vector<RankOne>& sliding = follower ? system_.follower_rank_one() : system_.contact_rank_one();
+      const bool all = follower || it == 1 || sliding.empty() || out.residual_norms.back() < sliding_terms_below;
       BlockMatrix& K = system_.tangent_for_factorisation();
       const std::vector<RankOne> none;
       auto attempt = [&](const std::vector<RankOne>& terms, Eigen::VectorXd* x) {
         const bool ok = x ? solver_.factorize_and_solve(K, terms, *x, refill) : solver_.factorize(K, terms, refill);
-        if (const int negatives = solver_.negative_pivots(); ok && negatives >= 0) {
+        // With a follower load's skew terms the tangent is not symmetric: its symmetric part's
+        // inertia tells nothing of stability (a non-conservative load).
+        if (const int negatives = follower ? -1 : solver_.negative_pivots(); ok && negatives >= 0) {
           if (it == 1) out.start_negative_pivots = negatives;
           else out.most_negative_pivots = std::max(out.most_negative_pivots, negatives);
         }

@@ -31,7 +31,8 @@ struct StepRecord {
   int cutbacks = 0;                    ///< failed attempts halved away before this step
   /// Negative eigenvalues of the tangent stiffness at the converged state (its inertia): 0 a
   /// stable equilibrium, n > 0 an unstable one (past a limit or bifurcation point); −1 unknown
-  /// (a contact is active: its sliding term makes the tangent non-symmetric).
+  /// (a contact is active, or a follower load is not conservative: the tangent is then not
+  /// symmetric).
   int negative_eigenvalues = -1;
   double increment = 0.0;              ///< Δλ (load and arc-length control) or the controlled dof's increment
   double arc_length = 0.0;             ///< Δs of the step (arc-length control; 0 otherwise)
