@@ -123,6 +123,21 @@ def test_a_three_hinged_arch_built_in_code_has_the_thrust_of_statics():
     assert feet == pytest.approx(100.0 * 2 * math.hypot(5.0, 2.0), rel=1e-8)  # to the run's tolerance
 
 
+def test_a_beam_on_end_springs_built_in_code_has_the_moments_of_slope_deflection():
+    # Clamped through springs k at both ends, P at mid-span: M = (PL/8) κ/(1 + κ), κ = kL/2EI.
+    L, EI, P, k = 4.0, 2.0, 1e-6, 1.0
+    m = tf.Model("semi-rigid beam").material("s", E=1.0).section("x", A=1e4, I=EI)
+    m.node(1, 0, 0).node(2, L, 0)
+    m.member(1, 2, "s", "x", divisions=10, end_springs={"start": k, "end": k})
+    m.support(1, "fixed").support(2, "fixed").load((L / 2, 0.0), fy=-P)
+    m.analysis({"type": "load", "steps": 1}, tolerance=1e-13)
+    r = tf.run(m)
+    assert r.ok, r.message
+    kappa = k * L / (2 * EI)
+    assert r.reactions[-1, list(r.node_ids).index(1), 2] == pytest.approx(P * L / 8 * kappa / (1 + kappa), rel=1e-8)
+    assert r.json()["elements"][0]["end_springs"] == {"start": k}
+
+
 def test_a_ring_built_in_code_loses_stability_at_its_critical_pressure():
     # Two half-circle arc members, external pressure (clockwise members: their left side is the
     # outside): stable below 3EI/R³, two negative eigenvalues (its ovalisation modes) above.

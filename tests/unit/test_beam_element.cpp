@@ -47,6 +47,7 @@ struct Case {
   double stretch;
   double theta_i, theta_j;
   bool hinge_i = false, hinge_j = false;  ///< a member "release" at that end (released_stiffness)
+  double spring_i = 0.0, spring_j = 0.0;  ///< flexibility of an end spring (connected_stiffness)
 };
 
 class BeamTangent : public ::testing::TestWithParam<Case> {};
@@ -55,8 +56,10 @@ TEST_P(BeamTangent, MatchesFiniteDifferences) {
   const Case& p = GetParam();
   const InitialChord chord = initial_chord({0.3, -0.2}, {2.3, 0.8});
   const SectionStiffness section{.EA = 200.0, .EI = 3.0, .shear_flexibility = p.shear_flexibility};
-  const Matrix3 s = p.hinge_i || p.hinge_j ? released_stiffness(basic_stiffness_terms(section, chord.length), p.hinge_i, p.hinge_j)
-                                           : basic_stiffness(section, chord.length);
+  const BasicStiffness k0 = basic_stiffness_terms(section, chord.length);
+  const Matrix3 s = p.spring_i > 0.0 || p.spring_j > 0.0 ? connected_stiffness(k0, p.spring_i, p.spring_j)
+                    : p.hinge_i || p.hinge_j           ? released_stiffness(k0, p.hinge_i, p.hinge_j)
+                                                       : basic_stiffness(section, chord.length);
   const Vector6 d = deformed(chord, p.angle, p.stretch, p.theta_i, p.theta_j);
   const double previous = p.angle + 0.01;  // the previous iterate's β, close to the current one
   const BeamResponse r = beam_response(chord, s, d, previous);
@@ -84,7 +87,10 @@ INSTANTIATE_TEST_SUITE_P(
                       // hinged (a member "release"), either end or both, Euler–Bernoulli and Timoshenko
                       Case{0.0, 0.4, 0.02, 2.5, -1.7, true, false}, Case{0.0, 3 * pi, 0.02, 2.5, -1.7, false, true},
                       Case{0.0, 0.4, 0.02, 2.5, -1.7, true, true}, Case{0.05, 3 * pi, 0.02, 2.5, -1.7, true, false},
-                      Case{0.05, 0.4, 0.02, 2.5, -1.7, false, true}));
+                      Case{0.05, 0.4, 0.02, 2.5, -1.7, false, true},
+                      // semi-rigid: end springs (member "end_springs"), one end or both, and beside a hinge
+                      Case{0.0, 0.4, 0.02, 2.5, -1.7, false, false, 0.3, 0.0}, Case{0.05, 3 * pi, 0.02, 2.5, -1.7, false, false, 0.3, 0.1},
+                      Case{0.0, 0.4, 0.02, 2.5, -1.7, false, false, INFINITY, 0.2}));
 
 // A hinged element's kept end: k_jj − k_ij²/k_ii, the propped cantilever's end stiffness —
 // 3EI/l0 for Euler–Bernoulli, 12EI/(l0 (4 + q)) for Timoshenko; both ends hinged: a bar.
@@ -99,6 +105,20 @@ TEST(BeamElement, AHingeLeavesTheOtherEndAProppedCantileversStiffness) {
     EXPECT_EQ((bar.bottomRightCorner<2, 2>().norm()), 0.0);
     EXPECT_EQ(bar(0, 0), k0.axial);
   }
+}
+
+// End springs in series with the element: with node j held, the moment at node i per radian is
+// 1/(1/k + l0/4EI) (Euler–Bernoulli); no spring gives k0, an infinitely soft one the hinge.
+TEST(BeamElement, AnEndSpringActsInSeriesWithTheElement) {
+  const double l0 = 2.0, EI = 3.0, k = 5.0;
+  const BasicStiffness k0 = basic_stiffness_terms({.EA = 200.0, .EI = EI, .shear_flexibility = 0.0}, l0);
+  EXPECT_NEAR(connected_stiffness(k0, 1.0 / k, 0.0)(1, 1), 1.0 / (1.0 / k + l0 / (4.0 * EI)), 1e-12);
+  EXPECT_NEAR(connected_stiffness(k0, 0.0, 1.0 / k)(2, 2), 1.0 / (1.0 / k + l0 / (4.0 * EI)), 1e-12);
+  EXPECT_LE((connected_stiffness(k0, 0.0, 0.0) - k0.matrix()).norm(), 1e-12);
+  EXPECT_EQ(connected_stiffness(k0, INFINITY, 0.0), released_stiffness(k0, true, false));
+  // A hinge at i and a spring at j: the propped cantilever's 3EI/l0 in series with it.
+  EXPECT_NEAR(connected_stiffness(k0, INFINITY, 1.0 / k)(2, 2), 1.0 / (1.0 / k + l0 / (3.0 * EI)), 1e-12);
+  EXPECT_EQ(connected_stiffness(k0, 1.0 / k, 1.0 / k)(0, 0), k0.axial);
 }
 
 TEST(BeamElement, RigidMotionGivesNoForce) {

@@ -1,10 +1,13 @@
 // Member releases (hinges, "release" on a member): the von Mises truss with real pins against its
 // closed form through the snap-through; a three-hinged arch's thrust against statics; a clamped
 // column hinged at its ends buckling as a pinned one; the reader's checks (a moment at a hinge,
-// contacts on hinged members, a bar left free to turn).
+// contacts on hinged members, a bar left free to turn). Semi-rigid connections ("end_springs"): a
+// clamped beam on end springs against slope-deflection, a cantilever whose root spring turns as
+// far as the beam bends (two full turns at its tip, its tip back on the root), the reader's checks.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -162,8 +165,84 @@ TEST(Hinges, TheReaderChecksWhatAHingeCannotDo) {
   m["contacts"] = json::array({{{"node", 9}, {"members", {0}}}});
   EXPECT_NE(refusal(m).find("contacts[0].members[0]: member 0 has a moment release"), std::string::npos) << refusal(m);
   m["contacts"] = json::array({{{"node", 9}, {"members", "all"}}});
-  EXPECT_NE(refusal(m).find("contacts[0].members: no member to touch (hinged members carry no contact)"), std::string::npos)
+  EXPECT_NE(refusal(m).find("contacts[0].members: no member to touch (hinged or sprung members carry no contact)"), std::string::npos)
       << refusal(m);
+}
+
+// A beam of span L clamped at both ends through rotational springs k, a load P at mid-span:
+// the end rotation of the simply supported beam, PL²/16EI, less that of the end moments M,
+// ML/2EI, is what the springs turn, M/k: M = (PL/8) κ/(1 + κ), κ = kL/2EI; the mid-span
+// deflection PL³/48EI − ML²/8EI. A point load at a node: exact for the elements; the load is
+// small (the membrane effect ~ (δ/L)² is below 1e-9).
+TEST(SemiRigid, AClampedBeamOnEndSpringsCarriesTheMomentsOfSlopeDeflection) {
+  const double L = 4.0, EI = 2.0, P = 1e-6;
+  for (const double kappa : {0.1, 1.0, 10.0}) {
+    const double k = 2.0 * EI * kappa / L;
+    json m = beam_model({.L = L, .E = 1.0, .G = 0.4, .A = 1e4, .I = EI, .shear_area = 1e4, .divisions = 10});
+    m["members"][0]["end_springs"] = {{"start", k}, {"end", k}};
+    m["analysis"]["tolerance"] = 1e-13;  // the residual's default 1e-8 leaves ~1e-7 of the deflection
+    m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 2}, {"type", "fixed"}}});
+    m["loads"] = json::array({{{"node", json::array({L / 2, 0.0})}, {"fy", -P}}});
+    tsm::Model model;
+    const RunResult r = run(m, model);
+    ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+    const StepRecord& last = r.steps.back();
+    const double M = P * L / 8.0 * kappa / (1.0 + kappa);
+    const double deflection = P * L * L * L / (48.0 * EI) - M * L * L / (8.0 * EI);
+    const int mid = model.nodes[model.elements[4].end].id;
+    EXPECT_NEAR(node_displacement(model, last, mid)[1], -deflection, 1e-9 * deflection) << "κ " << kappa;
+    EXPECT_NEAR(last.reactions[3 * model.node_index(1) + 2], M, 1e-9 * M) << "κ " << kappa;
+    EXPECT_NEAR(last.reactions[3 * model.node_index(2) + 2], -M, 1e-9 * M) << "κ " << kappa;
+    // The spring turns M/k between the clamp and the element's end: the first node off the
+    // clamp turns that much plus the beam's own rotation there; the results name the springs.
+    std::ostringstream text;
+    tsm::io::write_results_json(text, model, r);
+    EXPECT_EQ(json::parse(text.str())["elements"][0]["end_springs"]["start"], k);
+  }
+}
+
+// A cantilever on a root spring k = EI/L under a tip moment M = 2πEI/L (Timoshenko elements, four
+// load steps): the spring turns M/k = 2π, the beam bends into a full circle of its own: the tip
+// is back on the root, turned 4π, and every node s along it turns 2π + 2πs/L.
+TEST(SemiRigid, ACantileverOnARootSpringRollsUpTwiceOverItsTip) {
+  const double L = 10.0, EI = 2.05e11 * 1e-2 * 1e-2 / 12.0;
+  json m = beam_model({.L = L, .E = 2.05e11, .G = 7.9e10, .A = 1e-2, .I = 1e-2 * 1e-2 / 12.0,
+                       .shear_area = 5.0 / 6.0 * 1e-2, .divisions = 40, .element = "timoshenko"});
+  m["members"][0]["end_springs"] = {{"start", EI / L}};
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}});
+  m["loads"] = json::array({{{"node", 2}, {"mz", 2 * std::numbers::pi * EI / L}}});
+  m["analysis"]["control"]["steps"] = 4;
+  m["analysis"]["tolerance"] = 1e-10;
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const StepRecord& last = r.steps.back();
+  EXPECT_LE(node_position(model, last, 2).norm(), 1e-6 * L);
+  for (int k = 1; k < model.node_count(); ++k) {
+    const double s = model.nodes[k].position.x();
+    EXPECT_NEAR(last.displacements[3 * k + 2], 2 * std::numbers::pi * (1.0 + s / L), 1e-7) << "node " << model.nodes[k].id;
+  }
+}
+
+TEST(SemiRigid, TheReaderRefusesSpringsThatHoldNothing) {
+  json m = beam_model({});
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}});
+  m["members"][0]["end_springs"] = {{"start", 0.0}};
+  EXPECT_NE(refusal(m).find("members[0].end_springs.start: a rotational spring's stiffness (moment per radian) must be a positive finite number"),
+            std::string::npos)
+      << refusal(m);
+  m["members"][0]["end_springs"] = {{"start", 1.0}};
+  m["members"][0]["release"] = "start";
+  EXPECT_NE(refusal(m).find("members[0].end_springs.start: that end is released (a hinge): a spring there holds nothing"),
+            std::string::npos)
+      << refusal(m);
+  m["members"][0].erase("release");
+  m["members"][0]["end_springs"] = {{"middle", 1.0}};
+  EXPECT_NE(refusal(m).find("members[0].end_springs"), std::string::npos) << refusal(m);
+  m["members"][0]["end_springs"] = json::object();
+  EXPECT_NE(refusal(m).find("members[0].end_springs: give start or end"), std::string::npos) << refusal(m);
+  m["members"][0]["end_springs"] = {{"end", 3.0}};
+  EXPECT_EQ(refusal(m), "");
 }
 
 }  // namespace

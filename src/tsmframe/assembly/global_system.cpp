@@ -74,6 +74,13 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
     r.k0 = element::basic_stiffness_terms(e.section, chord.length);
     r.release_i = e.release_start;
     r.release_j = e.release_end;
+    r.connected = e.release_start || e.release_end || e.flexibility_start > 0.0 || e.flexibility_end > 0.0;
+    if (r.connected) {
+      connections_.resize(n_elements);
+      connections_[q] = {element::connected_stiffness(r.k0, e.release_start ? INFINITY : e.flexibility_start,
+                                                      e.release_end ? INFINITY : e.flexibility_end),
+                         e.flexibility_start, e.flexibility_end};
+    }
   }
 
   for (const Element& e : model.elements)
@@ -228,6 +235,12 @@ void GlobalSystem::add_block(int a, int b, const Eigen::Matrix3d& value) {
   else tangent_.value[entry(bb, ba)] += value.transpose();
 }
 
+double GlobalSystem::ElementRecord::connected_end_rotation(const element::BeamResponse& r, const Connection& c) const {
+  const double at_i = r.deformations[1] - c.flexibility_i * r.forces[1];  // the node's turn less the spring's
+  const double at_j = r.deformations[2] - c.flexibility_j * r.forces[2];
+  return std::max(release_i ? 0.0 : std::abs(at_i), release_j ? 0.0 : std::abs(at_j));
+}
+
 void GlobalSystem::prefetch_element(int q, const Eigen::VectorXd& displacements, bool with_tangent, const Evaluation& out) const {
   // In a frame whose nodes are numbered for the factorisation (a lattice), consecutive elements'
   // blocks are far apart in the tangent: each store into one missed the cache and stalled the
@@ -271,13 +284,13 @@ double GlobalSystem::evaluate_element(int q, const Eigen::VectorXd& displacement
     return 0.0;
   }
   const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-  const element::BeamResponse r = slot.respond(d, previous_rotations[k], with_tangent);
+  const element::BeamResponse r = slot.respond(d, previous_rotations[k], with_tangent, connected_k(q));
   out.chord_rotations[k] = r.chord.rotation;
   for (int a = 0; a < 3; ++a) {
     if (at_i) force[g[a]] = slot.first_i ? r.nodal_forces[a] : force[g[a]] + r.nodal_forces[a];
     if (at_j) force[g[3 + a]] = slot.first_j ? r.nodal_forces[3 + a] : force[g[3 + a]] + r.nodal_forces[3 + a];
   }
-  const double end_rotation = slot.end_rotation(r);
+  const double end_rotation = slot.end_rotation(r, connection(q));
   if (!with_tangent) return end_rotation;
   auto put = [&](int entry, bool first, const auto& block) {
     if (first) value[entry] = block;
@@ -307,7 +320,7 @@ double GlobalSystem::end_rotation(int q, const Eigen::VectorXd& displacements,
   const int k = element_order_[q];
   if (replaced_[k]) return 0.0;
   const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-  return slot.end_rotation(slot.respond(d, previous_rotations[k], false));
+  return slot.end_rotation(slot.respond(d, previous_rotations[k], false, connected_k(q)), connection(q));
 }
 
 void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen::VectorXd& displacements,
@@ -528,7 +541,7 @@ Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacement
     const ElementRecord& slot = records_[q];
     const int k = element_order_[q];
     const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-    forces.segment<3>(3 * k) = slot.respond(d, rotations[k], false).forces;
+    forces.segment<3>(3 * k) = slot.respond(d, rotations[k], false, connected_k(q)).forces;
   });
   for (const contact::ActiveContact& a : contacts) {
     const contact::Vector9 d = gather(displacements, contact_dofs(model_.elements[a.element], a.node));
@@ -554,8 +567,8 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
       const int k = element_order_[q];
       if (replaced[k]) continue;
       const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-      const element::BeamResponse r = slot.respond(d, rotations[k], false);
-      const element::RoundOffFloor f = element::round_off_floor(slot.chord(), slot.stiffness(), d, r);
+      const element::BeamResponse r = slot.respond(d, rotations[k], false, connected_k(q));
+      const element::RoundOffFloor f = element::round_off_floor(slot.chord(), slot.stiffness(connected_k(q)), d, r);
       force += 4.0 * f.force * f.force;  // two nodes, two translations each
       moment += 2.0 * f.moment * f.moment;
     }

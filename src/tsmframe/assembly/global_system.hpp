@@ -7,6 +7,8 @@
 // same order whatever the number of threads, so results are bit-identical with 1 or many threads.
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "tsmframe/assembly/dof_map.hpp"
@@ -151,6 +153,12 @@ class GlobalSystem {
 
   const Model& model_;
   const DofMap& dofs_;
+  /// A hinged or sprung element's k0 with its releases and springs condensed
+  /// (element::connected_stiffness), and its end springs' flexibilities 1/k (0: none).
+  struct Connection {
+    element::Matrix3 k;
+    double flexibility_i = 0.0, flexibility_j = 0.0;
+  };
   /// What the element loop reads of one element, in one record (one stream through memory):
   /// 80 bytes, no alignment padding (the chord's Δ0 is kept as two plain doubles).
   struct ElementRecord {
@@ -164,29 +172,38 @@ class GlobalSystem {
     /// loop (0 + a = a exactly: the sums are the same as with clearing).
     bool first_ii : 1 = false, first_jj : 1 = false, first_ij : 1 = false, first_i : 1 = false, first_j : 1 = false;
     bool release_i : 1 = false, release_j : 1 = false;  ///< a hinge at that end (Element::release_start/end)
+    bool connected : 1 = false;  ///< hinged or sprung at an end: its k0 is connected_k_[q] (condensed)
     double delta0[2] = {0.0, 0.0};      ///< X_j − X_i
     double length = 0.0, angle = 0.0;   ///< l0, φ0
     element::BasicStiffness k0;         ///< Eq. 3 / 4, fixed (without its releases)
     element::InitialChord chord() const {
       return {element::Vector2::Zero(), element::Vector2(delta0[0], delta0[1]), length, angle};
     }
-    /// k0 as the element uses it: with its releases condensed.
-    element::Matrix3 stiffness() const {
-      return release_i || release_j ? element::released_stiffness(k0, release_i, release_j) : k0.matrix();
-    }
-    /// The element's response: the common case on the fixed-form k0, a hinged element on its
-    /// condensed one.
-    element::BeamResponse respond(const element::Vector6& d, double previous_rotation, bool with_tangent) const {
-      if (release_i || release_j) return element::beam_response(chord(), stiffness(), d, previous_rotation, with_tangent);
+    /// k0 as the element uses it: `connected` (its releases and springs condensed,
+    /// GlobalSystem::connected_k) or the fixed form.
+    element::Matrix3 stiffness(const element::Matrix3* connected) const { return connected ? *connected : k0.matrix(); }
+    /// The element's response: the common case on the fixed-form k0, a hinged or sprung element
+    /// on its condensed one.
+    element::BeamResponse respond(const element::Vector6& d, double previous_rotation, bool with_tangent,
+                                  const element::Matrix3* connected) const {
+      if (connected) return element::beam_response(chord(), *connected, d, previous_rotation, with_tangent);
       return element::beam_response(chord(), k0, d, previous_rotation, with_tangent);
     }
     /// The larger end rotation against the chord that the element describes (a hinged end's
-    /// rotation is not the element's: it is left out).
-    double end_rotation(const element::BeamResponse& r) const {
-      return std::max(release_i ? 0.0 : std::abs(r.deformations[1]), release_j ? 0.0 : std::abs(r.deformations[2]));
+    /// rotation is not the element's: it is left out; an end spring's turn M/k is taken off the
+    /// node's, `connection` the element's springs or null).
+    double end_rotation(const element::BeamResponse& r, const Connection* connection) const {
+      if (!connection) return std::max(std::abs(r.deformations[1]), std::abs(r.deformations[2]));  // neither hinged nor sprung
+      return connected_end_rotation(r, *connection);
     }
+    double connected_end_rotation(const element::BeamResponse& r, const Connection& connection) const;
   };
   static_assert(sizeof(ElementRecord) == 80, "no padding: the element loop streams these records");
+  /// Per place q of the loop, a hinged or sprung element's (ElementRecord::connected) condensed k0
+  /// and its springs' flexibilities; empty when the model has none.
+  std::vector<Connection> connections_;
+  const Connection* connection(int q) const { return records_[q].connected ? &connections_[q] : nullptr; }
+  const element::Matrix3* connected_k(int q) const { return records_[q].connected ? &connections_[q].k : nullptr; }
   std::vector<ElementRecord> records_;  ///< in the loop's order: records_[q] is element element_order_[q]
   BlockMatrix tangent_;
   std::vector<unsigned char> block_mask_;  ///< per block: bit d set if dof d of its node is constrained

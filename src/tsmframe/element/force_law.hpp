@@ -47,4 +47,10 @@ Matrix3 basic_stiffness(const SectionStiffness& section, double l0);
 /// released at both ends the element is a bar.
 Matrix3 released_stiffness(const BasicStiffness& k0, bool at_i, bool at_j);
 
+/// k0 with a rotational spring between each end and its node (a semi-rigid connection), given by
+/// its flexibility 1/k (0: rigid; INFINITY: a hinge, as released_stiffness). The element's end
+/// rotation is the node's less M/k, condensed out: the bending block becomes (B⁻¹ + F)⁻¹, F =
+/// diag(f_i, f_j) — the element and its springs in series.
+Matrix3 connected_stiffness(const BasicStiffness& k0, double flexibility_i, double flexibility_j);
+
 }  // namespace tsm::element

@@ -285,7 +285,7 @@ class Reader {
       const std::string path = child("members", k);
       const json& m = members[k];
       expect_object(m, path);
-      check_keys(m, path, {"from", "to", "divisions", "element", "material", "section", "arc", "release", "load"});
+      check_keys(m, path, {"from", "to", "divisions", "element", "material", "section", "arc", "release", "end_springs", "load"});
       if (!m.contains("from")) fail(child(path, "from"), "missing (required)");
       if (!m.contains("to")) fail(child(path, "to"), "missing (required)");
       const int from = node_ref(m["from"], child(path, "from"));
@@ -323,6 +323,24 @@ class Reader {
           fail(child(path, "release"), "unknown release " + quote_text(where) + " (expected \"start\", \"end\" or \"both\")");
         released_members_.insert(static_cast<int>(k));
       }
+      double flexibility_from = 0.0, flexibility_to = 0.0;  // rotational springs at the ends (semi-rigid)
+      if (m.contains("end_springs")) {
+        const std::string spath = child(path, "end_springs");
+        expect_object(m["end_springs"], spath);
+        check_keys(m["end_springs"], spath, {"start", "end"});
+        for (const char* end : {"start", "end"}) {
+          if (!m["end_springs"].contains(end)) continue;
+          const std::string epath = child(spath, end);
+          const double stiffness = number(m["end_springs"][end], epath);
+          if (!(stiffness > 0.0) || !std::isfinite(stiffness))
+            fail(epath, "a rotational spring's stiffness (moment per radian) must be a positive finite number (a hinge is \"release\")");
+          if ((std::string(end) == "start" && release_from) || (std::string(end) == "end" && release_to))
+            fail(epath, "that end is released (a hinge): a spring there holds nothing");
+          (std::string(end) == "start" ? flexibility_from : flexibility_to) = 1.0 / stiffness;
+        }
+        if (m["end_springs"].empty()) fail(spath, "give start or end (rotational stiffness, moment per radian)");
+        released_members_.insert(static_cast<int>(k));
+      }
 
       const Eigen::Vector2d a = model_.nodes[from].position, b = model_.nodes[to].position;
       std::vector<Eigen::Vector2d> interior;
@@ -348,6 +366,8 @@ class Reader {
         e.theory = theory;
         e.release_start = release_from && d == 1;
         e.release_end = release_to && d == divisions;
+        e.flexibility_start = d == 1 ? flexibility_from : 0.0;
+        e.flexibility_end = d == divisions ? flexibility_to : 0.0;
         e.section = section;
         e.pressure = pressure;
         model_.elements.push_back(e);
@@ -539,7 +559,7 @@ class Reader {
         if (e.start == spec.node || e.end == spec.node) holding.insert(e.member);
       if (members.is_string()) {
         if (members.get<std::string>() != "all") fail(mpath, "expected \"all\" or a list of member indices");
-        for (int m = 0; m < model_.member_count; ++m)  // hinged members carry no contact
+        for (int m = 0; m < model_.member_count; ++m)  // hinged or sprung members carry no contact
           if (!holding.count(m) && !released_members_.count(m)) spec.members.push_back(m);
       } else {
         expect_array(members, mpath);
@@ -548,12 +568,12 @@ class Reader {
           if (index < 0 || index >= model_.member_count) fail(child(mpath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
           if (holding.count(static_cast<int>(index))) fail(child(mpath, m), "the contact node belongs to member " + std::to_string(index));
           if (released_members_.count(static_cast<int>(index)))
-            fail(child(mpath, m), "member " + std::to_string(index) + " has a moment release: contacts on hinged members are not supported");
+            fail(child(mpath, m), "member " + std::to_string(index) + " has a moment release or an end spring: contacts on such members are not supported");
           spec.members.push_back(static_cast<int>(index));
         }
       }
       if (spec.members.empty())
-        fail(mpath, released_members_.empty() ? "no member to touch" : "no member to touch (hinged members carry no contact)");
+        fail(mpath, released_members_.empty() ? "no member to touch" : "no member to touch (hinged or sprung members carry no contact)");
       if (c.contains("element")) {
         spec.element = string(c["element"], child(path, "element"));
         if (spec.element != "euler-bernoulli" && spec.element != "timoshenko") fail(child(path, "element"), "unknown element " + quote_text(spec.element) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
@@ -705,7 +725,7 @@ class Reader {
   Model model_;
   std::map<std::string, Material> materials_;
   std::map<std::string, Section> sections_;
-  std::set<int> released_members_;  ///< members with a moment release ("release")
+  std::set<int> released_members_;  ///< members with a moment release or an end spring ("release", "end_springs")
   std::set<int> pressure_members_;  ///< members with a follower load ("load": {"pressure"})
   struct MemberLoad {
     int start, end;  ///< an element's nodes

@@ -110,6 +110,12 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
     w.key("member").value(e.member);
     if (e.release_start || e.release_end)  // a hinge at that end: no moment there
       w.key("release").value(e.release_start && e.release_end ? "both" : e.release_start ? "start" : "end");
+    if (e.flexibility_start > 0.0 || e.flexibility_end > 0.0) {  // semi-rigid: the springs' stiffness
+      w.key("end_springs").begin_object();
+      if (e.flexibility_start > 0.0) w.key("start").value(1.0 / e.flexibility_start);
+      if (e.flexibility_end > 0.0) w.key("end").value(1.0 / e.flexibility_end);
+      w.end_object();
+    }
     w.end_object();
   }
   w.end_array();

@@ -33,6 +33,9 @@ struct Element {
   /// A hinge at that end: the element carries no moment there (M_i or M_j = 0, its end rotation
   /// condensed out of k0), so the node's rotation is not the element's.
   bool release_start = false, release_end = false;
+  /// A rotational spring between that end and its node (a semi-rigid connection): its
+  /// flexibility 1/k, moment per radian inverted (0: rigid, the usual joint).
+  double flexibility_start = 0.0, flexibility_end = 0.0;
   /// Follower load (pressure) per unit current length, scaled by λ: normal to the current chord,
   /// pushing from the element's left side (seen from start to end) towards its right — down on
   /// an element drawn left to right. Lumped half to each end. 0: none.
