@@ -195,7 +195,7 @@ int main(int argc, char** argv) {
   run_command->add_flag("--log-iterations", options.log_iterations, "print the residual of every iterate");
   run_command->add_flag("--vtk", options.vtk, "ParaView files: DIR/vtk/results.pvd and one .vtu per converged step");
   run_command->add_flag("--plot", options.plot, "plots: deformed shapes and load-displacement curves in DIR/plots/");
-  run_command->add_option("-j,--threads", options.threads, "threads for the element loop and the factorisation (default: all cores; results are identical; models under 2,000 elements use one)")
+  run_command->add_option("-j,--threads", options.threads, "threads for the element loop and the factorisation (default: all cores; results are identical; models under 1,000 elements use one)")
       ->check(CLI::Range(1, 1024));
 
   StudyOptions study_options;
