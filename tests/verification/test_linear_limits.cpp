@@ -144,6 +144,16 @@ TEST(DistributedLoad, AUniformLoadBendsABeamAsTheLinearFormulasSay) {
     double carried = 0.0;
     for (int k = 0; k < model.node_count(); ++k) carried += last.reactions[3 * k + 1];
     EXPECT_NEAR(carried, -w * L, 1e-8 * std::abs(w * L));  // to the run's tolerance
+    // steps.csv watches each loaded member's middle node, not its 21 loaded nodes — and only the
+    // named node once a nodal load names one.
+    ASSERT_EQ(model.analysis.monitor.size(), 2u);
+    EXPECT_EQ(model.nodes[model.analysis.monitor[0]].position, Eigen::Vector2d(L / 4, 0.0));
+    EXPECT_EQ(model.nodes[model.analysis.monitor[1]].position, Eigen::Vector2d(3 * L / 4, 0.0));
+    json named = m;
+    named["loads"] = json::array({{{"node", 3}, {"fy", w}}});
+    const tsm::Model with_load = tsm::io::read_model(named);
+    ASSERT_EQ(with_load.analysis.monitor.size(), 1u);
+    EXPECT_EQ(with_load.nodes[with_load.analysis.monitor[0]].id, 3);
   }
 }
 

@@ -1,5 +1,6 @@
 #include "tsmframe/io/model_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -375,6 +376,7 @@ class Reader {
           const double length = (model_.nodes[e.end].position - model_.nodes[e.start].position).norm();
           member_loads_.push_back({e.start, e.end, distributed[0] * length / 2.0, distributed[1] * length / 2.0});
         }
+        if (m.contains("load") && divisions >= 2 && d == divisions / 2) loaded_member_middles_.push_back(current);
         previous = current;
       }
     }
@@ -482,6 +484,7 @@ class Reader {
             fail(child(path, "mz"), "node " + std::to_string(model_.nodes[node].id) +
                                         " is a hinge: every element end there is released, so it carries no moment");
           model_.reference_load[dofs_per_node * node + dof] += *value;
+          if (*value != 0.0) nodally_loaded_.insert(node);
         }
     }
   }
@@ -628,13 +631,17 @@ class Reader {
       }
     }
     if (!doc_.contains("analysis") || !doc_["analysis"].contains("monitor")) {
+      // The nodes named by a load or a prescribed displacement; a member's load (lumped at every
+      // node of it) adds none — a uniformly loaded beam of 1,000 elements would otherwise put
+      // 3,000 columns in steps.csv — unless nothing else is named: then its middle node.
       for (int k = 0; k < model_.node_count(); ++k) {
-        bool loaded = false;
-        for (int dof = 0; dof < dofs_per_node; ++dof) {
-          const int g = dofs_per_node * k + dof;
-          loaded = loaded || model_.reference_load[g] != 0.0 || model_.prescribed(g) != 0.0;
-        }
-        if (loaded) a.monitor.push_back(k);
+        bool named = nodally_loaded_.count(k) > 0;
+        for (int dof = 0; dof < dofs_per_node; ++dof) named = named || model_.prescribed(dofs_per_node * k + dof) != 0.0;
+        if (named) a.monitor.push_back(k);
+      }
+      if (a.monitor.empty()) {
+        for (const int middle : loaded_member_middles_)
+          if (std::find(a.monitor.begin(), a.monitor.end(), middle) == a.monitor.end()) a.monitor.push_back(middle);
       }
     }
   }
@@ -732,6 +739,8 @@ class Reader {
     double fx, fy;   ///< the share of its distributed load each of them takes
   };
   std::vector<MemberLoad> member_loads_;  ///< members' "load", element by element
+  std::set<int> nodally_loaded_;          ///< nodes a "loads" entry names with a nonzero value
+  std::vector<int> loaded_member_middles_;  ///< per member with a "load" (in file order): its middle node (a generated one; none for 1 division)
   std::unordered_map<int, int> ids_;
 };
 
