@@ -5,7 +5,8 @@
 
 Reads DIR/results.json and DIR/steps.csv; writes DIR/plots/deformed.png|svg (the steps that
 carry full state, up to 12 of them, elements drawn as their true deflected curves) and
-DIR/plots/load-displacement.png|svg (λ against ux, uy, rz of every monitored node).
+DIR/plots/load-displacement.png|svg (λ against ux, uy, rz of every monitored node, but those that
+only carry rounding noise).
 """
 import csv
 import json
@@ -30,6 +31,19 @@ def short_title(title, width=90, lines=3):
         wrapped = wrapped[:lines]
         wrapped[-1] = wrapped[-1][: width - 1] + "…"
     return "\n".join(wrapped)
+
+
+def visible_columns(results, rows, noise=1e-7):
+    """The monitored dofs (steps.csv columns) worth a curve: a dof that stays within `noise` of the
+    largest movement is rounding noise (a rotation compared as a rotation times the model's size),
+    e.g. the 1e-9 rad a symmetric ring's crown turns: plotted, it filled the rotation axis."""
+    columns = [c for c in (rows[0].keys() if rows else []) if c[:3] in ("ux_", "uy_", "rz_")]
+    xs = [n["x"] for n in results["nodes"]]
+    ys = [n["y"] for n in results["nodes"]]
+    size = math.hypot(max(xs) - min(xs), max(ys) - min(ys)) or 1.0
+    reach = {c: max(abs(float(r[c])) for r in rows) * (size if c[:2] == "rz" else 1.0) for c in columns}
+    floor = max(noise * max(reach.values(), default=0.0), 1e-12 * size)  # nothing moving at all: no curve
+    return [c for c in columns if reach[c] > floor]
 
 
 def magnification(results, states):
@@ -76,7 +90,7 @@ def main(directory):
 
     with open(os.path.join(directory, "steps.csv"), newline="") as f:
         rows = list(csv.DictReader(f))
-    columns = [c for c in (rows[0].keys() if rows else []) if c[:3] in ("ux_", "uy_", "rz_")]
+    columns = visible_columns(results, rows)
     translations = [c for c in columns if c[:2] != "rz"]
     rotations = [c for c in columns if c[:2] == "rz"]
     fig, ax = plt.subplots(figsize=(8, 5))

@@ -176,6 +176,17 @@ class Plots(unittest.TestCase):
         self.assertEqual(magnification(results, states(0.0, 8.0)), 1.0)    # nothing deflects
         self.assertEqual(magnification(results, states(-1e-4, 0.0)), 10000.0)
 
+    def test_dofs_that_only_carry_rounding_noise_get_no_curve(self):
+        sys.path.insert(0, os.path.join(SOURCE, "scripts"))
+        from plot_run import visible_columns
+        results = {"nodes": [{"id": 1, "x": 0.0, "y": 0.0}, {"id": 2, "x": 2.0, "y": 0.0}]}
+        rows = [{"ux_2": "-0.3", "uy_2": "0.5", "rz_2": "1e-9", "ux_1": "0", "uy_1": "0", "rz_1": "0.02"},
+                {"ux_2": "-0.4", "uy_2": "0.6", "rz_2": "-2e-9", "ux_1": "0", "uy_1": "0", "rz_1": "0.03"}]
+        # the symmetric crown's 2e-9 rad and the held node's zeros are noise; 0.03 rad is not
+        self.assertEqual(visible_columns(results, rows), ["ux_2", "uy_2", "rz_1"])
+        rows = [{"rz_2": "1e-12"}]  # nothing moves: nothing to draw
+        self.assertEqual(visible_columns(results, rows), [])
+
 
 if __name__ == "__main__":
     unittest.main(argv=[sys.argv[0]], verbosity=2)
