@@ -50,9 +50,19 @@ void expect_same_evaluation(const tsm::assembly::GlobalSystem& patched, const ts
     expect_same_bits(patched.contact_rank_one()[k].u, full.contact_rank_one()[k].u, "sliding u");
     expect_same_bits(patched.contact_rank_one()[k].v, full.contact_rank_one()[k].v, "sliding v");
   }
+  expect_same_bits(p.reference_load, f.reference_load, "reference load (follower loads)");
+  ASSERT_EQ(patched.follower_rank_one().size(), full.follower_rank_one().size());
+  for (size_t k = 0; k < full.follower_rank_one().size(); ++k) {
+    expect_same_bits(patched.follower_rank_one()[k].u, full.follower_rank_one()[k].u, "follower u");
+    expect_same_bits(patched.follower_rank_one()[k].v, full.follower_rank_one()[k].v, "follower v");
+  }
 }
 
-TEST(ContactChange, FormsBitForBitWhatAFullEvaluationForms) {
+// With a follower load (a pressure on the beam) too: its coupling blocks join the elements
+// formed again; its skew terms stay.
+class ContactChange : public ::testing::TestWithParam<double> {};
+
+TEST_P(ContactChange, FormsBitForBitWhatAFullEvaluationForms) {
   // A clamped beam of 6 elements; node 100, the free bottom of a post clamped at its top (all its
   // dofs unknowns); node 200, a pusher no element joins (x and rotation fixed, y prescribed).
   BeamSpec b;
@@ -60,6 +70,7 @@ TEST(ContactChange, FormsBitForBitWhatAFullEvaluationForms) {
   b.A = 1e3;
   b.element = "timoshenko";
   json m = beam_model(b);
+  if (GetParam() != 0.0) m["members"][0]["load"] = {{"pressure", GetParam()}};
   m["nodes"].push_back({{"id", 100}, {"x", 0.45}, {"y", 0.0}});
   m["nodes"].push_back({{"id", 11}, {"x", 0.45}, {"y", 0.5}});
   m["nodes"].push_back({{"id", 200}, {"x", 0.75}, {"y", -0.1}});
@@ -71,6 +82,8 @@ TEST(ContactChange, FormsBitForBitWhatAFullEvaluationForms) {
   const tsm::Model model = tsm::io::read_model(m);
   const tsm::assembly::DofMap dofs(model);
   tsm::assembly::GlobalSystem patched(model, dofs), full(model, dofs);
+  patched.set_load_factor(0.6);
+  full.set_load_factor(0.6);
   const tsm::contact::ContactTracker tracker(model);
   std::vector<tsm::contact::ContactState> states = tracker.initial_states();
 
@@ -111,5 +124,7 @@ TEST(ContactChange, FormsBitForBitWhatAFullEvaluationForms) {
   full.evaluate(D, rotations, true, f, active);
   expect_same_evaluation(patched, p, full, f);
 }
+
+INSTANTIATE_TEST_SUITE_P(WithoutAndWithAPressure, ContactChange, ::testing::Values(0.0, 0.3));
 
 }  // namespace

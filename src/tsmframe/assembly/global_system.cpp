@@ -393,6 +393,13 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
   finish_evaluation(displacements, previous_rotations, with_tangent, out, contacts);
 }
 
+void GlobalSystem::add_follower_coupling(const FollowerLoad& f) {
+  Eigen::Matrix3d coupling = Eigen::Matrix3d::Zero();  // K_ij = λ (p/2) R on the translations, whatever the geometry
+  coupling(0, 1) = -0.5 * load_factor_ * f.pressure;
+  coupling(1, 0) = 0.5 * load_factor_ * f.pressure;
+  add_block(f.start, f.end, coupling);
+}
+
 void GlobalSystem::add_follower_loads(const Eigen::VectorXd& displacements, bool with_tangent, Evaluation& out) {
   // A pressure p on the current chord d = x_j − x_i: the force −p l n (n the left normal, l n =
   // R d with R the quarter turn [0 −1; 1 0]), half to each end: P_i = P_j = −(p/2) R d. So
@@ -415,10 +422,7 @@ void GlobalSystem::add_follower_loads(const Eigen::VectorXd& displacements, bool
     out.reference_load.segment<2>(dofs_per_node * f.start) += half;
     out.reference_load.segment<2>(dofs_per_node * f.end) += half;
     if (!with_tangent) continue;
-    Eigen::Matrix3d coupling = Eigen::Matrix3d::Zero();  // K_ij = λ (p/2) R on the translations
-    coupling(0, 1) = -0.5 * load_factor_ * f.pressure;
-    coupling(1, 0) = 0.5 * load_factor_ * f.pressure;
-    add_block(f.start, f.end, coupling);
+    add_follower_coupling(f);
     follower_skew_[f.start] -= 0.5 * load_factor_ * f.pressure;
     follower_skew_[f.end] += 0.5 * load_factor_ * f.pressure;
   }
@@ -505,6 +509,10 @@ void GlobalSystem::evaluate_contact_change(const Eigen::VectorXd& displacements,
       largest = std::max(largest, end_rotation(q, displacements, previous_rotations));
     chunk_largest_end_rotation_[chunk] = largest;
   }
+  // The re-evaluated elements formed their (i, j) blocks anew: their follower loads' coupling
+  // joins them again, in the same order as in evaluate() (after the elements, before contacts).
+  for (const FollowerLoad& f : follower_loads_)
+    if (contact_node_[f.start] || contact_node_[f.end]) add_follower_coupling(f);
   for (const int node : nodes) contact_node_[node] = 0;
   out.contacts.clear();
   contact_rank_one_.clear();

@@ -101,7 +101,7 @@ class GlobalSystem {
   const std::vector<solver::RankOne>& contact_rank_one() const { return contact_rank_one_; }
   /// The follower loads' stiffness where it is not symmetric (the nodes where a loaded stretch
   /// ends: a free end, a change of pressure), as rank-one terms: K_ff = tangent() + Σ u vᵀ,
-  /// exactly (no model has both these and contacts). Empty where the load is conservative.
+  /// exactly, beside the contacts' sliding terms. Empty where the load is conservative.
   const std::vector<solver::RankOne>& follower_rank_one() const { return follower_rank_one_; }
   /// Changes whenever the block pattern of tangent() is rebuilt (a contact couples new nodes):
   /// the linear solver must analyse it again.
@@ -146,6 +146,8 @@ class GlobalSystem {
     int start = 0, end = 0;
     double pressure = 0.0;
   };
+  /// The symmetric coupling K_ij = λ (p/2) R of one element's follower load, into the tangent.
+  void add_follower_coupling(const FollowerLoad& load);
   std::vector<FollowerLoad> follower_loads_;  ///< in the model's element order; empty: none
   std::vector<solver::RankOne> follower_rank_one_;  ///< follower_rank_one()
   std::vector<double> follower_skew_;               ///< per node: c of its skew block c R (scratch)

@@ -313,7 +313,6 @@ class Reader {
         if (auto p = optional_number(m["load"], "pressure", lpath)) pressure = *p;
         if (distributed[0] == 0.0 && distributed[1] == 0.0 && pressure == 0.0)
           fail(lpath, "give fx, fy or pressure (force per unit length)");
-        if (pressure != 0.0) pressure_members_.insert(static_cast<int>(k));
       }
       bool release_from = false, release_to = false;  // hinges at the member's ends
       if (m.contains("release")) {
@@ -544,9 +543,6 @@ class Reader {
     if (!doc_.contains("contacts")) return;
     const json& contacts = doc_["contacts"];
     expect_array(contacts, "contacts");
-    if (!pressure_members_.empty() && !contacts.empty())
-      fail(child(child("members", static_cast<size_t>(*pressure_members_.begin())), "load") + ".pressure",
-           "follower loads (pressure) in a model with contacts are not supported");
     for (size_t k = 0; k < contacts.size(); ++k) {
       const std::string path = child("contacts", k);
       const json& c = contacts[k];
@@ -733,7 +729,6 @@ class Reader {
   std::map<std::string, Material> materials_;
   std::map<std::string, Section> sections_;
   std::set<int> released_members_;  ///< members with a moment release or an end spring ("release", "end_springs")
-  std::set<int> pressure_members_;  ///< members with a follower load ("load": {"pressure"})
   struct MemberLoad {
     int start, end;  ///< an element's nodes
     double fx, fy;   ///< the share of its distributed load each of them takes

@@ -435,12 +435,19 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
     // solved for it in place. Without the terms the symmetric part alone may be singular where
     // the whole is not: then once more with them.
     const auto factorise = [&](Eigen::VectorXd* rhs) {
-      // A follower load's skew terms always join (no model has both them and contacts).
-      const bool follower = !system_.follower_rank_one().empty();
-      const std::vector<RankOne>& sliding = follower ? system_.follower_rank_one() : system_.contact_rank_one();
-      const bool all = follower || it == 1 || sliding.empty() || out.residual_norms.back() < sliding_terms_below;
+      // A follower load's skew terms always join; the contacts' sliding terms as said above.
+      const std::vector<RankOne>& skew = system_.follower_rank_one();
+      const std::vector<RankOne>& contact = system_.contact_rank_one();
+      const bool follower = !skew.empty();
+      std::vector<RankOne> both;  // only in a model with both
+      if (follower && !contact.empty()) {
+        both = skew;
+        both.insert(both.end(), contact.begin(), contact.end());
+      }
+      const std::vector<RankOne>& sliding = !follower ? contact : contact.empty() ? skew : both;
+      const std::vector<RankOne>& none = skew;  // without the sliding terms
+      const bool all = it == 1 || contact.empty() || out.residual_norms.back() < sliding_terms_below;
       BlockMatrix& K = system_.tangent_for_factorisation();
-      const std::vector<RankOne> none;
       auto attempt = [&](const std::vector<RankOne>& terms, Eigen::VectorXd* x) {
         const bool ok = x ? solver_.factorize_and_solve(K, terms, *x, refill) : solver_.factorize(K, terms, refill);
         // With a follower load's skew terms the tangent is not symmetric: its symmetric part's
