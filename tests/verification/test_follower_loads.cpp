@@ -164,9 +164,8 @@ TEST(FollowerLoad, ACantileverUnderPressureRollsUpInFewIterations) {
 // knife edge drawn at the contact gap below it, 1 cm off mid-span (off a node): the two-span beam
 // of spans a and b, by the three-moment equation M_B = −p (a³ + b³)/(8 (a + b)), carries
 // R_A = pa/2 + M_B/a, R_C = pb/2 + M_B/b and the rest on the edge. Within 2e-3 (the lumped load
-// errs by O(1/n²), the deflection adds ~1e-4). A load far smaller (1e-3 N/m on this steel beam,
-// deflections of 1e-8 m) sits at the rounding level of its axial forces and fails, with or
-// without the follower load.
+// errs by O(1/n²), the deflection adds ~1e-4). (A far smaller load, 1e-3 N/m here with 6 mN on
+// the edge, fails — a fixed load as well: CHANGELOG.)
 TEST(FollowerLoad, ABeamUnderPressureOnAKnifeEdgeCarriesWhatTheThreeMomentEquationSays) {
   const double L = 10.0, p = 1e3, gap = 0.05, a = L / 2 + 0.01, b = L - a;
   json m = {{"materials", {{"s", {{"E", 2e11}}}}},
