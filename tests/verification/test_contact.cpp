@@ -210,6 +210,33 @@ TEST(ContactResting, ABeamHeldOnlyByTheKnifeEdgesItRestsOnIsSimplySupported) {
   }
 }
 
+// A simply supported steel beam (10 m) on a knife edge at mid-span under 1 mN/m: 6 mN on the edge,
+// deflections of 1e-8 m, where the contact force's rounding is ~1e-6 N. The residual stays at half
+// the load: the run says the load is too small to resolve, not only that 50 iterations ran out.
+// Ten times the load converges.
+TEST(ContactResting, ALoadTooSmallToResolveSaysSo) {
+  json m = {{"materials", {{"s", {{"E", 2e11}}}}},
+            {"sections", {{"x", {{"A", 4e-3}, {"I", 2e-5}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
+                                   {{"id", 7}, {"x", 5.01}, {"y", -0.05}}})},
+            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 40}, {"material", "s"}, {"section", "x"},
+                                      {"load", {{"fy", -1e-3}}}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}},
+                                      {{"node", 7}, {"type", "fixed"}}})},
+            {"contacts", json::array({{{"node", 7}, {"members", "all"}, {"gap", 0.05}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 1}}}, {"cutback", false}}}};
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_NE(r.status, tsm::solver::Status::converged);
+  EXPECT_NE(r.message.find("the loads are too small against what rounding leaves in this model's forces to be resolved"),
+            std::string::npos)
+      << r.message;
+  EXPECT_LT(r.steps.back().iterations, 10) << "said at once, not after max_iterations";
+  m["members"][0]["load"]["fy"] = -1e-2;
+  const RunResult larger = run(m, model);
+  EXPECT_EQ(larger.status, tsm::solver::Status::converged) << larger.message;
+}
+
 TEST(ContactResting, ABeamLiftedOffTheEdgesItRestsOnFailsSayingNothingHoldsIt) {
   // Loaded upwards it leaves both edges (the contacts would pull): then nothing holds it, and
   // the run says so rather than only that the unbalanced force blew up.

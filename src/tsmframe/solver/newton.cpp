@@ -30,6 +30,9 @@ constexpr double largest_end_rotation = std::numbers::pi / 2;  // |θ| an elemen
 // the terms bring back quadratic convergence.
 constexpr double sliding_terms_below = 1e-2;
 
+/// Two consecutive relative residuals at one level: neither halved nor doubled.
+bool level(double newer, double older) { return newer >= stagnation * older && newer <= older / stagnation; }
+
 /// Σ over [0, n) in fixed chunks (the same chunks whatever the number of threads), the chunk
 /// sums added in order: bit-identical for any number of threads. body(begin, end, sums) adds its
 /// range into sums. With `combine` a maximum (Larger) the chunks' maxima instead.
@@ -399,6 +402,7 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
   const int max_reversals = 4 * static_cast<int>(state.contacts.size());
   if (contacts_) out.contact_iterates.push_back(contact_points(state));
   int unsettled = 0;  // iterates that met the criterion but changed the contacts (iterating on)
+  bool resolution_checked = false;  // whether a stagnating iterate far from the tolerance was held against the floor
 
   for (int it = 1; it <= settings_.max_iterations; ++it) {
     if (system_.pattern_version() != analysed_pattern_) {  // a contact has joined new nodes
@@ -597,6 +601,28 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
         criterion = "round-off";
       else if (stagnating && relative < floor_check_below && within_floor(pass.norms, state))
         criterion = "round-off";
+      else if (const size_t n = out.residual_norms.size();
+               stagnating && relative >= floor_check_below && !resolution_checked && n >= 4 &&
+               level(out.residual_norms[n - 1], out.residual_norms[n - 2]) &&
+               level(out.residual_norms[n - 2], out.residual_norms[n - 3])) {
+        // Far from the tolerance and no longer falling: if the residual is already at the rounding
+        // level of the internal forces, the loads are too small to be resolved against them (6 mN
+        // on a knife edge under a 10 m steel beam: its contact force's rounding is ~1e-6 N), and
+        // iterating on only ran out of iterations. Checked once a step, after three iterates at one
+        // level (a pass over the elements; a residual that jumped, a contact let go, is no level).
+        resolution_checked = true;
+        // (A structure that carries nothing — unloaded again, a contact let go — is accepted on
+        // round-off once its corrections are: the case above, not this one.)
+        if (!carries_nothing(pass.scale, state) && within_floor(pass.norms, state)) {
+          out.status = Status::diverged;
+          std::ostringstream os;
+          os << "the unbalanced force stays at the rounding level of the internal forces (relative residual "
+             << relative << "): the loads are too small against what rounding leaves in this model's forces to be "
+             << "resolved (a larger load, in proportion, is)";
+          out.message = iterate_text(os.str().c_str(), it);
+          return out;
+        }
+      }
     }
     if (criterion) {
       if (release_pulling_contacts(state)) {  // converged with a contact pulling: iterate on without it
