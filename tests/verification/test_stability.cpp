@@ -40,6 +40,8 @@ TEST_P(PerfectColumn, PastItsBucklingLoadsUnderLoadControlItIsToldUnstable) {
   ASSERT_EQ(r.notes.size(), 1u);
   EXPECT_NE(r.notes[0].find("steps 1–5 end on unstable equilibria under their loads"), std::string::npos) << r.notes[0];
   EXPECT_NE(r.notes[0].find("1 to 2 negative eigenvalues"), std::string::npos) << r.notes[0];
+  // No converged step before the first is known stable: no bracket (the start is λ = 0).
+  EXPECT_EQ(r.notes[0].find("stable at load factor"), std::string::npos) << r.notes[0];
   EXPECT_NE(r.notes[0].find("bifurcation point"), std::string::npos) << r.notes[0];
   EXPECT_NE(r.notes[0].find("imperfection"), std::string::npos) << r.notes[0];
   std::ostringstream json_text;
@@ -47,6 +49,15 @@ TEST_P(PerfectColumn, PastItsBucklingLoadsUnderLoadControlItIsToldUnstable) {
   const json written = json::parse(json_text.str());
   EXPECT_EQ(written["steps"][4]["negative_eigenvalues"], 2);
   EXPECT_EQ(written["notes"][0], r.notes[0]);
+
+  // Steps through the critical load: the note brackets it, stable at 0.8 and unstable at 1.2 of it.
+  m["analysis"]["control"]["steps"] = 25;  // λ = 0.04 k: 10 × the critical load at λ = 1
+  const auto through = run(m, model);
+  ASSERT_EQ(through.status, tsm::solver::Status::converged) << through.message;
+  ASSERT_FALSE(through.notes.empty());
+  EXPECT_NE(through.notes[0].find("(stable at load factor 0.08, step 2; unstable at 0.12)"), std::string::npos)
+      << through.notes[0];
+  m["analysis"]["control"]["steps"] = 5;
 
   // Below the first critical load: stable, and nothing said.
   m["loads"][0]["fx"] = -0.8 * critical;

@@ -276,18 +276,25 @@ std::vector<std::string> nothing_carried_notes(const std::vector<StepRecord>& st
 std::vector<std::string> stability_notes(const std::vector<StepRecord>& steps, const std::vector<LimitPoint>& limits) {
   struct Run {
     int first = 0, last = 0, fewest = 0, most = 0;
+    const StepRecord* stable_before = nullptr;  ///< the converged step before it, known stable
+    const StepRecord* first_record = nullptr;
   };
   std::vector<Run> runs;
+  const StepRecord* previous = nullptr;  // the previous converged step
   for (const StepRecord& s : steps) {
-    if (!s.converged || s.negative_eigenvalues <= 0) continue;
-    if (!runs.empty() && runs.back().last == s.step - 1) {
-      Run& r = runs.back();
-      r.last = s.step;
-      r.fewest = std::min(r.fewest, s.negative_eigenvalues);
-      r.most = std::max(r.most, s.negative_eigenvalues);
-    } else {
-      runs.push_back({s.step, s.step, s.negative_eigenvalues, s.negative_eigenvalues});
+    if (!s.converged) continue;
+    if (s.negative_eigenvalues > 0) {
+      if (!runs.empty() && runs.back().last == s.step - 1) {
+        Run& r = runs.back();
+        r.last = s.step;
+        r.fewest = std::min(r.fewest, s.negative_eigenvalues);
+        r.most = std::max(r.most, s.negative_eigenvalues);
+      } else {
+        const bool stable = previous && previous->negative_eigenvalues == 0;
+        runs.push_back({s.step, s.step, s.negative_eigenvalues, s.negative_eigenvalues, stable ? previous : nullptr, &s});
+      }
     }
+    previous = &s;
   }
   std::vector<std::string> notes;
   for (const Run& r : runs) {
@@ -298,6 +305,9 @@ std::vector<std::string> stability_notes(const std::vector<StepRecord>& steps, c
     os << ": the tangent stiffness there has ";
     if (r.fewest != r.most) os << r.fewest << " to ";
     os << r.most << " negative eigenvalue" << (r.most > 1 ? "s" : "");
+    if (r.stable_before)  // where the tangent lost its definiteness: a bracket for the critical load
+      os << " (stable at load factor " << r.stable_before->load_factor << ", step " << r.stable_before->step
+         << "; unstable at " << r.first_record->load_factor << ")";
     // The limit point the run starts at: the path's step there straddles the singular tangent.
     const auto limit = std::find_if(limits.begin(), limits.end(),
                                     [&](const LimitPoint& p) { return std::abs(p.step - r.first) <= 1; });
@@ -307,6 +317,7 @@ std::vector<std::string> stability_notes(const std::vector<StepRecord>& steps, c
       os << "; no limit point precedes " << (one ? "it" : "them") << ", so the path has passed a bifurcation point and keeps to its primary "
             "branch, as a perfect structure does (a straight column stays straight beyond its buckling load): an "
             "imperfection or a small disturbing load leads onto the buckled branch";
+
     notes.push_back(os.str());
   }
   return notes;
