@@ -74,17 +74,18 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
     r.k0 = element::basic_stiffness_terms(e.section, chord.length);
     r.release_i = e.release_start;
     r.release_j = e.release_end;
-    r.connected = e.release_start || e.release_end || e.flexibility_start > 0.0 || e.flexibility_end > 0.0;
+    const double flexibility_i = model.flexibility_start(e), flexibility_j = model.flexibility_end(e);
+    r.connected = e.release_start || e.release_end || flexibility_i > 0.0 || flexibility_j > 0.0;
     if (r.connected) {
       connections_.resize(n_elements);
-      connections_[q] = {element::connected_stiffness(r.k0, e.release_start ? INFINITY : e.flexibility_start,
-                                                      e.release_end ? INFINITY : e.flexibility_end),
-                         e.flexibility_start, e.flexibility_end};
+      connections_[q] = {element::connected_stiffness(r.k0, e.release_start ? INFINITY : flexibility_i,
+                                                      e.release_end ? INFINITY : flexibility_j),
+                         flexibility_i, flexibility_j};
     }
   }
 
   for (const Element& e : model.elements)
-    if (e.pressure != 0.0) follower_loads_.push_back({e.start, e.end, e.pressure});
+    if (const double p = model.pressure(e); p != 0.0) follower_loads_.push_back({e.start, e.end, p});
   build_pattern();
   block_mask_.assign(n_blocks, 0);
   for (int b = 0; b < n_blocks; ++b)

@@ -342,6 +342,10 @@ class Reader {
         released_members_.insert(static_cast<int>(k));
       }
 
+      if (pressure != 0.0 || flexibility_from > 0.0 || flexibility_to > 0.0) {
+        model_.member_extras.resize(members.size());
+        model_.member_extras[k] = {pressure, flexibility_from, flexibility_to};
+      }
       const Eigen::Vector2d a = model_.nodes[from].position, b = model_.nodes[to].position;
       std::vector<Eigen::Vector2d> interior;
       if (m.contains("arc")) {
@@ -366,10 +370,9 @@ class Reader {
         e.theory = theory;
         e.release_start = release_from && d == 1;
         e.release_end = release_to && d == divisions;
-        e.flexibility_start = d == 1 ? flexibility_from : 0.0;
-        e.flexibility_end = d == divisions ? flexibility_to : 0.0;
+        e.member_start = d == 1;
+        e.member_end = d == divisions;
         e.section = section;
-        e.pressure = pressure;
         model_.elements.push_back(e);
         if (distributed[0] != 0.0 || distributed[1] != 0.0) {  // per unit length along the drawn element, half to each end
           const double length = (model_.nodes[e.end].position - model_.nodes[e.start].position).norm();

@@ -110,10 +110,10 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
     w.key("member").value(e.member);
     if (e.release_start || e.release_end)  // a hinge at that end: no moment there
       w.key("release").value(e.release_start && e.release_end ? "both" : e.release_start ? "start" : "end");
-    if (e.flexibility_start > 0.0 || e.flexibility_end > 0.0) {  // semi-rigid: the springs' stiffness
-      w.key("end_springs").begin_object();
-      if (e.flexibility_start > 0.0) w.key("start").value(1.0 / e.flexibility_start);
-      if (e.flexibility_end > 0.0) w.key("end").value(1.0 / e.flexibility_end);
+    if (const double fi = model.flexibility_start(e), fj = model.flexibility_end(e); fi > 0.0 || fj > 0.0) {
+      w.key("end_springs").begin_object();  // semi-rigid: the springs' stiffness
+      if (fi > 0.0) w.key("start").value(1.0 / fi);
+      if (fj > 0.0) w.key("end").value(1.0 / fj);
       w.end_object();
     }
     w.end_object();

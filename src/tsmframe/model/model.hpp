@@ -33,14 +33,21 @@ struct Element {
   /// A hinge at that end: the element carries no moment there (M_i or M_j = 0, its end rotation
   /// condensed out of k0), so the node's rotation is not the element's.
   bool release_start = false, release_end = false;
-  /// A rotational spring between that end and its node (a semi-rigid connection): its
-  /// flexibility 1/k, moment per radian inverted (0: rigid, the usual joint).
-  double flexibility_start = 0.0, flexibility_end = 0.0;
-  /// Follower load (pressure) per unit current length, scaled by λ: normal to the current chord,
-  /// pushing from the element's left side (seen from start to end) towards its right — down on
-  /// an element drawn left to right. Lumped half to each end. 0: none.
-  double pressure = 0.0;
+  /// It starts / ends its member: the member's end springs (MemberExtras) are its.
+  bool member_start = false, member_end = false;
   element::SectionStiffness section;
+};
+
+/// What a member adds to its elements beside their section, rare enough to be kept per member
+/// (a field per element costs 0.8 MB at 10⁵ elements).
+struct MemberExtras {
+  /// Follower load (pressure) per unit current length, scaled by λ: normal to each current
+  /// element chord, pushing from the member's left side (seen from `from` to `to`) towards its
+  /// right — down on a member drawn left to right. Lumped half to each element end. 0: none.
+  double pressure = 0.0;
+  /// A rotational spring between the member's first / last element and its node (a semi-rigid
+  /// connection): its flexibility 1/k, moment per radian inverted (0: rigid, the usual joint).
+  double flexibility_from = 0.0, flexibility_to = 0.0;
 };
 
 /// An element's end displacements (u, v, θ)_i, (u, v, θ)_j out of all dofs' D. Each node's
@@ -112,6 +119,15 @@ struct Model {
   std::vector<Node> nodes;
   std::vector<Element> elements;
   int member_count = 0;
+  std::vector<MemberExtras> member_extras;  ///< per member (empty: none has any)
+  /// An element's follower load and end springs' flexibilities (MemberExtras), 0 where none.
+  double pressure(const Element& e) const { return member_extras.empty() ? 0.0 : member_extras[e.member].pressure; }
+  double flexibility_start(const Element& e) const {
+    return member_extras.empty() || !e.member_start ? 0.0 : member_extras[e.member].flexibility_from;
+  }
+  double flexibility_end(const Element& e) const {
+    return member_extras.empty() || !e.member_end ? 0.0 : member_extras[e.member].flexibility_to;
+  }
   /// Per dof (3 per node): fixed or prescribed.
   std::vector<bool> constrained;
   /// Per dof: reference load, multiplied by the load factor λ.
