@@ -39,7 +39,8 @@ Eigen::Matrix<double, N, 1> gather(const Eigen::VectorXd& displacements, const s
 
 }  // namespace
 
-GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(model), dofs_(dofs) {
+GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs)
+    : follower_loads_(model, dofs), model_(model), dofs_(dofs) {
   const int n_elements = static_cast<int>(model.elements.size());
   const int n_blocks = dofs.block_count();
   // Elements in the tangent's memory order (by the smaller block of their two nodes), cut into
@@ -84,8 +85,6 @@ GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs) : model_(mode
     }
   }
 
-  for (const Element& e : model.elements)
-    if (const double p = model.pressure(e); p != 0.0) follower_loads_.push_back({e.start, e.end, p});
   build_pattern();
   block_mask_.assign(n_blocks, 0);
   for (int b = 0; b < n_blocks; ++b)
@@ -390,61 +389,14 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
       chunk_largest_end_rotation_[chunk] = largest;
     });
   }
-  if (!follower_loads_.empty()) add_follower_loads(displacements, with_tangent, out);
+  if (!follower_loads_.empty()) {  // before the contacts and the masks, as in evaluate_contact_change
+    follower_loads_.reference_load(displacements, out.reference_load);
+    if (with_tangent) {
+      follower_loads_.couplings(load_factor_, nullptr, [&](int i, int j, const Eigen::Matrix3d& k) { add_block(i, j, k); });
+      follower_loads_.skew_terms(load_factor_, follower_rank_one_);
+    }
+  }
   finish_evaluation(displacements, previous_rotations, with_tangent, out, contacts);
-}
-
-void GlobalSystem::add_follower_coupling(const FollowerLoad& f) {
-  Eigen::Matrix3d coupling = Eigen::Matrix3d::Zero();  // K_ij = λ (p/2) R on the translations, whatever the geometry
-  coupling(0, 1) = -0.5 * load_factor_ * f.pressure;
-  coupling(1, 0) = 0.5 * load_factor_ * f.pressure;
-  add_block(f.start, f.end, coupling);
-}
-
-void GlobalSystem::add_follower_loads(const Eigen::VectorXd& displacements, bool with_tangent, Evaluation& out) {
-  // A pressure p on the current chord d = x_j − x_i: the force −p l n (n the left normal, l n =
-  // R d with R the quarter turn [0 −1; 1 0]), half to each end: P_i = P_j = −(p/2) R d. So
-  // ∂P_i/∂x_j = ∂P_j/∂x_j = −(p/2) R and ∂P/∂x_i = +(p/2) R, and the tangent gains −λ ∂P/∂D:
-  // K_ij = λ (p/2) R and K_ji = −λ (p/2) R = K_ijᵀ (R is skew), a symmetric coupling; K_ii =
-  // −λ (p/2) R and K_jj = +λ (p/2) R are skew and cancel wherever two elements of equal
-  // pressure meet (a closed ring: the load is conservative). Where they do not (the ends of a
-  // loaded stretch) a node keeps c R, c = Σ ±λ p/2: two rank-one terms for the linear solver
-  // (K_uv −= c, K_vu += c). Without them Newton crawled where the structure is soft: a
-  // cantilever under a pressure turning its tip 3 rad took 50 iterations a step.
-  out.reference_load = model_.reference_load;
-  if (with_tangent) {
-    follower_rank_one_.clear();
-    follower_skew_.assign(model_.node_count(), 0.0);
-  }
-  for (const FollowerLoad& f : follower_loads_) {
-    const Eigen::Vector2d d = model_.nodes[f.end].position + displacements.segment<2>(dofs_per_node * f.end) -
-                              model_.nodes[f.start].position - displacements.segment<2>(dofs_per_node * f.start);
-    const Eigen::Vector2d half = 0.5 * f.pressure * Eigen::Vector2d(d.y(), -d.x());  // −(p/2) R d
-    out.reference_load.segment<2>(dofs_per_node * f.start) += half;
-    out.reference_load.segment<2>(dofs_per_node * f.end) += half;
-    if (!with_tangent) continue;
-    add_follower_coupling(f);
-    follower_skew_[f.start] -= 0.5 * load_factor_ * f.pressure;
-    follower_skew_[f.end] += 0.5 * load_factor_ * f.pressure;
-  }
-  if (!with_tangent) return;
-  for (int node = 0; node < model_.node_count(); ++node) {
-    const double c = follower_skew_[node];
-    const int u = dofs_.equation(dofs_per_node * node + ux), v = dofs_.equation(dofs_per_node * node + uy);
-    if (c == 0.0 || u < 0 || v < 0) continue;  // exactly 0 where equal pressures meet; a held dof carries no equation
-    solver::RankOne term;
-    term.equation.fill(-1);
-    term.equation[0] = u;
-    term.equation[1] = v;
-    term.u.setZero();
-    term.v.setZero();
-    term.u[0] = 1.0, term.v[1] = -c;  // K_uv −= c
-    follower_rank_one_.push_back(term);
-    term.u.setZero();
-    term.v.setZero();
-    term.u[1] = 1.0, term.v[0] = c;  // K_vu += c
-    follower_rank_one_.push_back(term);
-  }
 }
 
 void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
@@ -512,8 +464,7 @@ void GlobalSystem::evaluate_contact_change(const Eigen::VectorXd& displacements,
   }
   // The re-evaluated elements formed their (i, j) blocks anew: their follower loads' coupling
   // joins them again, in the same order as in evaluate() (after the elements, before contacts).
-  for (const FollowerLoad& f : follower_loads_)
-    if (contact_node_[f.start] || contact_node_[f.end]) add_follower_coupling(f);
+  follower_loads_.couplings(load_factor_, &contact_node_, [&](int i, int j, const Eigen::Matrix3d& k) { add_block(i, j, k); });
   for (const int node : nodes) contact_node_[node] = 0;
   out.contacts.clear();
   contact_rank_one_.clear();

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "tsmframe/assembly/dof_map.hpp"
+#include "tsmframe/assembly/follower_loads.hpp"
 #include "tsmframe/contact/contact_tracker.hpp"
 #include "tsmframe/element/beam_element.hpp"
 #include "tsmframe/model/model.hpp"
@@ -136,22 +137,9 @@ class GlobalSystem {
   void add_block(int node_a, int node_b, const Eigen::Matrix3d& value);
   void evaluate_contact(const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
                         const std::vector<double>& previous_rotations, bool with_tangent, Evaluation& out);
-  /// out.reference_load at `displacements`, and with `with_tangent` the follower loads'
-  /// stiffness: its symmetric part in the tangent (before the constrained dofs are masked), the
-  /// rest as follower_rank_one().
-  void add_follower_loads(const Eigen::VectorXd& displacements, bool with_tangent, Evaluation& out);
-
-  /// An element's follower load: its nodes and pressure (Element::pressure).
-  struct FollowerLoad {
-    int start = 0, end = 0;
-    double pressure = 0.0;
-  };
-  /// The symmetric coupling K_ij = λ (p/2) R of one element's follower load, into the tangent.
-  void add_follower_coupling(const FollowerLoad& load);
-  std::vector<FollowerLoad> follower_loads_;  ///< in the model's element order; empty: none
+  FollowerLoads follower_loads_;                    ///< the members' pressure (assembly/follower_loads)
   std::vector<solver::RankOne> follower_rank_one_;  ///< follower_rank_one()
-  std::vector<double> follower_skew_;               ///< per node: c of its skew block c R (scratch)
-  double load_factor_ = 0.0;                  ///< set_load_factor
+  double load_factor_ = 0.0;                        ///< set_load_factor
 
   const Model& model_;
   const DofMap& dofs_;

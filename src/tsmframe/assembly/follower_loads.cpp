@@ -1,0 +1,51 @@
+#include "tsmframe/assembly/follower_loads.hpp"
+
+namespace tsm::assembly {
+
+FollowerLoads::FollowerLoads(const Model& model, const DofMap& dofs) : model_(model), dofs_(dofs) {
+  for (const Element& e : model.elements)
+    if (const double p = model.pressure(e); p != 0.0) loads_.push_back({e.start, e.end, p});
+  if (loads_.empty()) return;
+  // c / λ per node: exactly 0 where equal pressures meet (−p/2 + p/2).
+  std::vector<double> skew(model.node_count(), 0.0);
+  for (const Load& f : loads_) {
+    skew[f.start] -= 0.5 * f.pressure;
+    skew[f.end] += 0.5 * f.pressure;
+  }
+  for (int node = 0; node < model.node_count(); ++node)
+    if (skew[node] != 0.0) skew_.push_back({node, skew[node]});
+}
+
+void FollowerLoads::reference_load(const Eigen::VectorXd& displacements, Eigen::VectorXd& out) const {
+  out = model_.reference_load;
+  for (const Load& f : loads_) {
+    const Eigen::Vector2d d = model_.nodes[f.end].position + displacements.segment<2>(dofs_per_node * f.end) -
+                              model_.nodes[f.start].position - displacements.segment<2>(dofs_per_node * f.start);
+    const Eigen::Vector2d half = 0.5 * f.pressure * Eigen::Vector2d(d.y(), -d.x());  // −(p/2) R d
+    out.segment<2>(dofs_per_node * f.start) += half;
+    out.segment<2>(dofs_per_node * f.end) += half;
+  }
+}
+
+void FollowerLoads::skew_terms(double load_factor, std::vector<solver::RankOne>& out) const {
+  out.clear();
+  for (const auto& [node, per_unit] : skew_) {
+    const double c = load_factor * per_unit;
+    const int u = dofs_.equation(dofs_per_node * node + ux), v = dofs_.equation(dofs_per_node * node + uy);
+    if (c == 0.0 || u < 0 || v < 0) continue;  // a held dof carries no equation
+    solver::RankOne term;
+    term.equation.fill(-1);
+    term.equation[0] = u;
+    term.equation[1] = v;
+    term.u.setZero();
+    term.v.setZero();
+    term.u[0] = 1.0, term.v[1] = -c;  // K_uv −= c
+    out.push_back(term);
+    term.u.setZero();
+    term.v.setZero();
+    term.u[1] = 1.0, term.v[0] = c;  // K_vu += c
+    out.push_back(term);
+  }
+}
+
+}  // namespace tsm::assembly

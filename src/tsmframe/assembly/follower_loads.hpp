@@ -1,0 +1,60 @@
+#pragma once
+// Follower loads: a member's pressure ("load": {"pressure": p}), normal to its current element
+// chords. On an element of current chord d = x_j − x_i the force is −p l n (n the left normal,
+// l n = R d with R the quarter turn [0 −1; 1 0]), lumped half to each end: P_i = P_j = −(p/2) R d.
+// So ∂P/∂x_j = −(p/2) R and ∂P/∂x_i = +(p/2) R at both ends, and the tangent gains −λ ∂P/∂D:
+// K_ij = λ (p/2) R and K_ji = K_ijᵀ, a symmetric coupling, whatever the geometry; K_ii = −λ (p/2)
+// R and K_jj = +λ (p/2) R are skew and cancel wherever two elements of equal pressure meet (a
+// closed ring: the load is conservative). Where they do not (a loaded stretch ending at a free
+// node, a change of pressure) a node keeps c R, c = λ Σ ±p/2: two rank-one terms for the linear
+// solver. Without them Newton crawled where the structure is soft (a cantilever rolled 3.3 rad
+// by pressure: 1,729 iterations in 38 steps; with them ≤ 15 a step in 5).
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "tsmframe/assembly/dof_map.hpp"
+#include "tsmframe/model/model.hpp"
+#include "tsmframe/solver/linear_solver.hpp"
+
+namespace tsm::assembly {
+
+class FollowerLoads {
+ public:
+  FollowerLoads(const Model& model, const DofMap& dofs);
+  bool empty() const { return loads_.empty(); }
+
+  /// The reference load at `displacements` (all dofs): the model's, plus the follower loads on
+  /// the current geometry, at λ = 1.
+  void reference_load(const Eigen::VectorXd& displacements, Eigen::VectorXd& out) const;
+
+  /// add(node_i, node_j, K_ij) for each load's symmetric coupling K_ij = λ (p/2) R (on the
+  /// translations of a 3×3 block), in the model's element order; with `only`, just the loads with
+  /// a node marked there.
+  template <class Add>
+  void couplings(double load_factor, const std::vector<char>* only, Add&& add) const {
+    for (const Load& f : loads_) {
+      if (only && !(*only)[f.start] && !(*only)[f.end]) continue;
+      Eigen::Matrix3d coupling = Eigen::Matrix3d::Zero();
+      coupling(0, 1) = -0.5 * load_factor * f.pressure;
+      coupling(1, 0) = 0.5 * load_factor * f.pressure;
+      add(f.start, f.end, coupling);
+    }
+  }
+
+  /// The skew rest c R at the nodes where loaded stretches end, as rank-one terms over the free
+  /// equations (K_uv −= c, K_vu += c), into `out` (cleared first).
+  void skew_terms(double load_factor, std::vector<solver::RankOne>& out) const;
+
+ private:
+  struct Load {
+    int start = 0, end = 0;  ///< node indices
+    double pressure = 0.0;
+  };
+  const Model& model_;
+  const DofMap& dofs_;
+  std::vector<Load> loads_;                    ///< per loaded element, in the model's order
+  std::vector<std::pair<int, double>> skew_;  ///< (node, Σ ±p/2) where the sum is not 0
+};
+
+}  // namespace tsm::assembly
