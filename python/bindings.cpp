@@ -44,6 +44,15 @@ py::dict run_json(const std::string& text, int threads) {
   out["status"] = tsm::solver::status_name(result.status);
   out["message"] = result.message;
   out["notes"] = result.notes;
+  py::list critical;  // bifurcations under load control: {step, load_factor, bracket}
+  for (const tsm::solver::CriticalPoint& c : result.critical_points) {
+    py::dict point;
+    point["step"] = c.step;
+    point["load_factor"] = c.load_factor;
+    point["bracket"] = py::make_tuple(c.stable, c.unstable);
+    critical.append(point);
+  }
+  out["critical_points"] = critical;
   std::vector<int> node_ids, element_ids, element_nodes, element_members;
   std::vector<double> node_xy;
   std::vector<std::string> element_kinds;

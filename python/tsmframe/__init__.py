@@ -156,6 +156,7 @@ class Result:
 
     status, message            how the run ended ("converged", "diverged", …)
     notes                      remarks on the path (list of sentences; e.g. a jump across a snap-back)
+    critical_points            bifurcations found under load control: dicts of step, load_factor, bracket
     node_ids (n,), node_xy (n, 2), element_ids (m,), element_nodes (m, 2) node ids
     step (S,), load_factor (S,), iterations (S,), converged (S,), residual_norms: S arrays, criterion: S strings
     negative_eigenvalues (S,)  of the tangent at each converged step: 0 stable, > 0 unstable

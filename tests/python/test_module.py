@@ -152,6 +152,7 @@ def test_a_ring_built_in_code_loses_stability_at_its_critical_pressure():
     assert below.ok and above.ok
     assert list(below.negative_eigenvalues) == [0] and list(above.negative_eigenvalues) == [2]
     assert "bifurcation point" in above.notes[0]
+    assert below.critical_points == [] and above.critical_points == []  # one step: nothing to bracket
 
 
 def test_model_built_in_code_rolls_into_a_circle():

@@ -123,6 +123,13 @@ TEST(FollowerLoad, ARingUnderExternalPressureBucklesAtThreeEIOverRCubed) {
   EXPECT_EQ(above.steps.back().negative_eigenvalues, 2);
   ASSERT_EQ(above.notes.size(), 1u);
   EXPECT_NE(above.notes[0].find("bifurcation point"), std::string::npos) << above.notes[0];
+  // In two steps (0.525 and 1.05 of it): bisection on the inertia between them finds it.
+  json two = ring(64, -1.05 * critical, 1e6);
+  two["analysis"]["control"]["steps"] = 2;
+  const auto found = run(two, model);
+  ASSERT_EQ(found.status, tsm::solver::Status::converged) << found.message;
+  ASSERT_EQ(found.critical_points.size(), 1u);
+  EXPECT_NEAR(1.05 * critical * found.critical_points[0].load_factor, critical, 0.01 * critical);
 }
 
 // A cantilever under a follower pressure strong enough to turn its tip 3.3 rad, in 5 load steps.

@@ -130,6 +130,15 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
     w.end_object();
   }
   w.end_array();
+  // Bifurcations of the primary path under load control, by bisection on the tangent's inertia.
+  w.newline().key("critical_points").begin_array();
+  for (const solver::CriticalPoint& c : result.critical_points) {
+    w.newline().begin_object();
+    w.key("step").value(c.step).key("load_factor").value(c.load_factor);
+    w.key("bracket").begin_array().value(c.stable).value(c.unstable).end_array();
+    w.end_object();
+  }
+  w.end_array();
   // Remarks on the path (a jump across a snap-back under displacement control); usually none.
   w.newline().key("notes").begin_array();
   for (const std::string& note : result.notes) w.value(note);

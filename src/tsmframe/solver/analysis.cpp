@@ -29,7 +29,9 @@ constexpr double contact_at_element_end = 1e-3;  // α this close to 0 or 1: the
 constexpr double large_arc_of_size = 0.5;  // a failed arc length above this × the model's size: too long a start
 constexpr double short_element_ratio = 2.0;  // an EB element shorter than this × its depth: noted when a run fails
 constexpr int steps_below_failure = 3;  // converged steps just below an increment that failed before it is tried again
-constexpr double limit_point_stiffness = 0.1;  // a current stiffness below this × the first step's: near a maximum
+constexpr double limit_point_stiffness = 0.1;
+constexpr int bisection_rounds = 30;            // a bifurcation's load factor: at most this many halvings …
+constexpr double bisection_tolerance = 1e-6;    // … of its bracket, down to this fraction of λ  // a current stiffness below this × the first step's: near a maximum
 
 std::string format_ratio(double ratio) {
   std::ostringstream os;
@@ -131,6 +133,12 @@ class Recorder {
     if (last_with_state_ < 0 || !tells || outcome.start_negative_pivots < 0) return;
     int& negatives = result_.steps[last_with_state_].negative_eigenvalues;
     if (negatives < 0) negatives = outcome.start_negative_pivots;
+  }
+
+  /// The newest converged step and the one before it (null where there is none).
+  std::pair<const StepRecord*, const StepRecord*> newest_two() const {
+    if (last_with_state_ < 0) return {nullptr, nullptr};
+    return {&result_.steps[last_with_state_], last_with_state_ > 0 ? &result_.steps[last_with_state_ - 1] : nullptr};
   }
 
   /// Displacements of the newest converged step, held in its record until a later step
@@ -273,7 +281,8 @@ std::vector<std::string> nothing_carried_notes(const std::vector<StepRecord>& st
 /// begins (a snap-through's falling branch), or, where none does, a bifurcation point passed on
 /// the primary path — what a perfect structure does under any control (a straight column
 /// loaded beyond its buckling load stays straight, and converges there in one iteration).
-std::vector<std::string> stability_notes(const std::vector<StepRecord>& steps, const std::vector<LimitPoint>& limits) {
+std::vector<std::string> stability_notes(const std::vector<StepRecord>& steps, const std::vector<LimitPoint>& limits,
+                                         const std::vector<CriticalPoint>& critical_points) {
   struct Run {
     int first = 0, last = 0, fewest = 0, most = 0;
     const StepRecord* stable_before = nullptr;  ///< the converged step before it, known stable
@@ -305,7 +314,12 @@ std::vector<std::string> stability_notes(const std::vector<StepRecord>& steps, c
     os << ": the tangent stiffness there has ";
     if (r.fewest != r.most) os << r.fewest << " to ";
     os << r.most << " negative eigenvalue" << (r.most > 1 ? "s" : "");
-    if (r.stable_before)  // where the tangent lost its definiteness: a bracket for the critical load
+    const auto critical = std::find_if(critical_points.begin(), critical_points.end(),
+                                       [&](const CriticalPoint& c) { return c.step == r.first; });
+    if (critical != critical_points.end())
+      os << " (it turns indefinite at load factor " << critical->load_factor << ", within ±"
+         << 0.5 * std::abs(critical->unstable - critical->stable) << ", by bisection between the steps)";
+    else if (r.stable_before)  // where the tangent lost its definiteness: a bracket for the critical load
       os << " (stable at load factor " << r.stable_before->load_factor << ", step " << r.stable_before->step
          << "; unstable at " << r.first_record->load_factor << ")";
     // The limit point the run starts at: the path's step there straddles the singular tangent.
@@ -329,13 +343,43 @@ void close_path(RunResult& result, ControlType control) {
   result.notes = nothing_carried_notes(result.steps);
   if (control == ControlType::displacement)
     for (std::string& note : jump_notes(result.steps)) result.notes.push_back(std::move(note));
-  for (std::string& note : stability_notes(result.steps, result.limit_points)) result.notes.push_back(std::move(note));
+  for (std::string& note : stability_notes(result.steps, result.limit_points, result.critical_points))
+    result.notes.push_back(std::move(note));
 }
 
 RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
                          const StepObserver& observer);
 RunResult run_stepped(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
                       const StepObserver& observer);
+
+/// Whether the newest converged step is unstable and the one before it stable: under load
+/// control a bifurcation of the primary path (load control cannot pass a limit point).
+bool turned_unstable(const StepRecord* newest, const StepRecord* previous, const RunResult& result) {
+  if (!newest || !previous || newest->negative_eigenvalues <= 0 || previous->negative_eigenvalues != 0) return false;
+  return result.critical_points.empty() || result.critical_points.back().step != newest->step;
+}
+
+/// The load factor where the tangent turns indefinite between `previous` (stable) and `newest`
+/// (unstable), by bisection on its inertia, each trial equilibrium solved from the newest step's
+/// state `from`; recorded in result.critical_points. Leaves the solver evaluated at a trial
+/// state: the caller evaluates its own again.
+void locate_bifurcation(const StepRecord& newest, const StepRecord& previous, const State& from, NewtonSolver& newton,
+                        RunResult& result) {
+  double stable = previous.load_factor, unstable = newest.load_factor;
+  for (int round = 0; round < bisection_rounds; ++round) {
+    if (std::abs(unstable - stable) <= bisection_tolerance * std::max(std::abs(stable), std::abs(unstable))) break;
+    const double middle = 0.5 * (stable + unstable);
+    State trial = from;
+    newton.reset(trial);
+    PathConstraint constraint;
+    constraint.load_increment = middle - trial.load_factor;
+    if (newton.step(constraint, trial).status != Status::converged) break;
+    const int negatives = newton.negative_eigenvalues(trial, true);
+    if (negatives < 0) break;
+    (negatives > 0 ? unstable : stable) = middle;
+  }
+  result.critical_points.push_back({newest.step, 0.5 * (stable + unstable), stable, unstable});
+}
 
 /// Whether the tangent's inertia tells the stability of `state`: only where no contact is active
 /// (a contact element's sliding term is not symmetric, and the inertia is its symmetric part's).
@@ -371,6 +415,11 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   const auto newest = std::find_if(result.steps.rbegin(), result.steps.rend(), [](const StepRecord& s) { return s.converged; });
   if (newest != result.steps.rend() && newest->negative_eigenvalues < 0 && inertia_tells_stability(state))
     newest->negative_eigenvalues = newton.negative_eigenvalues(state, result.steps.back().converged);
+  if (newest != result.steps.rend() && control.type == ControlType::load) {  // the last step's, as the others'
+    const auto previous = std::find_if(newest + 1, result.steps.rend(), [](const StepRecord& s) { return s.converged; });
+    if (previous != result.steps.rend() && turned_unstable(&*newest, &*previous, result))
+      locate_bifurcation(*newest, *previous, state, newton, result);
+  }
   close_path(result, control.type);
   return result;
 }
@@ -432,6 +481,14 @@ RunResult run_stepped(const Model& model, const assembly::DofMap& dofs, NewtonSo
     const bool tells_stability = inertia_tells_stability(state);
     const NewtonOutcome outcome = newton.step(constraint, state);
     recorder.started_from_newest(outcome, tells_stability);
+    if (const auto [newest, previous] = recorder.newest_two(); !by_displacement && turned_unstable(newest, previous, result)) {
+      State from;  // the newest step's state; the attempt in progress is kept and evaluated again
+      saved.restore(from);
+      const State attempt = state;
+      locate_bifurcation(*newest, *previous, from, newton, result);
+      state = attempt;
+      newton.reset(state);
+    }
     StepRecord record = recorder.start(outcome, halvings);
     record.increment = (value(t_end) - value(t)) * (by_displacement ? control.target : 1.0);
 

@@ -54,11 +54,21 @@ struct LimitPoint {
   double load_factor = 0.0;
 };
 
+/// Where the tangent lost its positive definiteness between two converged steps under load
+/// control without a limit point (a bifurcation of the primary path): the load factor found by
+/// bisection on the tangent's inertia, within [stable, unstable].
+struct CriticalPoint {
+  int step = 0;                ///< the first unstable step
+  double load_factor = 0.0;    ///< the bracket's middle
+  double stable = 0.0, unstable = 0.0;  ///< the bracket: equilibria solved there, stable and not
+};
+
 struct RunResult {
   Status status = Status::converged;
   std::string message;  ///< a sentence when the run did not reach its end
   std::vector<StepRecord> steps;
   std::vector<LimitPoint> limit_points;  ///< in path order
+  std::vector<CriticalPoint> critical_points;  ///< bifurcations found under load control, in path order
   /// Remarks on the path, converged or not: a sentence each (e.g. a jump across a snap-back
   /// under displacement control).
   std::vector<std::string> notes;
