@@ -284,7 +284,7 @@ double GlobalSystem::evaluate_element(int q, const Eigen::VectorXd& displacement
     return 0.0;
   }
   const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-  const element::BeamResponse r = slot.respond(d, previous_rotations[k], with_tangent, connected_k(q));
+  const element::BeamResponse r = slot.respond(d, previous_rotations[k], with_tangent, connection(q));
   out.chord_rotations[k] = r.chord.rotation;
   for (int a = 0; a < 3; ++a) {
     if (at_i) force[g[a]] = slot.first_i ? r.nodal_forces[a] : force[g[a]] + r.nodal_forces[a];
@@ -320,7 +320,7 @@ double GlobalSystem::end_rotation(int q, const Eigen::VectorXd& displacements,
   const int k = element_order_[q];
   if (replaced_[k]) return 0.0;
   const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-  return slot.end_rotation(slot.respond(d, previous_rotations[k], false, connected_k(q)), connection(q));
+  return slot.end_rotation(slot.respond(d, previous_rotations[k], false, connection(q)), connection(q));
 }
 
 void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen::VectorXd& displacements,
@@ -501,7 +501,7 @@ Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacement
     const ElementRecord& slot = records_[q];
     const int k = element_order_[q];
     const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-    forces.segment<3>(3 * k) = slot.respond(d, rotations[k], false, connected_k(q)).forces;
+    forces.segment<3>(3 * k) = slot.respond(d, rotations[k], false, connection(q)).forces;
   });
   for (const contact::ActiveContact& a : contacts) {
     const contact::Vector9 d = gather(displacements, contact_dofs(model_.elements[a.element], a.node));
@@ -527,8 +527,8 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
       const int k = element_order_[q];
       if (replaced[k]) continue;
       const element::Vector6 d = element_displacements(displacements, slot.start, slot.end);
-      const element::BeamResponse r = slot.respond(d, rotations[k], false, connected_k(q));
-      const element::RoundOffFloor f = element::round_off_floor(slot.chord(), slot.stiffness(connected_k(q)), d, r);
+      const element::BeamResponse r = slot.respond(d, rotations[k], false, connection(q));
+      const element::RoundOffFloor f = element::round_off_floor(slot.chord(), slot.stiffness(connection(q)), d, r);
       force += 4.0 * f.force * f.force;  // two nodes, two translations each
       moment += 2.0 * f.moment * f.moment;
     }

@@ -162,21 +162,21 @@ class GlobalSystem {
     /// loop (0 + a = a exactly: the sums are the same as with clearing).
     bool first_ii : 1 = false, first_jj : 1 = false, first_ij : 1 = false, first_i : 1 = false, first_j : 1 = false;
     bool release_i : 1 = false, release_j : 1 = false;  ///< a hinge at that end (Element::release_start/end)
-    bool connected : 1 = false;  ///< hinged or sprung at an end: its k0 is connected_k_[q] (condensed)
+    bool connected : 1 = false;  ///< hinged or sprung at an end: its k0 is connections_[q].k (condensed)
     double delta0[2] = {0.0, 0.0};      ///< X_j − X_i
     double length = 0.0, angle = 0.0;   ///< l0, φ0
     element::BasicStiffness k0;         ///< Eq. 3 / 4, fixed (without its releases)
     element::InitialChord chord() const {
       return {element::Vector2::Zero(), element::Vector2(delta0[0], delta0[1]), length, angle};
     }
-    /// k0 as the element uses it: `connected` (its releases and springs condensed,
-    /// GlobalSystem::connected_k) or the fixed form.
-    element::Matrix3 stiffness(const element::Matrix3* connected) const { return connected ? *connected : k0.matrix(); }
+    /// k0 as the element uses it: its connection's (releases and springs condensed;
+    /// GlobalSystem::connection, null where it has none) or the fixed form.
+    element::Matrix3 stiffness(const Connection* connection) const { return connection ? connection->k : k0.matrix(); }
     /// The element's response: the common case on the fixed-form k0, a hinged or sprung element
     /// on its condensed one.
     element::BeamResponse respond(const element::Vector6& d, double previous_rotation, bool with_tangent,
-                                  const element::Matrix3* connected) const {
-      if (connected) return element::beam_response(chord(), *connected, d, previous_rotation, with_tangent);
+                                  const Connection* connection) const {
+      if (connection) return element::beam_response(chord(), connection->k, d, previous_rotation, with_tangent);
       return element::beam_response(chord(), k0, d, previous_rotation, with_tangent);
     }
     /// The larger end rotation against the chord that the element describes (a hinged end's
@@ -193,7 +193,6 @@ class GlobalSystem {
   /// and its springs' flexibilities; empty when the model has none.
   std::vector<Connection> connections_;
   const Connection* connection(int q) const { return records_[q].connected ? &connections_[q] : nullptr; }
-  const element::Matrix3* connected_k(int q) const { return records_[q].connected ? &connections_[q].k : nullptr; }
   std::vector<ElementRecord> records_;  ///< in the loop's order: records_[q] is element element_order_[q]
   BlockMatrix tangent_;
   std::vector<unsigned char> block_mask_;  ///< per block: bit d set if dof d of its node is constrained

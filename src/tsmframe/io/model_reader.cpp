@@ -321,7 +321,7 @@ class Reader {
         if (where == "end" || where == "both") release_to = true;
         if (!release_from && !release_to)
           fail(child(path, "release"), "unknown release " + quote_text(where) + " (expected \"start\", \"end\" or \"both\")");
-        released_members_.insert(static_cast<int>(k));
+        connected_members_.insert(static_cast<int>(k));
       }
       double flexibility_from = 0.0, flexibility_to = 0.0;  // rotational springs at the ends (semi-rigid)
       if (m.contains("end_springs")) {
@@ -339,7 +339,7 @@ class Reader {
           (std::string(end) == "start" ? flexibility_from : flexibility_to) = 1.0 / stiffness;
         }
         if (m["end_springs"].empty()) fail(spath, "give start or end (rotational stiffness, moment per radian)");
-        released_members_.insert(static_cast<int>(k));
+        connected_members_.insert(static_cast<int>(k));
       }
 
       if (pressure != 0.0 || flexibility_from > 0.0 || flexibility_to > 0.0) {
@@ -562,20 +562,20 @@ class Reader {
       if (members.is_string()) {
         if (members.get<std::string>() != "all") fail(mpath, "expected \"all\" or a list of member indices");
         for (int m = 0; m < model_.member_count; ++m)  // hinged or sprung members carry no contact
-          if (!holding.count(m) && !released_members_.count(m)) spec.members.push_back(m);
+          if (!holding.count(m) && !connected_members_.count(m)) spec.members.push_back(m);
       } else {
         expect_array(members, mpath);
         for (size_t m = 0; m < members.size(); ++m) {
           const long index = integer(members[m], child(mpath, m));
           if (index < 0 || index >= model_.member_count) fail(child(mpath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
           if (holding.count(static_cast<int>(index))) fail(child(mpath, m), "the contact node belongs to member " + std::to_string(index));
-          if (released_members_.count(static_cast<int>(index)))
+          if (connected_members_.count(static_cast<int>(index)))
             fail(child(mpath, m), "member " + std::to_string(index) + " has a moment release or an end spring: contacts on such members are not supported");
           spec.members.push_back(static_cast<int>(index));
         }
       }
       if (spec.members.empty())
-        fail(mpath, released_members_.empty() ? "no member to touch" : "no member to touch (hinged or sprung members carry no contact)");
+        fail(mpath, connected_members_.empty() ? "no member to touch" : "no member to touch (hinged or sprung members carry no contact)");
       if (c.contains("element")) {
         spec.element = string(c["element"], child(path, "element"));
         if (spec.element != "euler-bernoulli" && spec.element != "timoshenko") fail(child(path, "element"), "unknown element " + quote_text(spec.element) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
@@ -731,7 +731,7 @@ class Reader {
   Model model_;
   std::map<std::string, Material> materials_;
   std::map<std::string, Section> sections_;
-  std::set<int> released_members_;  ///< members with a moment release or an end spring ("release", "end_springs")
+  std::set<int> connected_members_;  ///< members with a moment release or an end spring ("release", "end_springs")
   struct MemberLoad {
     int start, end;  ///< an element's nodes
     double fx, fy;   ///< the share of its distributed load each of them takes

@@ -77,6 +77,15 @@ std::string failure_text(int step, double from, double to, const char* what, con
   return os.str();
 }
 
+/// The newest converged step and the one before it (null where there is none).
+std::pair<StepRecord*, StepRecord*> newest_converged_two(std::vector<StepRecord>& steps) {
+  StepRecord* found[2] = {nullptr, nullptr};
+  int count = 0;
+  for (auto s = steps.rbegin(); s != steps.rend() && count < 2; ++s)
+    if (s->converged) found[count++] = &*s;
+  return {found[0], found[1]};
+}
+
 /// Appends step records to a run: converged steps get their state (only the newest keeps it
 /// unless the output selection wants it), every step goes to the observer.
 class Recorder {
@@ -133,12 +142,6 @@ class Recorder {
     if (last_with_state_ < 0 || !tells || outcome.start_negative_pivots < 0) return;
     int& negatives = result_.steps[last_with_state_].negative_eigenvalues;
     if (negatives < 0) negatives = outcome.start_negative_pivots;
-  }
-
-  /// The newest converged step and the one before it (null where there is none).
-  std::pair<const StepRecord*, const StepRecord*> newest_two() const {
-    if (last_with_state_ < 0) return {nullptr, nullptr};
-    return {&result_.steps[last_with_state_], last_with_state_ > 0 ? &result_.steps[last_with_state_ - 1] : nullptr};
   }
 
   /// Displacements of the newest converged step, held in its record until a later step
@@ -383,6 +386,7 @@ void locate_bifurcation(const StepRecord& newest, const StepRecord& previous, co
 
 /// Whether the tangent's inertia tells the stability of `state`: only where no contact is active
 /// (a contact element's sliding term is not symmetric, and the inertia is its symmetric part's).
+/// A non-conservative follower load is the other such case; NewtonSolver reports no inertia then.
 bool inertia_tells_stability(const State& state) {
   return std::none_of(state.contacts.begin(), state.contacts.end(), [](const contact::ContactState& c) { return c.active; });
 }
@@ -412,14 +416,11 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   // The newest converged step's inertia: each other step's came with the attempt that started
   // from it. `state` is that step's (every run ends there); the last evaluation was made there
   // unless the run ended on a failed attempt.
-  const auto newest = std::find_if(result.steps.rbegin(), result.steps.rend(), [](const StepRecord& s) { return s.converged; });
-  if (newest != result.steps.rend() && newest->negative_eigenvalues < 0 && inertia_tells_stability(state))
+  const auto [newest, previous] = newest_converged_two(result.steps);
+  if (newest && newest->negative_eigenvalues < 0 && inertia_tells_stability(state))
     newest->negative_eigenvalues = newton.negative_eigenvalues(state, result.steps.back().converged);
-  if (newest != result.steps.rend() && control.type == ControlType::load) {  // the last step's, as the others'
-    const auto previous = std::find_if(newest + 1, result.steps.rend(), [](const StepRecord& s) { return s.converged; });
-    if (previous != result.steps.rend() && turned_unstable(&*newest, &*previous, result))
-      locate_bifurcation(*newest, *previous, state, newton, result);
-  }
+  if (control.type == ControlType::load && turned_unstable(newest, previous, result))  // the last step's, as the others'
+    locate_bifurcation(*newest, *previous, state, newton, result);
   close_path(result, control.type);
   return result;
 }
@@ -481,7 +482,8 @@ RunResult run_stepped(const Model& model, const assembly::DofMap& dofs, NewtonSo
     const bool tells_stability = inertia_tells_stability(state);
     const NewtonOutcome outcome = newton.step(constraint, state);
     recorder.started_from_newest(outcome, tells_stability);
-    if (const auto [newest, previous] = recorder.newest_two(); !by_displacement && turned_unstable(newest, previous, result)) {
+    if (const auto [newest, previous] = newest_converged_two(result.steps);
+        !by_displacement && turned_unstable(newest, previous, result)) {
       State from;  // the newest step's state; the attempt in progress is kept and evaluated again
       saved.restore(from);
       const State attempt = state;
