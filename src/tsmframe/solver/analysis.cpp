@@ -537,15 +537,24 @@ RunResult run_stepped(const Model& model, const assembly::DofMap& dofs, NewtonSo
         return c.active && std::min(c.alpha, 1.0 - c.alpha) < contact_at_element_end;
       });
     };
-    if (!by_displacement && halvings > 0 && failed.start_negative_pivots == 0 && failed.most_negative_pivots > 0 &&
-        first_stiffness > 0.0 && newest_stiffness < limit_point_stiffness * first_stiffness && !at_element_end())
+    const bool limit_point = !by_displacement && halvings > 0 && failed.start_negative_pivots == 0 &&
+                             failed.most_negative_pivots > 0 && first_stiffness > 0.0 &&
+                             newest_stiffness < limit_point_stiffness * first_stiffness && !at_element_end();
+    if (limit_point)
       failed.message += "; the load seems to have reached a maximum (a limit point: the current stiffness |Δλ|/‖ΔD‖ is down to " +
                         format_ratio(newest_stiffness / first_stiffness) +
                         " of the first step's, and the tangent lost its positive definiteness within the step), "
                         "which load control cannot pass: use arc-length control";
     result.message = failure_text(record.step, from, to, by_displacement ? "controlled displacement" : "load factor",
-                                  failed, halvings) +
-                     short_element_hint(model);
+                                  failed, halvings);
+    // Cutback used all its halvings in a row (not a step already at its smallest after growing
+    // again): a smaller step may pass — a straight cable's first iterate, from EI alone,
+    // overshoots in proportion to the load.
+    if (settings.cutback && halvings >= settings.max_cutbacks && !limit_point && !failed.loads_unresolvable)
+      result.message += "; cutback stops at " + std::to_string(settings.max_cutbacks) +
+                        " halvings of a load step (analysis.max_cutbacks, at most 60): a larger max_cutbacks, or more "
+                        "steps, start smaller";
+    result.message += short_element_hint(model);
     recorder.finish(state);  // state is the newest converged step's again
     recorder.failed(std::move(record), failed.message);
     return result;

@@ -617,6 +617,7 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
         resolution_checked = true;
         if (within_floor(pass.norms, state) && !carries_nothing(pass.scale, state)) {
           out.status = Status::diverged;
+          out.loads_unresolvable = true;
           std::ostringstream os;
           os << "the unbalanced force stays at the rounding level of the internal forces (relative residual "
              << relative << "): the loads are too small against what rounding leaves in this model's forces to be "

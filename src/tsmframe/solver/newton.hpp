@@ -58,6 +58,9 @@ struct NewtonOutcome {
   /// Accepted on round-off because the structure carries next to nothing (its forces at rounding
   /// level: a contact let go, or nothing loads it): its relative residual is noise.
   bool carried_nothing = false;
+  /// Failed because the loads are too small to resolve against the rounding in the model's
+  /// forces: a smaller step cannot help.
+  bool loads_unresolvable = false;
 };
 
 /// Force and moment scales of the convergence test (unit-consistent: each kind on its own).
