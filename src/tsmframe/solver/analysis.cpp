@@ -551,9 +551,8 @@ RunResult run_stepped(const Model& model, const assembly::DofMap& dofs, NewtonSo
     // again): a smaller step may pass — a straight cable's first iterate, from EI alone,
     // overshoots in proportion to the load.
     if (settings.cutback && halvings >= settings.max_cutbacks && !limit_point && !failed.loads_unresolvable)
-      result.message += "; cutback stops at " + std::to_string(settings.max_cutbacks) +
-                        " halvings of a load step (analysis.max_cutbacks, at most 60): a larger max_cutbacks, or more "
-                        "steps, start smaller";
+      result.message += "; analysis.max_cutbacks (now " + std::to_string(settings.max_cutbacks) +
+                        ", at most 60) or more steps let a step start smaller";
     result.message += short_element_hint(model);
     recorder.finish(state);  // state is the newest converged step's again
     recorder.failed(std::move(record), failed.message);
