@@ -29,6 +29,9 @@ constexpr double contact_at_element_end = 1e-3;  // α this close to 0 or 1: the
 constexpr double large_arc_of_size = 0.5;  // a failed arc length above this × the model's size: too long a start
 constexpr double short_element_ratio = 2.0;  // an EB element shorter than this × its depth: noted when a run fails
 constexpr int steps_below_failure = 3;  // converged steps just below an increment that failed before it is tried again
+// An element stretched or shortened by more than this (|N| / EA) is noted: Eq. 3–5 are linear in
+// the strain, a small-strain law (at 1 % engineering, Green and logarithmic strain differ by 0.5 %).
+constexpr double small_strain = 0.01;
 constexpr double limit_point_stiffness = 0.1;
 constexpr int bisection_rounds = 30;            // a bifurcation's load factor: at most this many halvings …
 constexpr double bisection_tolerance = 1e-6;    // … of its bracket, down to this fraction of λ  // a current stiffness below this × the first step's: near a maximum
@@ -86,6 +89,20 @@ std::pair<StepRecord*, StepRecord*> newest_converged_two(std::vector<StepRecord>
   return {found[0], found[1]};
 }
 
+/// Sets the step's largest axial strain N / EA from its element forces (N first of each three).
+void take_axial_strain(const Model& model, StepRecord& record) {
+  const Eigen::VectorXd& forces = record.element_forces;
+  if (forces.size() != 3 * static_cast<Eigen::Index>(model.elements.size())) return;
+  double largest = 0.0;
+  int element = -1;
+  for (size_t e = 0; e < model.elements.size(); ++e) {
+    const double strain = forces[3 * e] / model.elements[e].section.EA;
+    if (element < 0 || std::abs(strain) > std::abs(largest)) largest = strain, element = static_cast<int>(e);
+  }
+  record.axial_strain = largest;
+  record.strained_element = element;
+}
+
 /// Appends step records to a run: converged steps get their state (only the newest keeps it
 /// unless the output selection wants it), every step goes to the observer.
 class Recorder {
@@ -128,7 +145,10 @@ class Recorder {
     }
     record.displacements = state.displacements;
     forces_pending_ = defer_forces_ && !keeps_state(settings.output, record.step);
-    if (!forces_pending_) record.element_forces = newton_.element_forces(state);
+    if (!forces_pending_) {
+      record.element_forces = newton_.element_forces(state);
+      take_axial_strain(model_, record);
+    }
     record.reactions = newton_.reactions(state.load_factor);
     record.contacts = newton_.contact_points(state);
     last_with_state_ = static_cast<int>(result_.steps.size());
@@ -165,6 +185,7 @@ class Recorder {
   void finish(const State& state) {
     if (!forces_pending_ || last_with_state_ < 0) return;
     result_.steps[last_with_state_].element_forces = newton_.element_forces(state);
+    take_axial_strain(model_, result_.steps[last_with_state_]);
     forces_pending_ = false;
   }
 
@@ -340,14 +361,41 @@ std::vector<std::string> stability_notes(const std::vector<StepRecord>& steps, c
   return notes;
 }
 
+/// Converged steps where an element is stretched or shortened by more than small_strain: one note
+/// for them all, with the largest strain on the path. Eq. 3–5 take N linear in the strain with the
+/// rotations exact, so such results hold for that law, not for a real material (a load in the
+/// wrong units shows up here).
+std::vector<std::string> strain_notes(const Model& model, const std::vector<StepRecord>& steps) {
+  std::vector<const StepRecord*> strained;
+  const StepRecord* largest = nullptr;
+  for (const StepRecord& s : steps) {
+    if (!s.converged || s.strained_element < 0 || std::abs(s.axial_strain) <= small_strain) continue;
+    strained.push_back(&s);
+    if (!largest || std::abs(s.axial_strain) > std::abs(largest->axial_strain)) largest = &s;
+  }
+  if (strained.empty()) return {};
+  std::ostringstream os;
+  if (strained.size() == 1) os << "step " << strained.front()->step;
+  else if (strained.size() == 2) os << "steps " << strained.front()->step << " and " << strained.back()->step;
+  else os << strained.size() << " steps from " << strained.front()->step << " to " << strained.back()->step;
+  os << (strained.size() == 1 ? " stretches or shortens" : " stretch or shorten") << " an element by more than "
+     << 100.0 * small_strain << " %: the largest axial strain N/EA is " << 100.0 * largest->axial_strain << " % ("
+     << (largest->axial_strain > 0.0 ? "tension" : "compression") << ", element "
+     << model.elements[largest->strained_element].id << ", step " << largest->step
+     << "). The elements' force laws (Eq. 3–5) are linear in the strain, for small strains (the rotations are exact): "
+        "past a few per cent the results hold for that law, not for a real material (check the loads and their units)";
+  return {os.str()};
+}
+
 /// What the result says about its path besides the steps: the limit points, and the notes.
-void close_path(RunResult& result, ControlType control) {
+void close_path(const Model& model, RunResult& result, ControlType control) {
   result.limit_points = limit_points(result.steps);
   result.notes = nothing_carried_notes(result.steps);
   if (control == ControlType::displacement)
     for (std::string& note : jump_notes(result.steps)) result.notes.push_back(std::move(note));
   for (std::string& note : stability_notes(result.steps, result.limit_points, result.critical_points))
     result.notes.push_back(std::move(note));
+  for (std::string& note : strain_notes(model, result.steps)) result.notes.push_back(std::move(note));
 }
 
 RunResult run_arc_length(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
@@ -421,7 +469,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
     newest->negative_eigenvalues = newton.negative_eigenvalues(state, result.steps.back().converged);
   if (control.type == ControlType::load && turned_unstable(newest, previous, result))  // the last step's, as the others'
     locate_bifurcation(*newest, *previous, state, newton, result);
-  close_path(result, control.type);
+  close_path(model, result, control.type);
   return result;
 }
 

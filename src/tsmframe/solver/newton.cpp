@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -17,7 +18,12 @@ namespace {
 
 constexpr double round_off_ratio = 1e-12;  // ‖ΔD‖∞ ≤ 1e-12 · max(size, ‖D‖∞) ends a step (FORMAT.md)
 constexpr double blow_up_ratio = 1e12;     // ‖R‖ > 1e12 · scale is divergence (FORMULATION §4)
-constexpr double runaway_ratio = 1e6;      // |u| > 1e6 · (size + prescribed) is divergence
+constexpr double runaway_ratio = 1e6;      // |u| > 1e6 · (size + prescribed) is divergence, unless …
+// … the iterate's coordinates still give every element's chord to this fraction of its length
+// (|u| · ε below it × the shortest l0): a flexible structure's first iterate from a straight
+// state (a cable, EI alone against its weight) overshoots in proportion to the load and comes
+// back from far, chords and all, where the geometry stays resolved.
+constexpr double chord_resolution = 1e-4;
 constexpr double floor_ratio = 10.0;       // ‖R‖ ≤ 10 × the estimated rounding floor …
 constexpr double stagnation = 0.5;         // … ends a step once Newton no longer halves it
 constexpr double floor_check_below = 1e-3; // the floor (a pass of its own) is only worth checking below this
@@ -89,6 +95,9 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
   }
   solver_.analyze(system.dofs(), system.tangent());
   analysed_pattern_ = system.pattern_version();
+  shortest_element_ = std::numeric_limits<double>::infinity();
+  for (const Element& e : model.elements)
+    shortest_element_ = std::min(shortest_element_, (model.nodes[e.end].position - model.nodes[e.start].position).norm());
 }
 
 bool NewtonSolver::evaluate(State& state, bool contacts_only) {
@@ -687,8 +696,9 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
       start_scale.moment = std::max(start_scale.moment, pass.scale.moment);
     }
     const double blow_up = relative_norm(pass.norms, start_scale);
-    if (blow_up > blow_up_ratio ||
-        largest[0] > runaway_ratio * (model.size + std::abs(state.load_factor) * prescribed_size)) {
+    const double runaway = std::max(runaway_ratio * (model.size + std::abs(state.load_factor) * prescribed_size),
+                                    chord_resolution * shortest_element_ / std::numeric_limits<double>::epsilon());
+    if (blow_up > blow_up_ratio || largest[0] > runaway) {
       out.status = Status::diverged;
       out.message = iterate_text("the unbalanced force blew up", it);
       return out;

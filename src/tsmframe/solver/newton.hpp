@@ -174,6 +174,7 @@ class NewtonSolver {
   std::vector<unsigned char> is_moment_;  ///< per free equation: 1 for a rotation dof (cheaper than dof % 3 in the hot passes)
   std::vector<int> constrained_dofs_;
   double prescribed_squared_ = 0.0;  ///< ‖D_p,ref‖² over prescribed translations
+  double shortest_element_ = 0.0;    ///< the shortest element's initial length l0
   int analysed_pattern_ = -1;        ///< pattern version the linear solver has analysed
 };
 

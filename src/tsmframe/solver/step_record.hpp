@@ -41,6 +41,10 @@ struct StepRecord {
   bool has_state = false;              ///< the arrays below are filled
   Eigen::VectorXd displacements;       ///< all dofs
   Eigen::VectorXd element_forces;      ///< (N, M_i, M_j) per element
+  /// The largest axial strain N / EA of an element (signed: > 0 stretched), and that element's
+  /// index (−1: not known — a step whose element forces were never computed, see Recorder).
+  double axial_strain = 0.0;
+  int strained_element = -1;
   Eigen::VectorXd reactions;           ///< all dofs; zero where the dof is free
   std::vector<ContactPoint> contacts;  ///< one per contact of the model (converged steps)
   /// Per iterate (iterate 0 = the step's start), one entry per contact: how α moved.
