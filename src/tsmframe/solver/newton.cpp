@@ -95,7 +95,7 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
   }
   solver_.analyze(system.dofs(), system.tangent());
   analysed_pattern_ = system.pattern_version();
-  shortest_element_ = std::numeric_limits<double>::infinity();
+  shortest_element_ = model.elements.empty() ? 0.0 : std::numeric_limits<double>::infinity();
   for (const Element& e : model.elements)
     shortest_element_ = std::min(shortest_element_, (model.nodes[e.end].position - model.nodes[e.start].position).norm());
 }
