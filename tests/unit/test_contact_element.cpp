@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 
 #include "support/contact_trial.hpp"
 #include "tsmframe/contact/contact_element.hpp"
@@ -104,6 +105,89 @@ TEST(ContactForceLaw, ComplianceFloorHoldsWithinTheEdgeZone) {
   EXPECT_EQ(point_load_law(stiff, 0.5, 0.999, 0.01).compliance, c_min);
 }
 
+// ---- Hinged and sprung ends (connected_law) ----
+
+struct Ends {
+  double i, j;  // flexibilities: 0 rigid, ∞ hinge, else 1/k
+};
+const Ends connections[] = {{INFINITY, 0.0}, {0.0, INFINITY}, {INFINITY, INFINITY}, {0.4, 0.0}, {0.3, 0.7}, {INFINITY, 0.5}};
+
+/// Reference, independent of connected_law: Eq. 6/7's matrix K maps the element's own end
+/// rotations and δy_c to (M_i, M_j, Y); at a hinge M = 0, at a spring θ_node = θ_e + f M. Solved
+/// for θ_e by a 2×2 system per unit (θ_node,i, θ_node,j, δy_c): the condensed 3×3 map.
+Matrix3 condensed_reference(const SectionStiffness& s, double l0, double alpha, Ends f) {
+  const Matrix3 K = contact_bending_stiffness(s, l0, alpha);
+  const double flex[2] = {f.i, f.j};
+  Matrix3 out;
+  for (int unit = 0; unit < 3; ++unit) {
+    Eigen::Vector3d given = Eigen::Vector3d::Unit(unit);  // (θ_node,i, θ_node,j, δ)
+    // rows r: hinge: K(r,0) θe0 + K(r,1) θe1 = −K(r,2) δ; else θe_r + f_r (K(r,·)(θe, δ)) = θn_r
+    Eigen::Matrix2d A;
+    Eigen::Vector2d b;
+    for (int r = 0; r < 2; ++r) {
+      if (std::isinf(flex[r])) {
+        A.row(r) << K(r, 0), K(r, 1);
+        b[r] = -K(r, 2) * given[2];
+      } else {
+        A.row(r) << (r == 0 ? 1.0 : 0.0) + flex[r] * K(r, 0), (r == 1 ? 1.0 : 0.0) + flex[r] * K(r, 1);
+        b[r] = given[r] - flex[r] * K(r, 2) * given[2];
+      }
+    }
+    const Eigen::Vector2d theta_e = A.lu().solve(b);
+    out.col(unit) = K * Eigen::Vector3d(theta_e[0], theta_e[1], given[2]);
+  }
+  return out;
+}
+
+TEST(ContactForceLaw, ConnectedLawIsEquationSixAndSevenWithItsEndsCondensed) {
+  for (double psi : {0.0, 0.01})
+    for (double alpha : {0.15, 0.5, 0.8})
+      for (const Ends f : connections) {
+        const SectionStiffness s{.EA = 1.0, .EI = 2.5, .shear_flexibility = psi};
+        const double l0 = 0.7;
+        const ConnectedLaw c = connected_law(point_load_law(s, l0, alpha, 1e-9),
+                                             tsm::element::basic_stiffness(s, l0).bottomRightCorner<2, 2>(), f.i, f.j);
+        const Eigen::Vector3d v(c.law.h_i, c.law.h_j, 1.0);
+        Matrix3 split = v * v.transpose() / c.law.compliance;
+        split.topLeftCorner<2, 2>() += c.k_plain;
+        const Matrix3 reference = condensed_reference(s, l0, alpha, f);
+        EXPECT_LT((split - reference).norm(), 1e-9 * reference.norm()) << "psi " << psi << " alpha " << alpha << " ends " << f.i
+                                                                       << " " << f.j << "\n" << split << "\n" << reference;
+        // K' is the hinged or sprung element's own bending block (GlobalSystem's Connection::k).
+        const Matrix3 element = tsm::element::connected_stiffness(tsm::element::basic_stiffness_terms(s, l0), f.i, f.j);
+        EXPECT_LT((c.k_plain - element.bottomRightCorner<2, 2>()).norm(), 1e-12 * element.norm());
+        if (std::isinf(f.i)) EXPECT_EQ(c.law.h_i, 0.0);
+        if (std::isinf(f.j)) EXPECT_EQ(c.law.h_j, 0.0);
+      }
+}
+
+TEST(ContactForceLaw, ASimplySupportedElementsPointCompliance) {
+  // Both ends hinged, Euler–Bernoulli: a point load at a = α l0 deflects a simply supported span
+  // by P a² b² / (3 EI l0); Timoshenko adds P a b / (l0 G A_s) = P a b Ψ / (l0 EI).
+  for (double psi : {0.0, 0.02}) {
+    const SectionStiffness s{.EA = 1.0, .EI = 1.3, .shear_flexibility = psi};
+    const double l0 = 0.9, alpha = 0.35, a = alpha * l0, b = l0 - a;
+    const ConnectedLaw c = connected_law(point_load_law(s, l0, alpha, 1e-9),
+                                         tsm::element::basic_stiffness(s, l0).bottomRightCorner<2, 2>(), INFINITY, INFINITY);
+    EXPECT_NEAR(c.law.compliance, a * a * b * b / (3.0 * s.EI * l0) + a * b * psi / (l0 * s.EI), 1e-12);
+  }
+}
+
+TEST(ContactForceLaw, ConnectedDerivativesInAlphaMatchFiniteDifferences) {
+  for (double psi : {0.0, 0.02})
+    for (const Ends f : connections)
+      for (double alpha : {0.1, 0.45, 0.8}) {
+        const SectionStiffness s{.EA = 1.0, .EI = 1.7, .shear_flexibility = psi};
+        const Eigen::Matrix2d k = tsm::element::basic_stiffness(s, 0.6).bottomRightCorner<2, 2>();
+        auto at = [&](double x) { return connected_law(point_load_law(s, 0.6, x, 1e-3), k, f.i, f.j).law; };
+        const double h = 1e-6;
+        const PointLoadLaw law = at(alpha), up = at(alpha + h), down = at(alpha - h);
+        EXPECT_NEAR(law.dh_i, (up.h_i - down.h_i) / (2 * h), 1e-7);
+        EXPECT_NEAR(law.dh_j, (up.h_j - down.h_j) / (2 * h), 1e-7);
+        EXPECT_NEAR(law.dcompliance, (up.compliance - down.compliance) / (2 * h), 1e-7 * std::abs(law.dcompliance) + 1e-12);
+      }
+}
+
 // ---- The element ----
 
 using Trial = tsm::test::ContactTrial;
@@ -150,6 +234,23 @@ INSTANTIATE_TEST_SUITE_P(
                       TangentCase{0.01, 0.0, 0.01, -0.02, 0.5, 1e-3, 0.0},        // Timoshenko
                       TangentCase{0.01, 4.0, 0.3, 0.1, 0.7, 3e-2, 0.1},           // Timoshenko, 4 rad
                       TangentCase{0.002, -1.0, 0.1, -0.2, 0.9, 5e-3, 0.05}));      // near the end
+
+TEST(ContactElement, HingedOrSprungTangentMatchesFiniteDifferencesAndAHingeCarriesNoMoment) {
+  for (const Ends f : connections)
+    for (const TangentCase& p : {TangentCase{0.0, 2.5, 0.2, -0.1, 0.6, 2e-2, 0.05}, TangentCase{0.01, 4.0, 0.3, 0.1, 0.3, 3e-2, 0.1}}) {
+      Trial s = trial(p.psi, p.angle, p.theta_i, p.theta_j, p.alpha0, p.push, p.slide);
+      s.data.flexibility_i = f.i;
+      s.data.flexibility_j = f.j;
+      const ContactResponse r = contact_response(s.data, s.d, s.previous);
+      const Matrix9 fd = finite_difference_tangent(s);
+      EXPECT_LE((r.tangent - fd).norm(), 1e-6 * fd.norm()) << "ends " << f.i << " " << f.j << "\nanalytic\n" << r.tangent << "\nfd\n" << fd;
+      if (std::isinf(f.i)) EXPECT_EQ(r.forces[1], 0.0);
+      if (std::isinf(f.j)) EXPECT_EQ(r.forces[2], 0.0);
+      EXPECT_NE(r.forces[3], 0.0);
+      // A hinged end's node turns freely: its rotation moves no force.
+      if (std::isinf(f.i)) EXPECT_EQ(r.tangent.col(2).norm(), 0.0);
+    }
+}
 
 TEST(ContactElement, ForcesAreSelfEquilibrated) {
   for (double psi : {0.0, 0.01}) {
@@ -205,6 +306,27 @@ TEST(ContactElement, ZeroForceOnTheFreeShapeAndNodeOnElementAgrees) {
                                                 s.data.contact_start + s.d.segment<2>(6));
     EXPECT_NEAR(where.gap, 0.0, 1e-14);
     EXPECT_NEAR(where.alpha, on.alpha, 1e-14);
+  }
+}
+
+TEST(ContactElement, HingedOrSprungZeroForceOnTheFreeShapeAndNodeOnElementAgrees) {
+  // As above with the element's ends connected through hinges or springs: its free deflection
+  // follows the nodes' rotations through the connections (none through a hinge).
+  for (const Ends f : connections) {
+    Trial s = trial(0.01, 0.8, 0.05, -0.08, 0.4, 0.0, 0.0);
+    s.data.flexibility_i = f.i;
+    s.data.flexibility_j = f.j;
+    const ContactResponse straight = contact_response(s.data, s.d, s.previous);
+    const ConnectedLaw c = connected_law(point_load_law(s.data.section, s.data.initial.length, straight.alpha, 1e-3),
+                                         s.data.k0.bottomRightCorner<2, 2>(), f.i, f.j);
+    const double w = -(c.law.h_i * straight.deformations[1] + c.law.h_j * straight.deformations[2]);
+    const Eigen::Vector2d n(-straight.chord.sin, straight.chord.cos);
+    s.d.segment<2>(6) += (w - straight.normal) * n;
+    const ContactResponse on = contact_response(s.data, s.d, s.previous);
+    EXPECT_NEAR(on.forces[3], 0.0, 1e-9 * std::abs(straight.forces[3]) + 1e-9);
+    const NodeOnElement where = node_on_element(s.data.initial, s.data.section, s.d.head<6>(), s.previous,
+                                                s.data.contact_start + s.d.segment<2>(6), f.i, f.j);
+    EXPECT_NEAR(where.gap, 0.0, 1e-14);
   }
 }
 

@@ -1,7 +1,8 @@
 // Member releases (hinges, "release" on a member): the von Mises truss with real pins against its
 // closed form through the snap-through; a three-hinged arch's thrust against statics; a clamped
 // column hinged at its ends buckling as a pinned one; the reader's checks (a moment at a hinge,
-// contacts on hinged members, a bar left free to turn). Semi-rigid connections ("end_springs"): a
+// cantilever-frame contacts on hinged members, a bar left free to turn); a contact next to an
+// inner hinge and sliding through it, against the Gerber beam's closed form. Semi-rigid connections ("end_springs"): a
 // clamped beam on end springs against slope-deflection, a cantilever whose root spring turns as
 // far as the beam bends (two full turns at its tip, its tip back on the root), the reader's checks.
 #include <gtest/gtest.h>
@@ -158,15 +159,21 @@ TEST(Hinges, TheReaderChecksWhatAHingeCannotDo) {
             std::string::npos)
       << refusal(m);
 
-  // Contacts: a list naming a hinged member is refused; "all" leaves hinged members out.
+  // Contacts in the cantilever-coordinate frame: a list naming a hinged member is refused; "all"
+  // leaves hinged members out (the chord frame takes them: ContactOnHinged* below).
   m = three_hinged_arch(1000.0);
   m["nodes"].push_back({{"id", 9}, {"x", 2.0}, {"y", 2.0}});
   m["supports"].push_back({{"node", 9}, {"type", "fixed"}});
-  m["contacts"] = json::array({{{"node", 9}, {"members", {0}}}});
-  EXPECT_NE(refusal(m).find("contacts[0].members[0]: member 0 has a moment release"), std::string::npos) << refusal(m);
-  m["contacts"] = json::array({{{"node", 9}, {"members", "all"}}});
-  EXPECT_NE(refusal(m).find("contacts[0].members: no member to touch (hinged or sprung members carry no contact)"), std::string::npos)
+  m["contacts"] = json::array({{{"node", 9}, {"members", {0}}, {"frame", "cantilever"}}});
+  EXPECT_NE(refusal(m).find("contacts[0].members[0]: member 0 has a moment release or an end spring: the cantilever-coordinate"),
+            std::string::npos)
       << refusal(m);
+  m["contacts"] = json::array({{{"node", 9}, {"members", "all"}, {"frame", "cantilever"}}});
+  EXPECT_NE(refusal(m).find("contacts[0].members: no member to touch (hinged or sprung members carry no cantilever-coordinate contact)"),
+            std::string::npos)
+      << refusal(m);
+  m["contacts"] = json::array({{{"node", 9}, {"members", {0}}}});
+  EXPECT_EQ(refusal(m), "") << refusal(m);
 }
 
 // A beam of span L clamped at both ends through rotational springs k, a load P at mid-span:
@@ -243,6 +250,89 @@ TEST(SemiRigid, TheReaderRefusesSpringsThatHoldNothing) {
   EXPECT_NE(refusal(m).find("members[0].end_springs: give start or end"), std::string::npos) << refusal(m);
   m["members"][0]["end_springs"] = {{"end", 3.0}};
   EXPECT_EQ(refusal(m), "");
+}
+
+// ---- Contacts on hinged members ----
+// A Gerber beam: member AB (4 m) clamped at A, an inner hinge at B, member BC (6 m) on a roller at
+// C; both members of 4 and 6 elements, the elements next to B hinged there. A rigid node drawn
+// 1 mm above the beam is pushed down by 1 mm + δ (δ = 1 mm, small: linear statics holds to
+// ~1e-4). A point force P on BC at a from B, b = 6 − a from C: BC is simply supported on C and
+// on B, which the cantilever AB holds with its tip stiffness; B goes down (P b/6) (L³/3EI +
+// L/GA_s) and the point, beyond that share of it, a²b²/(3EI·6) + ab/(6 GA_s).
+double gerber_push_force(double a, double EI, double GAs, double push) {
+  const double L1 = 4.0, L2 = 6.0, b = L2 - a;
+  const double at_b = (b / L2) * (b / L2) * (L1 * L1 * L1 / (3.0 * EI) + (GAs > 0.0 ? L1 / GAs : 0.0));
+  const double in_span = a * a * b * b / (3.0 * EI * L2) + (GAs > 0.0 ? a * b / (L2 * GAs) : 0.0);
+  return push / (at_b + in_span);
+}
+
+json gerber_push(double x, double push_x, double push, bool timoshenko, int steps) {
+  json m = {
+      {"materials", {{"steel", {{"E", 2.0e11}, {"G", 8.0e10}}}}},
+      {"sections", {{"s", {{"A", 4.0e-3}, {"I", 2.0e-5}, {"shear_area", 2.0e-3}}}}},
+      {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 4.0}, {"y", 0.0}},
+                             {{"id", 3}, {"x", 10.0}, {"y", 0.0}}, {{"id", 9}, {"x", x}, {"y", 1e-3}}})},
+      {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 4}, {"material", "steel"}, {"section", "s"}, {"release", "end"}},
+                               {{"from", 2}, {"to", 3}, {"divisions", 6}, {"material", "steel"}, {"section", "s"}, {"release", "start"}}})},
+      {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 3}, {"type", "roller-x"}},
+                                {{"node", 9}, {"fix", push_x == 0.0 ? json::array({"ux", "rz"}) : json::array({"rz"})}}})},
+      {"prescribed", json::array({{{"node", 9}, {"uy", -(1e-3 + push)}}})},
+      {"contacts", json::array({{{"node", 9}, {"members", "all"}}})},
+      {"analysis", {{"control", {{"type", "load"}, {"steps", steps}}}}},
+  };
+  if (push_x != 0.0) m["prescribed"][0]["ux"] = push_x;
+  if (timoshenko)
+    for (auto& member : m["members"]) member["element"] = "timoshenko";
+  return m;
+}
+
+TEST(ContactOnHinged, APushNextToAnInnerHingeCarriesTheGerberBeamsForce) {
+  const double EI = 2.0e11 * 2.0e-5, GAs = 8.0e10 * 2.0e-3, push = 1e-3;
+  for (const bool timoshenko : {false, true})
+    for (const double x : {4.5, 4.05, 3.7}) {  // on BC's first element (hinged at B), close to B; on AB's last
+      tsm::Model model;
+      const RunResult r = run(gerber_push(x, 0.0, push, timoshenko, 4), model);
+      ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+      const StepRecord& last = r.steps.back();
+      ASSERT_GE(last.contacts[0].element, 0);
+      const double force = last.contacts[0].force;
+      // On AB (x < 4) the point rides the cantilever beyond which BC hangs from B: P (x³/3EI +
+      // x/GA_s) … plus what B's load adds there: solved exactly by superposition below.
+      double expected;
+      if (x > 4.0) {
+        expected = gerber_push_force(x - 4.0, EI, timoshenko ? GAs : 0.0, push);
+      } else {  // BC's only support on AB is B, unloaded: AB is a plain cantilever under P at x
+        expected = push / (x * x * x / (3.0 * EI) + (timoshenko ? x / GAs : 0.0));
+      }
+      EXPECT_NEAR(force, expected, 2e-3 * expected) << "x " << x << (timoshenko ? " Timoshenko" : " Euler-Bernoulli");
+      expect_global_equilibrium(model, last, 1e-8);
+      // The hinge carries no moment: the elements ending at B report M = 0 there.
+      for (size_t e = 0; e < model.elements.size(); ++e) {
+        if (model.elements[e].release_end) EXPECT_EQ(last.element_forces[3 * e + 2], 0.0);
+        if (model.elements[e].release_start) EXPECT_EQ(last.element_forces[3 * e + 1], 0.0);
+      }
+    }
+}
+
+TEST(ContactOnHinged, APointSlidesThroughAnInnerHinge) {
+  // The node drawn above AB at x = 3.4 is pushed down by 1 mm + δ and along by 0.9 m in 12 steps:
+  // it touches AB at x ≈ 3.85, slides over the hinge B onto BC and ends at x = 4.3, carrying there
+  // what the Gerber beam's closed form gives.
+  const double EI = 2.0e11 * 2.0e-5, push = 1e-3;
+  tsm::Model model;
+  const RunResult r = run(gerber_push(3.4, 0.9, push, false, 12), model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const StepRecord& last = r.steps.back();
+  const tsm::solver::ContactPoint& c = last.contacts[0];
+  ASSERT_GE(c.element, 0);
+  EXPECT_EQ(model.elements[c.element].member, 1);  // on BC now
+  const double expected = gerber_push_force(0.3, EI, 0.0, push);
+  EXPECT_NEAR(c.force, expected, 2e-3 * expected);
+  expect_global_equilibrium(model, last, 1e-8);
+  bool was_on_ab = false;
+  for (const StepRecord& s : r.steps)
+    if (s.converged && s.contacts[0].element >= 0 && model.elements[s.contacts[0].element].member == 0) was_on_ab = true;
+  EXPECT_TRUE(was_on_ab);
 }
 
 }  // namespace

@@ -41,9 +41,14 @@ ContactResponse contact_response(const ContactElementData& data, const Vector9& 
   const double theta_i = d[2] - r.chord.rotation, theta_j = d[5] - r.chord.rotation;
   r.deformations << r.chord.elongation, theta_i, theta_j, r.normal - data.offset;
 
-  const PointLoadLaw law = point_load_law(data.section, l0, r.alpha, data.edge);  // Eq. 6–9, split
+  PointLoadLaw law = point_load_law(data.section, l0, r.alpha, data.edge);  // Eq. 6–9, split
+  Eigen::Matrix2d k_plain = data.k0.bottomRightCorner<2, 2>();
+  if (data.connected()) {  // a hinge or a spring between an end and its node: condensed out
+    const ConnectedLaw connected = connected_law(law, k_plain, data.flexibility_i, data.flexibility_j);
+    law = connected.law;
+    k_plain = connected.k_plain;
+  }
   const Eigen::Vector2d h(law.h_i, law.h_j), theta(theta_i, theta_j);
-  const Eigen::Matrix2d k_plain = data.k0.bottomRightCorner<2, 2>();
   const double Y = (r.deformations[3] + h.dot(theta)) / law.compliance;
   const Eigen::Vector2d moments = k_plain * theta + h * Y;
   r.forces << data.k0(0, 0) * r.chord.elongation, moments, Y;
@@ -85,13 +90,17 @@ ContactResponse contact_response(const ContactElementData& data, const Vector9& 
 }
 
 NodeOnElement node_on_element(const element::InitialChord& initial, const element::SectionStiffness& section,
-                              const element::Vector6& d, double chord_rotation, const Eigen::Vector2d& node_position) {
+                              const element::Vector6& d, double chord_rotation, const Eigen::Vector2d& node_position,
+                              double flexibility_i, double flexibility_j) {
   const element::Chord chord = element::current_chord(initial, d, chord_rotation);
   const Eigen::Vector2d e(chord.cos, chord.sin), n(-chord.sin, chord.cos);
   const Eigen::Vector2d rel = node_position - (initial.start + d.head<2>());
   NodeOnElement out;
   out.alpha = rel.dot(e) / chord.length;
-  const PointLoadLaw law = point_load_law(section, initial.length, out.alpha, 0.25);
+  PointLoadLaw law = point_load_law(section, initial.length, out.alpha, 0.25);
+  if (flexibility_i != 0.0 || flexibility_j != 0.0)  // w from the nodes' rotations through the connections
+    law = connected_law(law, element::basic_stiffness(section, initial.length).bottomRightCorner<2, 2>(), flexibility_i,
+                        flexibility_j).law;
   const double w = -(law.h_i * (d[2] - chord.rotation) + law.h_j * (d[5] - chord.rotation));
   out.gap = rel.dot(n) - w;
   return out;

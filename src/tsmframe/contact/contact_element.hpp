@@ -29,6 +29,10 @@ struct ContactElementData {
   double edge = 1e-2;                 ///< compliance clamp, see point_load_law
   bool sliding_term = true;           ///< include J (∂S/∂α)(∂α/∂x)ᵀ in the tangent
   bool cantilever_frame = false;      ///< FORMULATION §2b's frame instead of the chord (Eq. 6–9)
+  /// How the element's ends are joined to its nodes: 0 rigidly, ∞ by a hinge (a member's
+  /// "release"), 1/k by a rotational spring ("end_springs"); see connected_law. Chord frame only.
+  double flexibility_i = 0.0, flexibility_j = 0.0;
+  bool connected() const { return flexibility_i != 0.0 || flexibility_j != 0.0; }
 };
 
 struct ContactResponse {
@@ -61,6 +65,7 @@ struct NodeOnElement {
 };
 NodeOnElement node_on_element(const element::InitialChord& initial, const element::SectionStiffness& section,
                               const element::Vector6& element_displacements, double chord_rotation,
-                              const Eigen::Vector2d& node_position);
+                              const Eigen::Vector2d& node_position, double flexibility_i = 0.0,
+                              double flexibility_j = 0.0);
 
 }  // namespace tsm::contact

@@ -1,5 +1,6 @@
 #include "tsmframe/contact/contact_force_law.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 
@@ -44,6 +45,45 @@ PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0,
     law.dcompliance = (1.0 - 2.0 * s) * l0 * l0 * (omega + p * (2.0 * p + 3.0 * psi)) / scale;
   }
   return law;
+}
+
+ConnectedLaw connected_law(const PointLoadLaw& law, const Eigen::Matrix2d& k_plain, double flexibility_i,
+                           double flexibility_j) {
+  const double flexibility[2] = {flexibility_i, flexibility_j};
+  Eigen::Vector2d h(law.h_i, law.h_j), dh(law.dh_i, law.dh_j);
+  double c = law.compliance, dc = law.dcompliance;
+  Eigen::Matrix2d k = k_plain;
+  // Hinges, one end at a time (static condensation of M_r = 0 for θ_e,r): h_s −= k_sr h_r / k_rr,
+  // c += h_r² / k_rr, k −= k_·r k_r·ᵀ / k_rr, which leaves row and column r zero.
+  for (int r = 0; r < 2; ++r) {
+    if (!std::isinf(flexibility[r]) || !(k(r, r) > 0.0)) continue;
+    const Eigen::Vector2d column = k.col(r);
+    const double krr = k(r, r);
+    c += h[r] * h[r] / krr;
+    dc += 2.0 * h[r] * dh[r] / krr;
+    h -= column * (h[r] / krr);
+    dh -= column * (dh[r] / krr);
+    k -= column * column.transpose() / krr;
+    h[r] = dh[r] = 0.0;  // exactly, not by cancellation
+  }
+  // Springs on the other ends: θ_node = θ_e + F M gives M = A k θ_node + A h Y, A = (I + k F)⁻¹,
+  // and c' = c + hᵀ F A h (F A is symmetric); d/dα: A dh and dc + 2 (F A h)ᵀ dh.
+  Eigen::Matrix2d F = Eigen::Matrix2d::Zero();
+  for (int r = 0; r < 2; ++r)
+    if (!std::isinf(flexibility[r])) F(r, r) = flexibility[r];
+  ConnectedLaw out;
+  out.law = law;
+  const Eigen::Matrix2d A = (Eigen::Matrix2d::Identity() + k * F).inverse();
+  const Eigen::Vector2d g = A * h, dg = A * dh, Fg = F * g;
+  out.k_plain = A * k;
+  out.k_plain(0, 1) = out.k_plain(1, 0) = 0.5 * (out.k_plain(0, 1) + out.k_plain(1, 0));  // symmetric up to rounding
+  out.law.h_i = g[0];
+  out.law.h_j = g[1];
+  out.law.dh_i = dg[0];
+  out.law.dh_j = dg[1];
+  out.law.compliance = c + h.dot(Fg);
+  out.law.dcompliance = dc + 2.0 * Fg.dot(dh);
+  return out;
 }
 
 double default_edge() { return 1e-2; }

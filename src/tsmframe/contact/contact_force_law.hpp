@@ -33,6 +33,23 @@ struct PointLoadLaw {
 /// node (at b ≈ δ³ l0³/(3Ψ)), unless its shear flexibility Ψ is negligible.
 PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0, double alpha, double edge);
 
+/// The law seen from the nodes' rotations where the beam's ends are connected to its nodes by a
+/// hinge (flexibility ∞) or a rotational spring (flexibility 1/k ≥ 0) instead of rigidly:
+/// with element end rotations θ_e, M = k_plain θ_e + h Y, c Y = δy_c + hᵀ θ_e and, at each end,
+/// M = 0 (hinge) or θ_node = θ_e + f M (spring), the element's own end rotations are condensed
+/// out exactly. The result has the same split form in the nodes' rotations,
+///     M = K' θ_node + h' Y,   c' Y = δy_c + h'ᵀ θ_node,
+/// with K' = (k_plain⁻¹ + F)⁻¹ (the hinged or sprung element's bending block; a hinged end's row
+/// zero), h' the fixed-end moments of a unit point load with the connections in place (zero at a
+/// hinge) and c' ≥ c the point's compliance with the nodes' rotations held — a simply supported
+/// element's a²b²/3EIl0 with both ends hinged (Euler–Bernoulli). Exact, with its α-derivatives.
+struct ConnectedLaw {
+  PointLoadLaw law;                ///< h', c' and their d/dα
+  Eigen::Matrix2d k_plain;         ///< K'
+};
+ConnectedLaw connected_law(const PointLoadLaw& law, const Eigen::Matrix2d& k_plain, double flexibility_i,
+                           double flexibility_j);
+
 /// Default edge δ (README "Contact through element ends").
 double default_edge();
 

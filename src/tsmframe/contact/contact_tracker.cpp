@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace tsm::contact {
 namespace {
@@ -89,12 +90,18 @@ element::SectionStiffness ContactTracker::contact_section(const Spec& spec, int 
   return s;
 }
 
+std::pair<double, double> ContactTracker::end_flexibilities(int element) const {
+  const Element& e = model_.elements[element];
+  return {e.release_start ? INFINITY : model_.flexibility_start(e), e.release_end ? INFINITY : model_.flexibility_end(e)};
+}
+
 NodeOnElement ContactTracker::locate(const Spec& spec, int element, const Eigen::VectorXd& D,
                                      const std::vector<double>& chord_rotations) const {
   const Element& e = model_.elements[element];
   const Eigen::Vector2d position = model_.nodes[spec.node].position + D.segment<2>(dofs_per_node * spec.node);
+  const auto [flexibility_i, flexibility_j] = end_flexibilities(element);
   return node_on_element(initial_[element], contact_section(spec, element), element_displacements(e, D),
-                         chord_rotations[element], position);
+                         chord_rotations[element], position, flexibility_i, flexibility_j);
 }
 
 NodeOnElement ContactTracker::on_chord(const Spec& spec, int element, const Eigen::VectorXd& D) const {
@@ -309,6 +316,7 @@ std::vector<ActiveContact> ContactTracker::active_contacts(const std::vector<Con
     a.data.edge = edge_of(spec);
     a.data.sliding_term = spec.sliding_term;
     a.data.cantilever_frame = spec.cantilever_frame;
+    std::tie(a.data.flexibility_i, a.data.flexibility_j) = end_flexibilities(a.element);
     active.push_back(a);
   };
   for (size_t k = 0; k < specs_.size(); ++k) {

@@ -111,6 +111,9 @@ class ContactTracker {
   void hand_over(const Spec& spec, const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
                  bool release_pulling, ContactState& state, std::vector<char>& occupied, ContactChanges& changes) const;
   element::SectionStiffness contact_section(const Spec& spec, int element) const;
+  /// How the element's ends are joined to its nodes (ContactElementData::flexibility_i, _j):
+  /// ∞ at a hinge, 1/k at an end spring, 0 where rigid.
+  std::pair<double, double> end_flexibilities(int element) const;
   /// The compliance floor's edge δ of a contact (its own, or the default).
   static double edge_of(const Spec& spec);
   /// `pulled`: released because it would pull (else: it left a free end).

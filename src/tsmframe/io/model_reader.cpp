@@ -559,23 +559,27 @@ class Reader {
       std::set<int> holding;
       for (const Element& e : model_.elements)
         if (e.start == spec.node || e.end == spec.node) holding.insert(e.member);
+      // Hinged or sprung members carry contacts in the chord frame (their ends condensed out of
+      // the contact element's law); the cantilever-coordinate element has no such form.
+      const bool cantilever = c.contains("frame") && c["frame"].is_string() && c["frame"].get<std::string>() == "cantilever";
+      const std::set<int> refused = cantilever ? connected_members_ : std::set<int>{};
       if (members.is_string()) {
         if (members.get<std::string>() != "all") fail(mpath, "expected \"all\" or a list of member indices");
-        for (int m = 0; m < model_.member_count; ++m)  // hinged or sprung members carry no contact
-          if (!holding.count(m) && !connected_members_.count(m)) spec.members.push_back(m);
+        for (int m = 0; m < model_.member_count; ++m)
+          if (!holding.count(m) && !refused.count(m)) spec.members.push_back(m);
       } else {
         expect_array(members, mpath);
         for (size_t m = 0; m < members.size(); ++m) {
           const long index = integer(members[m], child(mpath, m));
           if (index < 0 || index >= model_.member_count) fail(child(mpath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
           if (holding.count(static_cast<int>(index))) fail(child(mpath, m), "the contact node belongs to member " + std::to_string(index));
-          if (connected_members_.count(static_cast<int>(index)))
-            fail(child(mpath, m), "member " + std::to_string(index) + " has a moment release or an end spring: contacts on such members are not supported");
+          if (refused.count(static_cast<int>(index)))
+            fail(child(mpath, m), "member " + std::to_string(index) + " has a moment release or an end spring: the cantilever-coordinate contact element does not support such members (the chord frame does)");
           spec.members.push_back(static_cast<int>(index));
         }
       }
       if (spec.members.empty())
-        fail(mpath, connected_members_.empty() ? "no member to touch" : "no member to touch (hinged or sprung members carry no contact)");
+        fail(mpath, refused.empty() ? "no member to touch" : "no member to touch (hinged or sprung members carry no cantilever-coordinate contact)");
       if (c.contains("element")) {
         spec.element = string(c["element"], child(path, "element"));
         if (spec.element != "euler-bernoulli" && spec.element != "timoshenko") fail(child(path, "element"), "unknown element " + quote_text(spec.element) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
