@@ -335,4 +335,30 @@ TEST(ContactOnHinged, APointSlidesThroughAnInnerHinge) {
   EXPECT_TRUE(was_on_ab);
 }
 
+TEST(ContactOnSprung, APushNextToARootSpringCarriesTheCantileversForce) {
+  // A 4 m cantilever clamped through a root spring k = EI/L (4 elements), pushed down by δ = 1 mm
+  // at x = a on its first element (the sprung one): the point goes down P a³/3EI (+ P a/GA_s),
+  // and the root's turn P a/k takes it P a²/k further.
+  const double EI = 2.0e11 * 2.0e-5, GAs = 8.0e10 * 2.0e-3, k = EI / 4.0, push = 1e-3;
+  for (const bool timoshenko : {false, true})
+    for (const double a : {0.5, 0.95}) {
+      json m = gerber_push(a, 0.0, push, timoshenko, 4);
+      m["nodes"] = json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 4.0}, {"y", 0.0}}, {{"id", 9}, {"x", a}, {"y", 1e-3}}});
+      m["members"] = json::array({m["members"][0]});
+      m["members"][0].erase("release");
+      m["members"][0]["end_springs"] = {{"start", k}};
+      m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 9}, {"fix", {"ux", "rz"}}}});
+      tsm::Model model;
+      const RunResult r = run(m, model);
+      ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+      const StepRecord& last = r.steps.back();
+      ASSERT_EQ(last.contacts[0].element, 0);
+      const double expected = push / (a * a * a / (3.0 * EI) + (timoshenko ? a / GAs : 0.0) + a * a / k);
+      EXPECT_NEAR(last.contacts[0].force, expected, 2e-3 * expected) << "a " << a << (timoshenko ? " Timoshenko" : "");
+      // The spring turns by M/k: the root's moment P a, its node held.
+      EXPECT_NEAR(std::abs(last.element_forces[1]), expected * a, 2e-3 * expected * a);
+      expect_global_equilibrium(model, last, 1e-8);
+    }
+}
+
 }  // namespace
