@@ -156,7 +156,21 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
        },
        "supports: structure is a mechanism: the part holding node 1 and the 4 nodes joined to it is free to rotate about (0, 0) "
        "(add a support that stops it); a contact holds it from the start only if its node is drawn at the contact's "
-       "\"gap\" from the beam's centre line, on the side it supports, and the node or the beam is held"},
+       "\"gap\" from the beam's centre line, on the side it supports, and the node or the beam is held (by supports, or "
+       "by a part that is) (contact node 5 lies on the centre line itself with gap 0, so it rests on neither side"},
+      {"block drawn above a beam, its gap 0 (dropped onto it)",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 2.5}, {"y", 0.02}});
+         m["nodes"].push_back({{"id", 6}, {"x", 3.5}, {"y", 0.02}});
+         m["members"].push_back({{"from", 5}, {"to", 6}, {"material", m["members"][0]["material"]}, {"section", m["members"][0]["section"]}});
+         m["supports"].push_back({{"node", 5}, {"fix", {"ux"}}});
+         m["contacts"] = json::array({{{"node", 5}, {"members", {0}}}, {{"node", 6}, {"members", {0}}}});
+       },
+       "supports: structure is a mechanism: the part holding node 5 and the 1 nodes joined to it is free to move along y "
+       "(no support fixes uy); a contact holds it from the start only if its node is drawn at the contact's \"gap\" from "
+       "the beam's centre line, on the side it supports, and the node or the beam is held (by supports, or by a part that "
+       "is) (contact node 5 is drawn 0.02 from the beam's centre line, its gap is 0: a part that only contacts would hold "
+       "cannot fall onto them in a static analysis"},
       {"two contacts resting on one element",
        [](json& m) {
          m["nodes"].push_back({{"id", 5}, {"x", 2.2}, {"y", -0.05}});

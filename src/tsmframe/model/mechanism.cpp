@@ -25,6 +25,33 @@ std::string part_name(const Model& model, const std::vector<int>& members) {
   return os.str();
 }
 
+/// Why a contact from `node`'s side does not rest as drawn, where the reason is plain: its node
+/// lies on a candidate element's centre line itself with no gap (no side), or over an element
+/// but farther from it than its gap (a part held only by contacts cannot fall onto them).
+/// Empty where neither holds (the node is beside every candidate element).
+std::string why_not_resting(const Model& model, const ContactSpec& contact) {
+  const double tolerance = 1e-10 * model.size;
+  std::vector<bool> in_set(model.member_count, false);
+  for (const int m : contact.members) in_set[m] = true;
+  const Eigen::Vector2d x = model.nodes[contact.node].position;
+  double nearest = INFINITY;
+  for (const Element& e : model.elements) {
+    if (!in_set[e.member] || e.start == contact.node || e.end == contact.node) continue;
+    const ChordPlace place = place_on_chord(model.nodes[e.start].position, model.nodes[e.end].position, x);
+    if (place.alpha >= 0.0 && place.alpha <= 1.0) nearest = std::min(nearest, std::abs(place.across));
+  }
+  std::ostringstream os;
+  const int id = model.nodes[contact.node].id;
+  if (nearest <= tolerance && contact.gap <= tolerance)
+    os << " (contact node " << id << " lies on the centre line itself with gap 0, so it rests on neither side: draw it "
+       << "at the beam's surface and give that distance as its \"gap\", e.g. half the two depths)";
+  else if (std::isfinite(nearest) && nearest > contact.gap + tolerance)
+    os << " (contact node " << id << " is drawn " << nearest << " from the beam's centre line, its gap is " << contact.gap
+       << ": a part that only contacts would hold cannot fall onto them in a static analysis — draw it touching, at "
+       << "the gap, or move it there with a prescribed displacement)";
+  return os.str();
+}
+
 }  // namespace
 
 std::optional<std::string> find_mechanism(const Model& model, bool resting_contacts_hold) {
@@ -171,10 +198,25 @@ std::optional<std::string> find_mechanism(const Model& model, bool resting_conta
                     [&](const Element& e) { return contact_member[e.member] && find_root(parent, e.start) == root; }) ||
         std::any_of(model.contacts.begin(), model.contacts.end(),
                     [&](const ContactSpec& c) { return held[c.node] && find_root(parent, c.node) == root; });
-    if (touches_part)
+    if (touches_part) {
       os << "; a contact holds it from the start only if its node is drawn at the contact's \"gap\" from the "
             "beam's centre line, on the side it supports, and the node or the beam is held (by supports, or by a "
             "part that is)";
+      // The first contact from this part's nodes, or onto its members, that plainly does not rest.
+      for (const ContactSpec& c : model.contacts) {
+        std::vector<bool> in_set(model.member_count, false);
+        for (const int m : c.members) in_set[m] = true;
+        const bool on_part = find_root(parent, c.node) == root ||
+                             std::any_of(model.elements.begin(), model.elements.end(), [&](const Element& e) {
+                               return in_set[e.member] && find_root(parent, e.start) == root;
+                             });
+        const std::string why = on_part ? why_not_resting(model, c) : std::string();
+        if (!why.empty()) {
+          os << why;
+          break;
+        }
+      }
+    }
     return os.str();
   }
   return std::nullopt;
