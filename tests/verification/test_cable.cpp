@@ -29,6 +29,20 @@ json straight_cable(double q) {
   };
 }
 
+double lowest_point(const tsm::Model& model, const tsm::solver::StepRecord& step) {
+  double lowest = 0.0;
+  for (int k = 0; k < model.node_count(); ++k) lowest = std::min(lowest, step.displacements[3 * k + 1]);
+  return -lowest;
+}
+
+/// The left pin carries the horizontal pull H and half the weight q·span; the whole is in equilibrium.
+void expect_pins_hold(const tsm::Model& model, const tsm::solver::StepRecord& step, double H, double H_tolerance, double q) {
+  const int left = 3 * model.node_index(1);  // the left pin's (Rx, Ry)
+  EXPECT_NEAR(std::abs(step.reactions[left]), H, H_tolerance * H);
+  EXPECT_NEAR(step.reactions[left + 1], q * span / 2.0, 1e-6 * q * span);
+  expect_global_equilibrium(model, step);
+}
+
 TEST(StraightCable, SagsUnderItsWeightAsTheElasticParabolaInOneStep) {
   // A taut cable of small sag f: the parabola's extra length 8f²/3L equals the stretch HL/EA with
   // H = qL²/8f, so f³ = 3qL⁴/(64 EA); here f/L ≈ 0.7 %, where the parabola holds to ~1e-4.
@@ -40,13 +54,8 @@ TEST(StraightCable, SagsUnderItsWeightAsTheElasticParabolaInOneStep) {
   const double sag = std::cbrt(3.0 * q * std::pow(span, 4) / (64.0 * EA));
   const double H = q * span * span / (8.0 * sag);
   const auto& step = r.steps.back();
-  double lowest = 0.0;
-  for (int k = 0; k < model.node_count(); ++k) lowest = std::min(lowest, step.displacements[3 * k + 1]);
-  EXPECT_NEAR(-lowest, sag, 5e-3 * sag);
-  const int left = 3 * model.node_index(1);  // the left pin's (Rx, Ry)
-  EXPECT_NEAR(std::abs(step.reactions[left]), H, 5e-3 * H);
-  EXPECT_NEAR(step.reactions[left + 1], q * span / 2.0, 1e-6 * q * span);
-  expect_global_equilibrium(model, step);
+  EXPECT_NEAR(lowest_point(model, step), sag, 5e-3 * sag);
+  expect_pins_hold(model, step, H, 5e-3, q);
 }
 
 /// Irvine's elastic catenary (Cable Structures, 1981): a Hookean cable of unstretched length
@@ -70,12 +79,6 @@ Catenary elastic_catenary(double w, double L0, double span_, double ea) {
   return {H, w * L0 * L0 / (8.0 * ea) + H / w * (std::sqrt(1.0 + (V / H) * (V / H)) - 1.0)};
 }
 
-double lowest_point(const tsm::Model& model, const tsm::solver::StepRecord& step) {
-  double lowest = 0.0;
-  for (int k = 0; k < model.node_count(); ++k) lowest = std::min(lowest, step.displacements[3 * k + 1]);
-  return -lowest;
-}
-
 TEST(StraightCable, AMillionTimesItsWeightStretchesItAsTheElasticCatenaryInOneStep) {
   // 8e6 N/m stretches the wire by ~400 %: far past a small-strain law, but it is the model's
   // law, and the elastic catenary follows the same one. The first iterate from the straight
@@ -89,10 +92,7 @@ TEST(StraightCable, AMillionTimesItsWeightStretchesItAsTheElasticCatenaryInOneSt
   const Catenary exact = elastic_catenary(q, span, span, EA);
   const auto& step = r.steps.back();
   EXPECT_NEAR(lowest_point(model, step), exact.sag, 1e-3 * exact.sag);
-  const int left = 3 * model.node_index(1);
-  EXPECT_NEAR(std::abs(step.reactions[left]), exact.H, 1e-3 * exact.H);
-  EXPECT_NEAR(step.reactions[left + 1], q * span / 2.0, 1e-6 * q * span);
-  expect_global_equilibrium(model, step);
+  expect_pins_hold(model, step, exact.H, 1e-3, q);
   // The largest strain is in an end element (half an element from the pin), and said in a note.
   const double end_strain = exact.tension(span / 80.0, q, span) / EA;
   EXPECT_NEAR(step.axial_strain, end_strain, 1e-3 * end_strain);

@@ -281,6 +281,13 @@ std::vector<std::string> jump_notes(const std::vector<StepRecord>& steps) {
   return notes;
 }
 
+/// "step 4", "steps 4 and 9", "6 steps from 4 to 12": the steps a note is about (ascending, ≥ 1).
+void write_steps(std::ostream& os, const std::vector<int>& steps) {
+  if (steps.size() == 1) os << "step " << steps.front();
+  else if (steps.size() == 2) os << "steps " << steps.front() << " and " << steps.back();
+  else os << steps.size() << " steps from " << steps.front() << " to " << steps.back();
+}
+
 /// Steps accepted on round-off because the structure carried next to nothing (a contact let go
 /// and nothing else loads it, or λ is back at zero): their relative residual, up to ~1, is the
 /// ratio of two rounding errors. One note for them all, so that the log's large residuals are
@@ -291,9 +298,7 @@ std::vector<std::string> nothing_carried_notes(const std::vector<StepRecord>& st
     if (s.converged && s.carried_nothing) quiet.push_back(s.step);
   if (quiet.empty()) return {};
   std::ostringstream os;
-  if (quiet.size() == 1) os << "step " << quiet.front();
-  else if (quiet.size() == 2) os << "steps " << quiet.front() << " and " << quiet.back();
-  else os << quiet.size() << " steps from " << quiet.front() << " to " << quiet.back();
+  write_steps(os, quiet);
   os << ": the structure carried next to nothing (its internal forces at rounding level: a contact let go and "
         "nothing else loads it, or the load is zero), so the relative residual there is rounding noise; "
      << (quiet.size() == 1 ? "it was" : "they were") << " accepted on round-off";
@@ -366,18 +371,16 @@ std::vector<std::string> stability_notes(const std::vector<StepRecord>& steps, c
 /// rotations exact, so such results hold for that law, not for a real material (a load in the
 /// wrong units shows up here).
 std::vector<std::string> strain_notes(const Model& model, const std::vector<StepRecord>& steps) {
-  std::vector<const StepRecord*> strained;
+  std::vector<int> strained;
   const StepRecord* largest = nullptr;
   for (const StepRecord& s : steps) {
     if (!s.converged || s.strained_element < 0 || std::abs(s.axial_strain) <= small_strain) continue;
-    strained.push_back(&s);
+    strained.push_back(s.step);
     if (!largest || std::abs(s.axial_strain) > std::abs(largest->axial_strain)) largest = &s;
   }
   if (strained.empty()) return {};
   std::ostringstream os;
-  if (strained.size() == 1) os << "step " << strained.front()->step;
-  else if (strained.size() == 2) os << "steps " << strained.front()->step << " and " << strained.back()->step;
-  else os << strained.size() << " steps from " << strained.front()->step << " to " << strained.back()->step;
+  write_steps(os, strained);
   os << (strained.size() == 1 ? " stretches or shortens" : " stretch or shorten") << " an element by more than "
      << 100.0 * small_strain << " %: the largest axial strain N/EA is " << 100.0 * largest->axial_strain << " % ("
      << (largest->axial_strain > 0.0 ? "tension" : "compression") << ", element "

@@ -95,9 +95,10 @@ NewtonSolver::NewtonSolver(assembly::GlobalSystem& system, const NewtonSettings&
   }
   solver_.analyze(system.dofs(), system.tangent());
   analysed_pattern_ = system.pattern_version();
-  shortest_element_ = model.elements.empty() ? 0.0 : std::numeric_limits<double>::infinity();
+  double shortest = model.elements.empty() ? 0.0 : std::numeric_limits<double>::infinity();
   for (const Element& e : model.elements)
-    shortest_element_ = std::min(shortest_element_, (model.nodes[e.end].position - model.nodes[e.start].position).norm());
+    shortest = std::min(shortest, (model.nodes[e.end].position - model.nodes[e.start].position).norm());
+  resolvable_move_ = chord_resolution * shortest / std::numeric_limits<double>::epsilon();
 }
 
 bool NewtonSolver::evaluate(State& state, bool contacts_only) {
@@ -696,8 +697,8 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
       start_scale.moment = std::max(start_scale.moment, pass.scale.moment);
     }
     const double blow_up = relative_norm(pass.norms, start_scale);
-    const double runaway = std::max(runaway_ratio * (model.size + std::abs(state.load_factor) * prescribed_size),
-                                    chord_resolution * shortest_element_ / std::numeric_limits<double>::epsilon());
+    const double runaway =
+        std::max(runaway_ratio * (model.size + std::abs(state.load_factor) * prescribed_size), resolvable_move_);
     if (blow_up > blow_up_ratio || largest[0] > runaway) {
       out.status = Status::diverged;
       out.message = iterate_text("the unbalanced force blew up", it);

@@ -174,7 +174,9 @@ class NewtonSolver {
   std::vector<unsigned char> is_moment_;  ///< per free equation: 1 for a rotation dof (cheaper than dof % 3 in the hot passes)
   std::vector<int> constrained_dofs_;
   double prescribed_squared_ = 0.0;  ///< ‖D_p,ref‖² over prescribed translations
-  double shortest_element_ = 0.0;    ///< the shortest element's initial length l0
+  /// How far an iterate may move with every element's chord still resolved to chord_resolution
+  /// (newton.cpp): the shortest l0 over that fraction of ε; 0 without elements.
+  double resolvable_move_ = 0.0;
   int analysed_pattern_ = -1;        ///< pattern version the linear solver has analysed
 };
 
