@@ -280,6 +280,56 @@ TEST(ContactResting, PushedThroughBetweenTheEdgesTheLoadPassesAMaximumThatArcLen
   EXPECT_NE(off.message.find("has slid off the beam's end: nothing else supports it"), std::string::npos) << off.message;
 }
 
+TEST(ContactResting, ACantileverPressedOntoACantileverSlidesOffAtAMaximumThatLoadControlNames) {
+  // Two overlapping cantilevers of 2 m (EB, 20 elements each): the lower clamped at (0, 0), the
+  // upper at (3, 0.05) with its free tip at (1, 0.05), pushed down by 6 MN in 20 steps; each tip
+  // may touch the other beam. The upper tip lands on the lower beam and slides along it towards
+  // its free end as both bend: the load has a maximum (~157 kN), past which the tip slides on
+  // under a falling load. (Without the lower tip's contact, load control jumps across the
+  // maximum to the upper beam hanging past the lower's end.) Load control reached it
+  // with its steps cut back to the smallest size, grown again, and failed there with no halving
+  // left in that attempt — which the run did not name as a limit point (it required halvings in
+  // the failing attempt itself). Arc-length control passes the maximum.
+  json m = {{"materials", {{"steel", {{"E", 2.05e11}, {"nu", 0.3}}}}},
+            {"sections", {{"bar", {{"A", 1e-3}, {"I", 1e-6}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 2.0}, {"y", 0.0}},
+                                   {{"id", 3}, {"x", 3.0}, {"y", 0.05}}, {{"id", 4}, {"x", 1.0}, {"y", 0.05}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 3}, {"type", "fixed"}}})},
+            {"loads", json::array({{{"node", 4}, {"fy", -6e6}}})},
+            {"contacts", json::array({{{"node", 4}, {"members", {0}}}, {{"node", 2}, {"members", {1}}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 20}}}}}};
+  const auto member = [](int from, int to) {
+    return json{{"from", from}, {"to", to}, {"divisions", 20}, {"element", "euler-bernoulli"}, {"material", "steel"}, {"section", "bar"}};
+  };
+  m["members"] = json::array({member(1, 2), member(3, 4)});
+  tsm::Model model;
+  const RunResult loaded = run(m, model);
+  ASSERT_EQ(loaded.status, tsm::solver::Status::cutback_limit) << loaded.message;
+  EXPECT_NE(loaded.message.find("a step already the smallest cutback allows (1/2^10 of a nominal step)"), std::string::npos)
+      << loaded.message;
+  EXPECT_NE(loaded.message.find("the load seems to have reached a maximum (a limit point"), std::string::npos)
+      << loaded.message;
+  EXPECT_NE(loaded.steps.back().message.find("use arc-length control"), std::string::npos) << "the failed step says it too";
+  double largest = 0.0;
+  for (const StepRecord& s : loaded.steps)
+    if (s.converged) largest = std::max(largest, s.load_factor);
+
+  m["analysis"]["control"] = {{"type", "arc-length"}, {"initial_increment", 0.02}, {"max_steps", 200},
+                              {"until", {{"node", 4}, {"dof", "uy"}, {"value", -0.7}}}};
+  const RunResult arc = run(m, model);
+  ASSERT_EQ(arc.status, tsm::solver::Status::converged) << arc.message;
+  ASSERT_FALSE(arc.limit_points.empty());
+  EXPECT_TRUE(arc.limit_points[0].maximum);
+  // Load control stops within its smallest step (1/20480 of 6 MN) below the maximum, which the
+  // arc-length path brackets between its steps.
+  EXPECT_LE(largest, arc.limit_points[0].load_factor * (1.0 + 1e-4));
+  EXPECT_NEAR(largest, arc.limit_points[0].load_factor, 2e-3 * arc.limit_points[0].load_factor);
+  EXPECT_LT(arc.steps.back().load_factor, 0.9 * arc.limit_points[0].load_factor);  // past it, going down
+  const tsm::solver::ContactPoint& end = contact_of(arc.steps.back());
+  EXPECT_GT(end.element, 12) << "slid along the lower beam, across element ends";
+  expect_equilibrium(model, arc.steps.back());
+}
+
 TEST(ContactResting, ACantileverTipRestingOnABeamSharesTheLoadAsTwoSpringsInSeries) {
   // A cantilever (5.1 m) whose tip is drawn at the gap (0.1 m) above a simply supported beam
   // (span 6 m, the tip 3.1 m from its pin), tip load P in one step: the two members act as

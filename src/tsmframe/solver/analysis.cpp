@@ -588,16 +588,27 @@ RunResult run_stepped(const Model& model, const assembly::DofMap& dofs, NewtonSo
         return c.active && std::min(c.alpha, 1.0 - c.alpha) < contact_at_element_end;
       });
     };
-    const bool limit_point = !by_displacement && halvings > 0 && failed.start_negative_pivots == 0 &&
+    // Cut back: halved in this attempt, or already at the smallest size since an earlier failure
+    // (its halvings count restarts once a step converges).
+    const bool cut_back = halvings > 0 || dt < nominal * (1.0 - 1e-9);
+    const bool limit_point = !by_displacement && cut_back && failed.start_negative_pivots == 0 &&
                              failed.most_negative_pivots > 0 && first_stiffness > 0.0 &&
                              newest_stiffness < limit_point_stiffness * first_stiffness && !at_element_end();
+    std::string why;
     if (limit_point)
-      failed.message += "; the load seems to have reached a maximum (a limit point: the current stiffness |Δλ|/‖ΔD‖ is down to " +
-                        format_ratio(newest_stiffness / first_stiffness) +
-                        " of the first step's, and the tangent lost its positive definiteness within the step), "
-                        "which load control cannot pass: use arc-length control";
+      why = "; the load seems to have reached a maximum (a limit point: the current stiffness |Δλ|/‖ΔD‖ is down to " +
+            format_ratio(newest_stiffness / first_stiffness) +
+            " of the first step's, and the tangent lost its positive definiteness within the step), "
+            "which load control cannot pass: use arc-length control";
     result.message = failure_text(record.step, from, to, by_displacement ? "controlled displacement" : "load factor",
                                   failed, halvings);
+    // Cutback could not halve it again: the step was already the smallest max_cutbacks allows
+    // since an earlier failure (the halvings count restarts once a step converges).
+    if (settings.cutback && halvings == 0 && dt / 2.0 < smallest * (1.0 - 1e-12))
+      result.message += ", a step already the smallest cutback allows (1/2^" + std::to_string(settings.max_cutbacks) +
+                        " of a nominal step)";
+    result.message += why;
+    failed.message += why;
     // Cutback used all its halvings in a row (not a step already at its smallest after growing
     // again): a smaller step may pass — a straight cable's first iterate, from EI alone,
     // overshoots in proportion to the load.
