@@ -674,6 +674,41 @@ TEST_P(ContactOnANode, ALargePushOnABeamNodeStaysSymmetric) {
 
 INSTANTIATE_TEST_SUITE_P(Kinds, ContactOnANode, ::testing::Values("euler-bernoulli", "timoshenko"));
 
+TEST(ContactOnANode, AContactAtANodeOfAFarStifferMemberNamesWhatMakesItTooStiffToResolve) {
+  // A post (A 1e-3, 0.5 m, clamped at its top) whose foot rests at the gap on the middle node of
+  // a slab clamped at both ends (2 m, 20 elements, I = 1 m⁴: 10⁷ × the post's), 10 kN on the
+  // foot. At a beam node the contact's compliance is the floor the contact's `edge` sets, on the
+  // slab's EI: 1/c ≈ 6e20, so rounding of the coordinates alone leaves ~10⁴ N in its force —
+  // unresolvable. The run said only that the loads were too small (found squeezing a ring between
+  // stiff plates); it now names the contact, its stiffness and the edge. With edge 0.1 the floor
+  // is 10⁶ × softer and the contact carries what the two springs in series give: the slab's
+  // 192EI/L³ against the post's EA/L.
+  json m = {{"materials", {{"steel", {{"E", 2e11}, {"nu", 0.3}}}}},
+            {"sections", {{"post", {{"A", 1e-3}, {"I", 1e-7}}}, {"slab", {{"A", 0.1}, {"I", 1.0}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 2.0}, {"y", 0.0}},
+                                   {{"id", 3}, {"x", 1.0}, {"y", 0.51}}, {{"id", 4}, {"x", 1.0}, {"y", 0.01}}})},
+            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 20}, {"material", "steel"}, {"section", "slab"}},
+                                     {{"from", 3}, {"to", 4}, {"divisions", 5}, {"material", "steel"}, {"section", "post"}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 2}, {"type", "fixed"}},
+                                      {{"node", 3}, {"type", "fixed"}}})},
+            {"loads", json::array({{{"node", 4}, {"fy", -1e4}}})},
+            {"contacts", json::array({{{"node", 4}, {"members", {0}}, {"gap", 0.01}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 1}}}}}};
+  tsm::Model model;
+  const RunResult stiff = run(m, model);
+  ASSERT_NE(stiff.status, tsm::solver::Status::converged);
+  EXPECT_NE(stiff.message.find("most of that rounding is in the force of the contact at node 4"), std::string::npos)
+      << stiff.message;
+  EXPECT_NE(stiff.message.find("the point is at a beam node, where the contact's \"edge\" sets that compliance"),
+            std::string::npos)
+      << stiff.message;
+  m["contacts"][0]["edge"] = 0.1;
+  const RunResult softened = run(m, model);
+  ASSERT_EQ(softened.status, tsm::solver::Status::converged) << softened.message;
+  const double k_slab = 192.0 * 2e11 * 1.0 / 8.0, k_post = 2e11 * 1e-3 / 0.5, P = 1e4;
+  EXPECT_NEAR(contact_of(softened.steps.back()).force, P * k_slab / (k_slab + k_post), 1e-4 * P);
+}
+
 TEST(ContactOnANode, AStiffContactAtANodeOfShortElementsIsNotAcceptedUnconverged) {
   // examples/contact-push.json's cantilever with 10,000 elements (0.9 mm): the pusher starts on
   // a beam node, pushed 5 mm in one step. Held at that node by both elements, the contact is so

@@ -539,6 +539,7 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
     force += f;
     moment += m;
   }
+  RoundingFloor floor;
   for (const contact::ActiveContact& a : contacts) {
     // The beam part as for the plain element, plus Y's: the error of δy_c − w (about ε times the
     // coordinates involved) divided by the compliance.
@@ -554,8 +555,16 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
     const double m_floor = f.moment + std::max(std::abs(law.h_i), std::abs(law.h_j)) * y_floor;
     force += 4.0 * f.force * f.force + 6.0 * y_floor * y_floor;
     moment += 2.0 * m_floor * m_floor;
+    if (y_floor > floor.contact_force) {
+      floor.contact_node = a.node;
+      floor.contact_force = y_floor;
+      floor.compliance = law.compliance;
+      floor.at_edge = law.compliance <= contact::point_load_law(a.data.section, a.data.initial.length, 0.0, a.data.edge).compliance * (1.0 + 1e-12);
+    }
   }
-  return {std::sqrt(force), std::sqrt(moment)};
+  floor.force = std::sqrt(force);
+  floor.moment = std::sqrt(moment);
+  return floor;
 }
 
 void GlobalSystem::mask_constrained_dofs() {

@@ -46,6 +46,13 @@ struct Evaluation {
 struct RoundingFloor {
   double force = 0.0;
   double moment = 0.0;
+  /// The active contact whose force Y rounds the most (its contact node; −1 where none is
+  /// active): ±`contact_force`, its compliance `compliance` at the point, `at_edge` where that is
+  /// the compliance floor near a beam node (the contact's `edge`).
+  int contact_node = -1;
+  double contact_force = 0.0;
+  double compliance = 0.0;
+  bool at_edge = false;
 };
 
 class GlobalSystem {

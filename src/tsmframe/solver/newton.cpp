@@ -354,9 +354,11 @@ void NewtonSolver::free_displacements(const State& state, Eigen::VectorXd& v) co
 }
 
 bool NewtonSolver::within_floor(const std::array<double, 2>& norms, const State& state) const {
+  return within_floor(norms, system_.rounding_floor(state.displacements, state.chord_rotations, active_contacts(state)));
+}
+
+bool NewtonSolver::within_floor(const std::array<double, 2>& norms, const assembly::RoundingFloor& floor) {
   const auto [force, moment] = norms;
-  const std::vector<contact::ActiveContact> active = active_contacts(state);
-  const assembly::RoundingFloor floor = system_.rounding_floor(state.displacements, state.chord_rotations, active);
   return force <= floor_ratio * floor.force && moment <= floor_ratio * floor.moment;
 }
 
@@ -625,7 +627,8 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
         // runs paid 8 % for it). A structure that carries nothing (unloaded again) is accepted on
         // round-off once its corrections are: the case above, not this one.
         resolution_checked = true;
-        if (within_floor(pass.norms, state) && !carries_nothing(pass.scale, state)) {
+        const assembly::RoundingFloor floor = system_.rounding_floor(state.displacements, state.chord_rotations, active_contacts(state));
+        if (within_floor(pass.norms, floor) && !carries_nothing(pass.scale, state)) {
           out.status = Status::diverged;
           out.loads_unresolvable = true;
           std::ostringstream os;
@@ -633,6 +636,18 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
              << relative << "): the loads are too small against what rounding leaves in this model's forces to be "
              << "resolved (a larger load, in proportion, is)";
           out.message = iterate_text(os.str().c_str(), it);
+          // Most of that rounding in one contact's force: say which, and what makes it so stiff.
+          if (floor.contact_node >= 0 && 6.0 * floor.contact_force * floor.contact_force >= 0.5 * floor.force * floor.force) {
+            std::ostringstream contact;
+            contact << "; most of that rounding is in the force of the contact at node " << model.nodes[floor.contact_node].id
+                    << " (±" << floor.contact_force << "), as stiff as the element it touches is at its point (1/c = "
+                    << 1.0 / floor.compliance << "; a member far stiffer than what presses on it makes it so: 100× "
+                    << "worked in our tests)";
+            if (floor.at_edge)
+              contact << ": the point is at a beam node, where the contact's \"edge\" sets that compliance (a larger "
+                         "edge, 0.1 say, softens it)";
+            out.message += contact.str();
+          }
           return out;
         }
       }

@@ -145,6 +145,7 @@ class NewtonSolver {
   std::array<double, 2> largest_displacements(const State& state, std::array<double, 2> free) const;
   /// ‖R‖ per kind within a small multiple of the rounding floor of the internal forces.
   bool within_floor(const std::array<double, 2>& residual_norms, const State& state) const;
+  static bool within_floor(const std::array<double, 2>& residual_norms, const assembly::RoundingFloor& floor);
   /// Whether the structure carries no force above rounding: both kinds' scales within the floor
   /// ratio × the plain elements' rounding floor (contacts left out: a stiff contact's floor can
   /// dwarf the force it carries).
