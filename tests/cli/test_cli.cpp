@@ -205,6 +205,32 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
          m["contacts"] = json::array({{{"node", 5}, {"members", "all"}}, {{"node", 5}, {"members", {0}}}});
        },
        "contacts[1].node: this node already has a contact entry"},
+      {"contact node and nodes both",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});
+         m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
+         m["contacts"] = json::array({{{"node", 5}, {"nodes", {5}}, {"members", "all"}}});
+       },
+       "contacts[0].nodes: give either node or nodes, not both"},
+      {"contact nodes of a missing member",
+       [](json& m) { m["contacts"] = json::array({{{"nodes", {{"members", {4}}}}, {"members", "all"}}}); },
+       "contacts[0].nodes.members[0]: unknown member 4"},
+      {"contact nodes: one of them on a member it touches",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});
+         m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
+         m["contacts"] = json::array({{{"nodes", {5, 2}}, {"members", {0}}}});
+       },
+       "contacts[0].members[0]: the contact node 2 belongs to member 0"},
+      {"contact nodes: one listed twice",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});
+         m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
+         m["contacts"] = json::array({{{"nodes", {5, {1.0, -0.1}}}, {"members", "all"}}});
+       },
+       "contacts[0].nodes[1]: node 5 already has a contact entry"},
+      {"contact nodes empty", [](json& m) { m["contacts"] = json::array({{{"nodes", json::array()}, {"members", "all"}}}); },
+       "contacts[0].nodes: no node listed"},
       {"load path standing still", [](json& m) { m["analysis"]["control"]["path"] = {1.0, 1.0}; }, "analysis.control.path[1]: repeats the load factor"},
       {"arc-length without max_steps",
        [](json& m) { m["analysis"]["control"] = {{"type", "arc-length"}, {"initial_increment", 0.1}}; },

@@ -550,67 +550,107 @@ class Reader {
       const std::string path = child("contacts", k);
       const json& c = contacts[k];
       expect_object(c, path);
-      check_keys(c, path, {"node", "members", "element", "frame", "gap", "edge", "sliding_tangent"});
-      ContactSpec spec;
-      spec.node = required_node(c, path);
-      if (!c.contains("members")) fail(child(path, "members"), "missing (required)");
-      const json& members = c["members"];
-      const std::string mpath = child(path, "members");
-      std::set<int> holding;
-      for (const Element& e : model_.elements)
-        if (e.start == spec.node || e.end == spec.node) holding.insert(e.member);
-      // Hinged or sprung members carry contacts in the chord frame (their ends condensed out of
-      // the contact element's law); the cantilever-coordinate element has no such form.
-      const bool cantilever = c.contains("frame") && c["frame"].is_string() && c["frame"].get<std::string>() == "cantilever";
-      const std::set<int> refused = cantilever ? connected_members_ : std::set<int>{};
-      if (members.is_string()) {
-        if (members.get<std::string>() != "all") fail(mpath, "expected \"all\" or a list of member indices");
-        for (int m = 0; m < model_.member_count; ++m)
-          if (!holding.count(m) && !refused.count(m)) spec.members.push_back(m);
-      } else {
-        expect_array(members, mpath);
-        for (size_t m = 0; m < members.size(); ++m) {
-          const long index = integer(members[m], child(mpath, m));
-          if (index < 0 || index >= model_.member_count) fail(child(mpath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
-          if (holding.count(static_cast<int>(index))) fail(child(mpath, m), "the contact node belongs to member " + std::to_string(index));
-          if (refused.count(static_cast<int>(index)))
-            fail(child(mpath, m), "member " + std::to_string(index) + " has a moment release or an end spring: the cantilever-coordinate contact element does not support such members (the chord frame does)");
-          spec.members.push_back(static_cast<int>(index));
-        }
+      check_keys(c, path, {"node", "nodes", "members", "element", "frame", "gap", "edge", "sliding_tangent"});
+      if (c.contains("node") && c.contains("nodes")) fail(child(path, "nodes"), "give either node or nodes, not both");
+      if (!c.contains("nodes")) {
+        read_contact(c, path, required_node(c, path), child(path, "node"), false);
+        continue;
       }
-      if (spec.members.empty())
-        fail(mpath, refused.empty() ? "no member to touch" : "no member to touch (hinged or sprung members carry no cantilever-coordinate contact)");
-      if (c.contains("element")) {
-        spec.element = string(c["element"], child(path, "element"));
-        if (spec.element != "euler-bernoulli" && spec.element != "timoshenko") fail(child(path, "element"), "unknown element " + quote_text(spec.element) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
-        if (spec.element == "timoshenko") {
-          spec.member_shear_flexibility.assign(model_.member_count, 0.0);
-          for (int m : spec.members) {
-            try {
-              spec.member_shear_flexibility[m] = section_stiffness(doc_["members"][m], child("members", m), BeamTheory::timoshenko).shear_flexibility;
-            } catch (const InputError& e) {
-              fail(child(path, "element"), "a Timoshenko contact on member " + std::to_string(m) + " needs its shear data: " + e.reason());
-            }
+      // Several contact nodes with the same options: a list of node references, or every node
+      // of some members ({"members": [...]}: a ring's nodes against a plate), each a contact of
+      // its own.
+      const std::string npath = child(path, "nodes");
+      const json& nodes = c["nodes"];
+      std::vector<std::pair<int, std::string>> listed;  // (node, where it was named)
+      if (nodes.is_object()) {
+        check_keys(nodes, npath, {"members"});
+        if (!nodes.contains("members")) fail(child(npath, "members"), "missing (required)");
+        const std::string mpath = child(npath, "members");
+        expect_array(nodes["members"], mpath);
+        std::set<int> seen;
+        for (size_t m = 0; m < nodes["members"].size(); ++m) {
+          const long index = integer(nodes["members"][m], child(mpath, m));
+          if (index < 0 || index >= model_.member_count) fail(child(mpath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
+          for (const Element& e : model_.elements)
+            if (e.member == index)
+              for (const int node : {e.start, e.end})
+                if (seen.insert(node).second) listed.emplace_back(node, child(mpath, m));
+        }
+      } else {
+        expect_array(nodes, npath);
+        for (size_t j = 0; j < nodes.size(); ++j) listed.emplace_back(node_ref(nodes[j], child(npath, j)), child(npath, j));
+      }
+      if (listed.empty()) fail(npath, "no node listed");
+      for (const auto& [node, where] : listed) read_contact(c, path, node, where, true);
+    }
+  }
+
+  /// One contact entry's options for the contact node `node`, named at `node_path` (`named`: one
+  /// of several nodes of the entry, whose id the messages then give).
+  void read_contact(const json& c, const std::string& path, int node, const std::string& node_path, bool named) {
+    ContactSpec spec;
+    spec.node = node;
+    const std::string which = named ? "the contact node " + std::to_string(model_.nodes[node].id) : "the contact node";
+    if (!c.contains("members")) fail(child(path, "members"), "missing (required)");
+    const json& members = c["members"];
+    const std::string mpath = child(path, "members");
+    std::set<int> holding;
+    for (const Element& e : model_.elements)
+      if (e.start == spec.node || e.end == spec.node) holding.insert(e.member);
+    // Hinged or sprung members carry contacts in the chord frame (their ends condensed out of
+    // the contact element's law); the cantilever-coordinate element has no such form.
+    const bool cantilever = c.contains("frame") && c["frame"].is_string() && c["frame"].get<std::string>() == "cantilever";
+    const std::set<int> refused = cantilever ? connected_members_ : std::set<int>{};
+    if (members.is_string()) {
+      if (members.get<std::string>() != "all") fail(mpath, "expected \"all\" or a list of member indices");
+      for (int m = 0; m < model_.member_count; ++m)
+        if (!holding.count(m) && !refused.count(m)) spec.members.push_back(m);
+    } else {
+      expect_array(members, mpath);
+      for (size_t m = 0; m < members.size(); ++m) {
+        const long index = integer(members[m], child(mpath, m));
+        if (index < 0 || index >= model_.member_count) fail(child(mpath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
+        if (holding.count(static_cast<int>(index))) fail(child(mpath, m), which + " belongs to member " + std::to_string(index));
+        if (refused.count(static_cast<int>(index)))
+          fail(child(mpath, m), "member " + std::to_string(index) + " has a moment release or an end spring: the cantilever-coordinate contact element does not support such members (the chord frame does)");
+        spec.members.push_back(static_cast<int>(index));
+      }
+    }
+    if (spec.members.empty())
+      fail(mpath, (named ? "no member for " + which + " to touch" : std::string("no member to touch")) +
+                      (refused.empty() ? "" : " (hinged or sprung members carry no cantilever-coordinate contact)"));
+    if (c.contains("element")) {
+      spec.element = string(c["element"], child(path, "element"));
+      if (spec.element != "euler-bernoulli" && spec.element != "timoshenko") fail(child(path, "element"), "unknown element " + quote_text(spec.element) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
+      if (spec.element == "timoshenko") {
+        spec.member_shear_flexibility.assign(model_.member_count, 0.0);
+        for (int m : spec.members) {
+          try {
+            spec.member_shear_flexibility[m] = section_stiffness(doc_["members"][m], child("members", m), BeamTheory::timoshenko).shear_flexibility;
+          } catch (const InputError& e) {
+            fail(child(path, "element"), "a Timoshenko contact on member " + std::to_string(m) + " needs its shear data: " + e.reason());
           }
         }
       }
-      if (c.contains("frame")) {
-        spec.frame = string(c["frame"], child(path, "frame"));
-        if (spec.frame != "chord" && spec.frame != "cantilever") fail(child(path, "frame"), "unknown frame " + quote_text(spec.frame) + " (expected \"chord\" or \"cantilever\")");
-      }
-      if (auto edge = optional_number(c, "edge", path)) {
-        if (!(*edge >= 1e-12 && *edge <= 0.25)) fail(child(path, "edge"), "must lie between 1e-12 and 0.25 (a fraction of the element length)");
-        spec.edge = *edge;
-      }
-      if (c.contains("sliding_tangent")) spec.sliding_tangent = boolean(c["sliding_tangent"], child(path, "sliding_tangent"));
-      if (auto gap = optional_number(c, "gap", path)) {
-        if (*gap < 0.0) fail(child(path, "gap"), "must not be negative");
-        spec.gap = *gap;
-      }
-      for (const ContactSpec& other : model_.contacts)
-        if (other.node == spec.node) fail(child(path, "node"), "this node already has a contact entry: list all its members in one entry");
-      model_.contacts.push_back(spec);
     }
+    if (c.contains("frame")) {
+      spec.frame = string(c["frame"], child(path, "frame"));
+      if (spec.frame != "chord" && spec.frame != "cantilever") fail(child(path, "frame"), "unknown frame " + quote_text(spec.frame) + " (expected \"chord\" or \"cantilever\")");
+    }
+    if (auto edge = optional_number(c, "edge", path)) {
+      if (!(*edge >= 1e-12 && *edge <= 0.25)) fail(child(path, "edge"), "must lie between 1e-12 and 0.25 (a fraction of the element length)");
+      spec.edge = *edge;
+    }
+    if (c.contains("sliding_tangent")) spec.sliding_tangent = boolean(c["sliding_tangent"], child(path, "sliding_tangent"));
+    if (auto gap = optional_number(c, "gap", path)) {
+      if (*gap < 0.0) fail(child(path, "gap"), "must not be negative");
+      spec.gap = *gap;
+    }
+    for (const ContactSpec& other : model_.contacts)
+      if (other.node == spec.node)
+        fail(node_path, (named ? "node " + std::to_string(model_.nodes[node].id) + " already has" : std::string("this node already has")) +
+                            " a contact entry: list all its members in one entry");
+    model_.contacts.push_back(spec);
   }
 
   void read_analysis() {
