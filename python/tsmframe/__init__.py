@@ -107,9 +107,16 @@ class Model:
         self._doc["prescribed"].append({"node": _ref(node), **dofs})
         return self
 
-    def contact(self, node, members="all", **options):
-        """A contact node; options: element, gap, edge, sliding_tangent (FORMAT.md, README)."""
-        self._doc["contacts"].append({"node": _ref(node), "members": members, **options})
+    def contact(self, node=None, members="all", nodes=None, **options):
+        """A contact node, or several with the same options: nodes=[refs] or nodes={"members": [i, …]}
+        (every node of those members); options: element, frame, gap, edge, sliding_tangent (FORMAT.md, README)."""
+        if (node is None) == (nodes is None):
+            raise ValueError("contact: give node or nodes (not both)")
+        if node is not None:
+            self._doc["contacts"].append({"node": _ref(node), "members": members, **options})
+        else:
+            listed = nodes if isinstance(nodes, dict) else [_ref(n) for n in nodes]
+            self._doc["contacts"].append({"nodes": listed, "members": members, **options})
         return self
 
     def analysis(self, control=None, steps=None, **settings):

@@ -59,6 +59,34 @@ def test_a_vertex_names_both_elements():
     assert r.contact_also[-1, 0] == r.contact_element[-1, 0] + 1
 
 
+def test_one_contact_entry_for_many_nodes():
+    # A ring of 20 elements squeezed 1 cm between two plates: nodes={"members": [0, 1]} makes
+    # every ring node a contact node on both plates, one column each in the contact arrays; the
+    # bottom and top nodes (resting on the plates from the start) carry the same force. A node
+    # list gives the same run; node and nodes together are refused.
+    import math
+    def ring(nodes):
+        m = tf.Model("ring").material("steel", E=2e11, nu=0.3).section("ring", A=1e-3, I=1e-7).section("plate", A=0.1, I=1e-4)
+        m.node(1, 0, -1).node(2, 0, 1).node(101, -1.5, -1.01).node(102, 1.5, -1.01).node(103, -1.5, 1.01).node(104, 1.5, 1.01)
+        m.member(1, 2, "steel", "ring", divisions=10, arc=(0, 0, math.pi)).member(2, 1, "steel", "ring", divisions=10, arc=(0, 0, math.pi))
+        m.member(101, 102, "steel", "plate", divisions=30).member(103, 104, "steel", "plate", divisions=30)
+        for n in (101, 102, 103, 104):
+            m.support(n, "fixed")
+        m.support(1, fix=["ux"]).support(2, fix=["ux"]).prescribe(103, uy=-0.01).prescribe(104, uy=-0.01)
+        m.contact(nodes=nodes, members=[2, 3], gap=0.01, edge=0.1).analysis(steps=2)
+        return tf.run(m)
+    r = ring({"members": [0, 1]})
+    assert r.ok, r.message
+    assert r.contact_force.shape[1] == 20
+    touching = [k for k in range(20) if r.contact_element[-1, k] > 0]  # element id, 0 where none
+    assert len(touching) == 2
+    assert r.contact_force[-1, touching[0]] == pytest.approx(r.contact_force[-1, touching[1]], rel=1e-6)
+    listed = ring([1, 2] + list(range(105, 123)))
+    assert listed.results_json == r.results_json
+    with pytest.raises(ValueError, match="give node or nodes"):
+        tf.Model().contact(1, nodes=[2])
+
+
 def test_bad_model_raises_value_error_with_the_path():
     doc = tf.load(os.path.join(SOURCE, "examples", "portal-frame.json")).to_dict()
     doc["members"][1]["section"] = "nope"
