@@ -108,6 +108,87 @@ TEST_F(Study, BadStudyInputExitsTwoWithThePath) {
   }
 }
 
+TEST_F(Study, RecordedQuantitiesAreColumnsOfEveryCase) {
+  // A cantilever (EI = 1, L = 1) under a tip load of 1e-4, loaded and unloaded (a load path 1 → 0,
+  // 4 steps a leg), meshed with 2, 5 and 10 elements: the tip named by its coordinates (its id
+  // changes with the mesh) deflects PL³/3EI at the peak — an Euler–Bernoulli mesh is exact at its
+  // nodes for a tip load, to the 1e-4 geometric effect — and is back at 0 at the end; the clamp's
+  // reaction balances the load (to the tolerance); λ peaks at 1.
+  json m = cantilever();
+  m["loads"][0]["fy"] = 1e-4;
+  m["analysis"]["control"] = {{"type", "load"}, {"steps", 4}, {"path", {1.0, 0.0}}};
+  json s = {{"model", m},
+            {"sweep", json::array({{{"name", "divisions"}, {"path", "/members/0/divisions"}, {"values", {2, 5, 10}}}})},
+            {"record", json::array({{{"name", "tip_uy_max"}, {"quantity", "displacement"}, {"node", {1.0, 0.0}}, {"dof", "uy"}, {"of", "max"}},
+                                    {{"name", "tip_uy"}, {"quantity", "displacement"}, {"node", {1.0, 0.0}}, {"dof", "uy"}},
+                                    {{"name", "clamp_Ry_min"}, {"quantity", "reaction"}, {"node", 1}, {"dof", "uy"}, {"of", "min"}},
+                                    {{"name", "peak"}, {"quantity", "load_factor"}, {"of", "max"}}})}};
+  const Outcome o = run_cli("study " + write("study.json", s) + " --out " + (dir_ / "out").string() + " -q");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const json r = read_json(dir_ / "out" / "study.json");
+  ASSERT_EQ(r["cases"].size(), 3u);
+  for (const json& c : r["cases"]) {
+    EXPECT_NEAR(c["tip_uy_max"].get<double>(), 1e-4 / 3.0, 1e-4 * 1e-4 / 3.0) << c.dump();
+    EXPECT_NEAR(c["tip_uy"].get<double>(), 0.0, 1e-12) << c.dump();
+    EXPECT_NEAR(c["clamp_Ry_min"].get<double>(), -1e-4, 1e-11) << c.dump();
+    EXPECT_EQ(c["peak"].get<double>(), 1.0) << c.dump();
+  }
+  std::ifstream csv(dir_ / "out" / "study.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",tip_uy_max,tip_uy,clamp_Ry_min,peak,message"), std::string::npos) << header;
+}
+
+TEST_F(Study, ARecordThatACaseCannotGiveIsABadInputRow) {
+  // The tip at x = 1 exists in every mesh; x = 0.5 only where the mesh has a node there; a free
+  // dof has no reaction; a node that is no contact node has no contact force.
+  json s = {{"model", cantilever()},
+            {"sweep", json::array({{{"name", "divisions"}, {"path", "/members/0/divisions"}, {"values", {2, 3}}}})},
+            {"record", json::array({{{"name", "mid_uy"}, {"quantity", "displacement"}, {"node", {0.5, 0.0}}, {"dof", "uy"}}})}};
+  Outcome o = run_cli("study " + write("study.json", s) + " --out " + (dir_ / "out").string() + " -q");
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  json r = read_json(dir_ / "out" / "study.json");
+  EXPECT_EQ(r["cases"][0]["status"], "converged");
+  EXPECT_TRUE(r["cases"][0]["mid_uy"].is_number());
+  EXPECT_EQ(r["cases"][1]["status"], "bad-input");
+  EXPECT_TRUE(r["cases"][1]["mid_uy"].is_null());
+  EXPECT_EQ(r["cases"][1]["message"], "record[0].node: no node at [0.5,0.0]");
+  s["record"] = json::array({{{"name", "R"}, {"quantity", "reaction"}, {"node", 2}, {"dof", "uy"}},
+                             {{"name", "F"}, {"quantity", "contact_force"}, {"node", 2}}});
+  o = run_cli("study " + write("study.json", s) + " --out " + (dir_ / "out2").string() + " -q");
+  r = read_json(dir_ / "out2" / "study.json");
+  EXPECT_EQ(r["cases"][0]["message"], "record[0].dof: node 2's uy is free: it has no reaction");
+  s["record"].erase(0);
+  o = run_cli("study " + write("study.json", s) + " --out " + (dir_ / "out3").string() + " -q");
+  r = read_json(dir_ / "out3" / "study.json");
+  EXPECT_EQ(r["cases"][0]["message"], "record[0].node: node 2 is no contact node");
+}
+
+TEST_F(Study, BadRecordsExitTwoWithThePath) {
+  struct Bad {
+    const char* record;
+    std::string expected;
+  };
+  const std::vector<Bad> cases = {
+      {R"([{"name": "x", "quantity": "stress"}])", "record[0].quantity: unknown quantity \"stress\""},
+      {R"([{"name": "x", "quantity": "displacement", "node": 2}])", "record[0].dof: missing (required for displacement"},
+      {R"([{"name": "x", "quantity": "displacement", "node": 2, "dof": "uz"}])", "record[0].dof: unknown dof \"uz\""},
+      {R"([{"name": "x", "quantity": "load_factor", "of": "mean"}])", "record[0].of: expected \"last\", \"max\""},
+      {R"([{"name": "status", "quantity": "load_factor"}])", "record[0].name: \"status\" names another column already"},
+      {R"([{"name": "n", "quantity": "load_factor"}])", "record[0].name: \"n\" names another column already"},
+      {R"([{"name": "x", "quantity": "reaction", "node": "tip", "dof": "uy"}])", "record[0].node: expected a node id or coordinates"},
+  };
+  for (const Bad& b : cases) {
+    json s = {{"model", cantilever()}, {"sweep", json::parse(R"([{"name": "n", "path": "/members/0/divisions", "values": [2]}])")}};
+    s["record"] = json::parse(b.record);
+    const std::string file = write("bad.json", s);
+    const Outcome o = run_cli("study " + file + " --out " + (dir_ / "out").string());
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_NE(o.output.find(file + ": " + b.expected), std::string::npos) << o.output;
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+  }
+}
+
 // ---- The paper's studies (studies/): regressions ----
 
 TEST_F(Study, Fig3TimoshenkoCircleConvergesForEveryMeshAtLOverH20) {

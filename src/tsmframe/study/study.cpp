@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <set>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -115,6 +117,72 @@ Parameter read_parameter(const json& p, const std::string& path) {
   return out;
 }
 
+Record read_record(const json& r, const std::string& path) {
+  if (!r.is_object()) fail(path, "expected {\"name\": …, \"quantity\": …}");
+  check_keys(r, path, {"name", "quantity", "node", "dof", "of"});
+  Record out;
+  out.path = path;
+  if (!r.contains("name") || !r["name"].is_string() || r["name"].get<std::string>().empty())
+    fail(child(path, "name"), "missing (required, a string)");
+  out.name = r["name"].get<std::string>();
+  if (!r.contains("quantity") || !r["quantity"].is_string()) fail(child(path, "quantity"), "missing (required, a string)");
+  const std::string quantity = r["quantity"].get<std::string>();
+  using Q = Record::Quantity;
+  const std::pair<const char*, Q> quantities[] = {{"displacement", Q::displacement}, {"reaction", Q::reaction},
+                                                  {"contact_force", Q::contact_force}, {"contact_xi", Q::contact_xi},
+                                                  {"load_factor", Q::load_factor}};
+  bool known = false;
+  for (const auto& [text, q] : quantities)
+    if (quantity == text) out.quantity = q, known = true;
+  if (!known)
+    fail(child(path, "quantity"), "unknown quantity \"" + quantity +
+                                      "\" (expected displacement, reaction, contact_force, contact_xi or load_factor)");
+  const bool with_node = out.quantity != Q::load_factor;
+  const bool with_dof = out.quantity == Q::displacement || out.quantity == Q::reaction;
+  if (with_node) {
+    if (!r.contains("node")) fail(child(path, "node"), "missing (required for " + quantity + ")");
+    const json& node = r["node"];
+    if (!node.is_number_integer() && !(node.is_array() && node.size() == 2 && node[0].is_number() && node[1].is_number()))
+      fail(child(path, "node"), "expected a node id or coordinates [x, y]");
+    out.node = node;
+  } else if (r.contains("node")) {
+    fail(child(path, "node"), "not used by load_factor");
+  }
+  if (with_dof) {
+    if (!r.contains("dof") || !r["dof"].is_string()) fail(child(path, "dof"), "missing (required for " + quantity + ": ux, uy or rz)");
+    const std::string dof = r["dof"].get<std::string>();
+    out.dof = dof == "ux" ? 0 : dof == "uy" ? 1 : dof == "rz" ? 2 : -1;
+    if (out.dof < 0) fail(child(path, "dof"), "unknown dof \"" + dof + "\" (expected ux, uy or rz)");
+  } else if (r.contains("dof")) {
+    fail(child(path, "dof"), "not used by " + quantity);
+  }
+  if (r.contains("of")) {
+    const std::string of = r["of"].is_string() ? r["of"].get<std::string>() : "";
+    if (of == "last") out.of = Record::Of::last;
+    else if (of == "max") out.of = Record::Of::max;
+    else if (of == "min") out.of = Record::Of::min;
+    else if (of == "max_abs") out.of = Record::Of::max_abs;
+    else fail(child(path, "of"), "expected \"last\", \"max\", \"min\" or \"max_abs\" (over the converged steps)");
+  }
+  return out;
+}
+
+/// A node reference of a record (an id, or coordinates within 1e-9 of the model's size, as in
+/// the model file) in one case's model.
+int resolve_node(const Model& model, const json& ref, const std::string& path) {
+  if (ref.is_number_integer()) {
+    const int index = model.node_index(ref.get<int>());
+    if (index < 0) fail(path, "unknown node " + ref.dump());
+    return index;
+  }
+  const Eigen::Vector2d p(ref[0].get<double>(), ref[1].get<double>());
+  int found = -1, matches = 0;
+  for (int k = 0; k < model.node_count(); ++k)
+    if ((model.nodes[k].position - p).norm() <= 1e-9 * model.size && matches++ == 0) found = k;
+  if (matches != 1) fail(path, (matches == 0 ? "no node at " : std::to_string(matches) + " nodes at ") + ref.dump());
+  return found;
+}
+
 }  // namespace
 
 size_t Study::case_count() const {
@@ -125,7 +193,7 @@ size_t Study::case_count() const {
 
 Study read_study(const json& doc, const std::string& directory) {
   if (!doc.is_object()) fail("", "a study file is a JSON object");
-  check_keys(doc, "", {"format", "title", "model", "model_file", "sweep", "keep"});
+  check_keys(doc, "", {"format", "title", "model", "model_file", "sweep", "record", "keep"});
   if (doc.contains("format") && doc["format"] != "tsmframe-study/1") fail("format", "unsupported format (expected \"tsmframe-study/1\")");
   Study s;
   if (doc.contains("title")) {
@@ -151,6 +219,18 @@ Study read_study(const json& doc, const std::string& directory) {
     fail("sweep", "missing (required: a non-empty array of parameters)");
   for (size_t k = 0; k < doc["sweep"].size(); ++k) s.parameters.push_back(read_parameter(doc["sweep"][k], child("sweep", k)));
   if (s.case_count() > 1000000) fail("sweep", "more than a million cases");
+  if (doc.contains("record")) {
+    if (!doc["record"].is_array()) fail("record", "expected an array of {\"name\": …, \"quantity\": …}");
+    std::set<std::string> names = {"case", "status", "converged", "steps", "iterations", "last_iterations", "load_factor",
+                                   "seconds", "message", "contact_first_element", "contact_max_alpha_first",
+                                   "contact_last_element", "contact_elements_passed"};
+    for (const Parameter& p : s.parameters) names.insert(p.name);
+    for (size_t k = 0; k < doc["record"].size(); ++k) {
+      s.records.push_back(read_record(doc["record"][k], child("record", k)));
+      if (!names.insert(s.records.back().name).second)
+        fail(child(child("record", k), "name"), "\"" + s.records.back().name + "\" names another column already");
+    }
+  }
   if (doc.contains("keep")) {
     if (!doc["keep"].is_boolean()) fail("keep", "expected true or false");
     s.keep = doc["keep"].get<bool>();
@@ -206,7 +286,79 @@ CaseResult run_case(const Study& study, size_t index, const std::string& keep_di
     row.message = e.what();
     return row;
   }
-  const solver::RunResult result = solver::run_analysis(model);
+  // The records' nodes (and contacts) in this case's model, then their values at every converged
+  // step (by step number: an arc-length step landing on its target replaces the one before).
+  struct Resolved {
+    int node = -1, contact = -1;
+  };
+  std::vector<Resolved> resolved(study.records.size());
+  try {
+    for (size_t r = 0; r < study.records.size(); ++r) {
+      const Record& record = study.records[r];
+      if (record.node.is_null()) continue;
+      const std::string path = child(record.path, "node");
+      resolved[r].node = resolve_node(model, record.node, path);
+      const int id = model.nodes[resolved[r].node].id;
+      if (record.quantity == Record::Quantity::contact_force || record.quantity == Record::Quantity::contact_xi) {
+        for (size_t c = 0; c < model.contacts.size(); ++c)
+          if (model.contacts[c].node == resolved[r].node) resolved[r].contact = static_cast<int>(c);
+        if (resolved[r].contact < 0) fail(path, "node " + std::to_string(id) + " is no contact node");
+      }
+      if (record.quantity == Record::Quantity::reaction && !model.constrained[dofs_per_node * resolved[r].node + record.dof])
+        fail(child(record.path, "dof"), "node " + std::to_string(id) + "'s " + (record.dof == 0 ? "ux" : record.dof == 1 ? "uy" : "rz") +
+                                            " is free: it has no reaction");
+    }
+  } catch (const InputError& e) {
+    row.status = "bad-input";
+    row.message = e.what();
+    return row;
+  }
+  std::vector<std::vector<std::pair<int, double>>> values(study.records.size());
+  solver::StepObserver observer;
+  if (!study.records.empty())
+    observer = [&](const solver::StepRecord& step) {
+      if (!step.converged) return;
+      for (size_t r = 0; r < study.records.size(); ++r) {
+        const Record& record = study.records[r];
+        const int dof = dofs_per_node * resolved[r].node + record.dof;
+        double v = NAN;
+        switch (record.quantity) {
+          case Record::Quantity::displacement: v = step.displacements[dof]; break;
+          case Record::Quantity::reaction: v = step.reactions[dof]; break;
+          case Record::Quantity::contact_force: {
+            const solver::ContactPoint& c = step.contacts[resolved[r].contact];
+            v = c.element >= 0 ? c.force : 0.0;
+            break;
+          }
+          case Record::Quantity::contact_xi: {
+            const solver::ContactPoint& c = step.contacts[resolved[r].contact];
+            if (c.element >= 0) v = c.alpha;
+            break;
+          }
+          case Record::Quantity::load_factor: v = step.load_factor; break;
+        }
+        auto& list = values[r];
+        while (!list.empty() && list.back().first >= step.step) list.pop_back();
+        list.emplace_back(step.step, v);
+      }
+    };
+  const solver::RunResult result = solver::run_analysis(model, observer);
+  row.recorded.assign(study.records.size(), NAN);
+  for (size_t r = 0; r < study.records.size(); ++r) {
+    const auto& list = values[r];
+    if (list.empty()) continue;
+    double& out = row.recorded[r];
+    for (const auto& [step, v] : list) {
+      if (std::isnan(v)) continue;
+      switch (study.records[r].of) {
+        case Record::Of::last: break;
+        case Record::Of::max: out = std::isnan(out) ? v : std::max(out, v); break;
+        case Record::Of::min: out = std::isnan(out) ? v : std::min(out, v); break;
+        case Record::Of::max_abs: out = std::isnan(out) ? std::abs(v) : std::max(out, std::abs(v)); break;
+      }
+    }
+    if (study.records[r].of == Record::Of::last) out = list.back().second;
+  }
   row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   row.status = solver::status_name(result.status);
   row.converged = result.status == solver::Status::converged;
@@ -283,6 +435,7 @@ void write_study(const std::string& directory, const Study& study, const std::ve
     for (const Parameter& p : study.parameters) out << ',' << csv_field(p.name);
     out << ",status,converged,steps,iterations,last_iterations,load_factor,seconds";
     if (contacts) out << ",contact_first_element,contact_max_alpha_first,contact_last_element,contact_elements_passed";
+    for (const Record& record : study.records) out << ',' << csv_field(record.name);
     out << ",message\n";
     for (const CaseResult& r : rows) {
       out << r.index + 1;
@@ -292,6 +445,8 @@ void write_study(const std::string& directory, const Study& study, const std::ve
       if (contacts)
         out << ',' << r.contact_first_element << ',' << io::format_number(r.contact_max_alpha_first) << ','
             << r.contact_last_element << ',' << r.contact_elements_passed;
+      for (size_t k = 0; k < study.records.size(); ++k)  // empty where the case has no value
+        out << ',' << (k < r.recorded.size() && !std::isnan(r.recorded[k]) ? io::format_number(r.recorded[k]) : std::string());
       out << ',' << csv_field(r.message) << '\n';
     }
   };
@@ -321,6 +476,8 @@ void write_study(const std::string& directory, const Study& study, const std::ve
         w.key("contact_last_element").value(r.contact_last_element);
         w.key("contact_elements_passed").value(r.contact_elements_passed);
       }
+      for (size_t k = 0; k < study.records.size(); ++k)  // null where the case has no value
+        w.key(study.records[k].name).value(k < r.recorded.size() ? r.recorded[k] : NAN);
       w.key("message").value(r.message);
       w.end_object();
     }

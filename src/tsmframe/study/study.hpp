@@ -11,6 +11,9 @@
 //      {"name": "divisions", "path": ["/members/0/divisions"], "range": [6, 200]},    // [from, to(, step)]
 //      {"name": "setup", "variants": [{"label": "cantilever", "set": {"/supports": […], "/loads": […]}}, …]}
 //    ],
+//    "record": [                          // response quantities, one column each (optional)
+//      {"name": "tip_uy", "quantity": "displacement", "node": [9.0, 0.0], "dof": "uy"},
+//      {"name": "peak", "quantity": "load_factor", "of": "max"}, …],
 //    "keep": false}                      // true: each case's results.json and steps.csv under cases/<k>/
 // The cases are the Cartesian product of the sweep entries, the first entry varying slowest.
 // Paths are JSON pointers (RFC 6901) into the model.
@@ -29,10 +32,24 @@ struct Parameter {
   std::vector<std::vector<std::pair<std::string, nlohmann::json>>> assignments;  ///< per value: pointer → value
 };
 
+/// A response quantity each case reports: at its last converged step, or the largest or
+/// smallest over its converged steps.
+struct Record {
+  enum class Quantity { displacement, reaction, contact_force, contact_xi, load_factor };
+  enum class Of { last, max, min, max_abs };
+  std::string name;
+  Quantity quantity = Quantity::load_factor;
+  nlohmann::json node;  ///< the node reference as written (id or coordinates; resolved per case); null if none
+  int dof = -1;         ///< 0 ux, 1 uy, 2 rz (displacement, reaction)
+  Of of = Of::last;
+  std::string path;     ///< "record[k]", for messages
+};
+
 struct Study {
   std::string title;
   nlohmann::json model;
   std::vector<Parameter> parameters;
+  std::vector<Record> records;
   bool keep = false;
   size_t case_count() const;
 };
@@ -58,6 +75,9 @@ struct CaseResult {
   double contact_max_alpha_first = 0.0;  ///< largest α reached there at a converged step
   int contact_last_element = 0;     ///< element id at the last step in contact
   int contact_elements_passed = 0;  ///< element ends passed after the first element
+  /// Per record: its value, NaN where the case has none (no converged step; a contact not
+  /// touching at its last step for contact_xi).
+  std::vector<double> recorded;
 };
 
 /// Runs every case on `threads` threads (0: all cores). `progress` is called after each case.
