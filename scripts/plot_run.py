@@ -6,7 +6,8 @@
 Reads DIR/results.json and DIR/steps.csv; writes DIR/plots/deformed.png|svg (the steps that
 carry full state, up to 12 of them, elements drawn as their true deflected curves) and
 DIR/plots/load-displacement.png|svg (λ against ux, uy, rz of every monitored node, but those that
-only carry rounding noise).
+only carry rounding noise) and, where prescribed displacements drive the model,
+DIR/plots/force-displacement.png|svg (the reactions there against those displacements).
 """
 import csv
 import json
@@ -60,6 +61,51 @@ def magnification(results, states):
     wanted = 0.1 * size / largest
     power = 10.0 ** math.floor(math.log10(wanted))
     return max(m * power for m in (1.0, 2.0, 5.0) if m * power <= wanted)
+
+
+def moved_curves(results, rows):
+    """Force against displacement where prescribed displacements move dofs (steps.csv's Rx_, Ry_,
+    Mz_ columns: the reactions there): per such dof, its displacement — λ times its value at λ = 1,
+    read off the newest state — and its reaction; and, where several dofs of one kind move alike
+    (a plate pushed at both ends), their sum. [(label, displacements, forces)], [] if none."""
+    columns = [c for c in (rows[0].keys() if rows else []) if c[:3] in ("Rx_", "Ry_", "Mz_")]
+    states = [s for s in results["steps"] if "displacements" in s and float(s["load_factor"]) != 0.0]
+    if not columns or not states:
+        return []
+    last = states[-1]
+    kind = {"Rx": 0, "Ry": 1, "Mz": 2}
+    curves, groups = [], {}
+    for c in columns:
+        node = c[3:]
+        target = last["displacements"][node][kind[c[:2]]] / float(last["load_factor"])
+        u = [0.0] + [float(r["load_factor"]) * target for r in rows]
+        f = [0.0] + [float(r[c]) for r in rows]
+        curves.append((f"{c[:2]} at node {node} ({'uy' if c[:2] == 'Ry' else 'ux' if c[:2] == 'Rx' else 'rz'} prescribed)", u, f))
+        groups.setdefault((c[:2], round(target, 12)), []).append((u, f))
+    for (name, _), members in groups.items():
+        if len(members) > 1:
+            total = [sum(v) for v in zip(*(f for _, f in members))]
+            curves.append((f"{name}, sum over {len(members)} nodes moved alike", members[0][0], total))
+    return curves
+
+
+def force_displacement(results, rows, plots):
+    """plots/force-displacement.png|svg where prescribed displacements drive the model; False if none."""
+    curves = moved_curves(results, rows)
+    if not curves:
+        return False
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for i, (label, u, f) in enumerate(curves):
+        ax.plot(u, f, ".-" if "sum" not in label else "-", ms=3, lw=1.5 if "sum" in label else 1, color=f"C{i % 10}", label=label)
+    ax.set_xlabel("prescribed displacement (rotation for Mz)")
+    ax.set_ylabel("reaction (the force driving it)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title("force–displacement at the prescribed dofs")
+    for ext in ("png", "svg"):
+        fig.savefig(os.path.join(plots, f"force-displacement.{ext}"), dpi=130, bbox_inches="tight")
+    plt.close(fig)
+    return True
 
 
 def main(directory):
@@ -117,7 +163,10 @@ def main(directory):
     for ext in ("png", "svg"):
         fig.savefig(os.path.join(plots, f"load-displacement.{ext}"), dpi=130, bbox_inches="tight")
     plt.close(fig)
-    print(f"plots: {plots}/deformed.png, load-displacement.png (and .svg)")
+    written = ["deformed.png", "load-displacement.png"]
+    if force_displacement(results, rows, plots):
+        written.append("force-displacement.png")
+    print(f"plots: {plots}/{', '.join(written)} (and .svg)")
 
 
 if __name__ == "__main__":

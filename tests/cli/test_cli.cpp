@@ -298,9 +298,22 @@ TEST_F(Cli, ContactResultsInJsonAndCsv) {
   EXPECT_EQ(last["element_forces"]["1"].size(), 3u);
   EXPECT_EQ(r["steps"][0]["contacts"].size(), 0u);  // the first 10 mm do not close the 15 mm gap
   std::ifstream csv(out / "steps.csv");
-  std::string header, row;
+  std::string header;
   std::getline(csv, header);
-  EXPECT_NE(header.find(",contact_element_100,contact_xi_100,contact_force_100"), std::string::npos) << header;
+  EXPECT_NE(header.find(",contact_element_100,contact_xi_100,contact_force_100,Ry_100"), std::string::npos) << header;
+  // The pusher's prescribed uy has its reaction in every row (the force that drives the model),
+  // as results.json has it; with the reaction across (its ux is held) it is the contact force,
+  // normal to the tilted beam.
+  std::string row_text, last_row;
+  int rows = 0;
+  while (std::getline(csv, row_text)) last_row = row_text, ++rows;
+  EXPECT_EQ(rows, 5);
+  const double Ry = std::stod(last_row.substr(last_row.rfind(',') + 1));
+  const json& reaction = last["reactions"]["100"];
+  EXPECT_EQ(Ry, reaction[1].get<double>()) << last_row;
+  EXPECT_NEAR(std::hypot(reaction[0].get<double>(), reaction[1].get<double>()), c["force"].get<double>(),
+              1e-9 * c["force"].get<double>());
+  EXPECT_GT(std::abs(reaction[0].get<double>()), 1e-3 * Ry) << "the beam is tilted under the push";
 }
 
 TEST_F(Cli, ArcLengthMarksLimitPoints) {

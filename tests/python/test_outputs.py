@@ -6,6 +6,8 @@ writes non-empty PNG files; the study report is written.
 
     /usr/bin/python3 tests/python/test_outputs.py TSMFRAME_BINARY SOURCE_DIR
 """
+import csv
+import json
 import math
 import os
 import subprocess
@@ -138,6 +140,11 @@ class Vtk(unittest.TestCase):
         self.assertEqual(sum(1 for y in cell_data["Y"][:20] if y[0] != 0.0), 2)  # both elements carry Y
 
 
+def results_y(results, node_id):
+    """A node's y as drawn."""
+    return next(n["y"] for n in results["nodes"] if n["id"] == node_id)
+
+
 class Plots(unittest.TestCase):
     def test_plot_writes_png_files(self):
         with tempfile.TemporaryDirectory() as d:
@@ -175,6 +182,35 @@ class Plots(unittest.TestCase):
         self.assertEqual(magnification(results, states(-0.5, 0.0)), 1.0)   # 5 % of the size: drawn to scale
         self.assertEqual(magnification(results, states(0.0, 8.0)), 1.0)    # nothing deflects
         self.assertEqual(magnification(results, states(-1e-4, 0.0)), 10000.0)
+
+    def test_a_displacement_driven_run_plots_its_driving_force(self):
+        # The ring squeezed between plates: no load, the upper plate's ends moved down; the
+        # reactions there against their displacement, and their sum (both move alike).
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "ring")
+            r = run("run", os.path.join(SOURCE, "examples", "ring-between-plates.json"), "--out", out, "--plot", "-q")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertGreater(os.path.getsize(os.path.join(out, "plots", "force-displacement.png")), 1000)
+            sys.path.insert(0, os.path.join(SOURCE, "scripts"))
+            from plot_run import moved_curves
+            with open(os.path.join(out, "results.json")) as f:
+                results = json.load(f)
+            with open(os.path.join(out, "steps.csv"), newline="") as f:
+                rows = list(csv.DictReader(f))
+            curves = moved_curves(results, rows)
+            self.assertEqual([c[0] for c in curves], ["Ry at node 103 (uy prescribed)", "Ry at node 104 (uy prescribed)",
+                                                      "Ry, sum over 2 nodes moved alike"])
+            label, u, force = curves[2]
+            self.assertAlmostEqual(u[-1], -0.9, places=12)
+            # the plates' total push is what the ring's two crown contacts pass on: each plate's
+            # contacts carry it (the last row's contact forces on the upper plate)
+            last = results["steps"][-1]
+            upper = sum(c["force"] for c in last["contacts"] if results_y(results, c["node"]) > 0)
+            self.assertAlmostEqual(-force[-1], upper, delta=1e-6 * upper)
+        with tempfile.TemporaryDirectory() as d:  # a load-driven run has no such plot
+            out = os.path.join(d, "frame")
+            run("run", os.path.join(SOURCE, "examples", "portal-frame.json"), "--out", out, "--plot", "-q")
+            self.assertFalse(os.path.exists(os.path.join(out, "plots", "force-displacement.png")))
 
     def test_dofs_that_only_carry_rounding_noise_get_no_curve(self):
         sys.path.insert(0, os.path.join(SOURCE, "scripts"))

@@ -157,6 +157,9 @@ void write_steps_csv(std::ostream& out, const Model& model, const solver::RunRes
     const std::string id = std::to_string(model.nodes[c.node].id);
     out << ",contact_element_" << id << ",contact_xi_" << id << ",contact_force_" << id;
   }
+  // The reactions where a prescribed displacement moves a dof: a displacement-driven model's force.
+  const std::vector<int> moved = model.moved_dofs();
+  for (const int d : moved) out << ',' << (d % dofs_per_node == 0 ? "Rx_" : d % dofs_per_node == 1 ? "Ry_" : "Mz_") << model.nodes[d / dofs_per_node].id;
   out << '\n';
   for (const solver::StepRecord& step : result.steps) {
     if (!step.converged) continue;
@@ -169,6 +172,7 @@ void write_steps_csv(std::ostream& out, const Model& model, const solver::RunRes
       else
         out << ",,,0";
     }
+    for (Eigen::Index k = 0; k < step.moved_reactions.size(); ++k) out << ',' << format_number(step.moved_reactions[k]);
     out << '\n';
   }
 }

@@ -20,4 +20,11 @@ int Model::node_index(int id) const {
   return -1;
 }
 
+std::vector<int> Model::moved_dofs() const {
+  std::vector<int> dofs;
+  for (Eigen::Index d = 0; d < reference_prescribed.size(); ++d)
+    if (reference_prescribed[d] != 0.0) dofs.push_back(static_cast<int>(d));
+  return dofs;
+}
+
 }  // namespace tsm

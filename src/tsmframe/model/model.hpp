@@ -146,6 +146,8 @@ struct Model {
   double prescribed(int dof) const { return reference_prescribed.size() > 0 ? reference_prescribed[dof] : 0.0; }
   /// Index of the node with this id, or −1.
   int node_index(int id) const;
+  /// The dofs a prescribed displacement moves (nonzero at λ = 1), ascending.
+  std::vector<int> moved_dofs() const;
 };
 
 }  // namespace tsm

@@ -112,7 +112,8 @@ class Recorder {
   /// finish() adds them. Without an observer only: an observer sees every step whole.
   Recorder(const Model& model, const NewtonSolver& newton, const StepObserver& observer, RunResult& result,
            bool defer_forces = false)
-      : model_(model), newton_(newton), observer_(observer), result_(result), defer_forces_(defer_forces && !observer) {}
+      : model_(model), newton_(newton), observer_(observer), result_(result), defer_forces_(defer_forces && !observer),
+        moved_dofs_(model.moved_dofs()) {}
 
   int next_step() const { return static_cast<int>(result_.steps.size()) + 1; }
 
@@ -150,6 +151,8 @@ class Recorder {
       take_axial_strain(model_, record);
     }
     record.reactions = newton_.reactions(state.load_factor);
+    record.moved_reactions.resize(static_cast<Eigen::Index>(moved_dofs_.size()));
+    for (size_t k = 0; k < moved_dofs_.size(); ++k) record.moved_reactions[k] = record.reactions[moved_dofs_[k]];
     record.contacts = newton_.contact_points(state);
     last_with_state_ = static_cast<int>(result_.steps.size());
     result_.steps.push_back(std::move(record));
@@ -203,6 +206,7 @@ class Recorder {
   RunResult& result_;
   int last_with_state_ = -1;
   bool defer_forces_ = false;
+  std::vector<int> moved_dofs_;
   bool forces_pending_ = false;  ///< the newest converged step still lacks its element forces
 };
 

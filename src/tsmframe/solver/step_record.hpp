@@ -38,6 +38,9 @@ struct StepRecord {
   double arc_length = 0.0;             ///< Δs of the step (arc-length control; 0 otherwise)
   std::string message;                 ///< why a failed step failed
   Eigen::VectorXd monitored;           ///< (u, v, Θ) of each monitored node (converged steps)
+  /// The reaction at each dof a prescribed displacement moves (Model::moved_dofs; converged
+  /// steps): the force that drives a displacement-driven model, kept for every step.
+  Eigen::VectorXd moved_reactions;
   bool has_state = false;              ///< the arrays below are filled
   Eigen::VectorXd displacements;       ///< all dofs
   Eigen::VectorXd element_forces;      ///< (N, M_i, M_j) per element
