@@ -58,6 +58,8 @@ struct ContactState {
   /// may not reach the other side of any element of it within the step (reference_side holds
   /// that side, carried along the beam from the element it left).
   bool released_pulled = false;
+  /// The element whose free end the point left in this step (released so), −1: none.
+  int slid_off_element = -1;
   double released_normal[2] = {0.0, 0.0};
   std::vector<char> released_within;
 };

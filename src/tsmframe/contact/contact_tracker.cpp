@@ -362,6 +362,7 @@ void ContactTracker::record(const Eigen::VectorXd& D, const std::vector<double>&
 void ContactTracker::release(const Spec& spec, const Eigen::VectorXd& D, const std::vector<double>& rotations,
                              ContactState& state, bool pulled) const {
   state.released_pulled = pulled;
+  if (!pulled) state.slid_off_element = state.element;
   if (pulled) {
     // It let go on its own side of the beam, wherever the iterate has put things: that side,
     // carried along the beam from the element it left, is the side of every element it may not
@@ -625,6 +626,7 @@ void ContactTracker::accept(const Eigen::VectorXd& D, const std::vector<double>&
     states[k].released_in_step = false;
     states[k].handover_direction = 0;
     states[k].hop_node = states[k].held_node = -1;
+    states[k].slid_off_element = -1;
     if (!states[k].active) reset_sides(specs_[k], D, rotations, 0, states[k]);
   }
 }

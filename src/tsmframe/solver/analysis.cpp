@@ -1,6 +1,7 @@
 #include "tsmframe/solver/analysis.hpp"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <sstream>
 #if defined(__GLIBC__)
@@ -134,6 +135,7 @@ class Recorder {
     record.converged = true;
     record.criterion = outcome.criterion;
     record.carried_nothing = outcome.carried_nothing;
+    record.slid_off = outcome.slid_off;
     record.has_state = true;
     record.monitored.resize(dofs_per_node * static_cast<int>(settings.monitor.size()));
     for (size_t m = 0; m < settings.monitor.size(); ++m)
@@ -309,6 +311,28 @@ std::vector<std::string> nothing_carried_notes(const std::vector<StepRecord>& st
   return {os.str()};
 }
 
+/// Contacts that let go because their point slid off a beam's free end: one note per contact
+/// node, with the steps and the element whose end it left (the path lost that support there;
+/// under load control a step may so have jumped to where the beam no longer holds the node).
+std::vector<std::string> slid_off_notes(const Model& model, const std::vector<StepRecord>& steps) {
+  std::map<int, std::vector<std::pair<int, int>>> by_contact;  // contact → (step, element)
+  for (const StepRecord& s : steps)
+    if (s.converged)
+      for (const auto& [contact, element] : s.slid_off) by_contact[contact].emplace_back(s.step, element);
+  std::vector<std::string> notes;
+  for (const auto& [contact, events] : by_contact) {
+    std::vector<int> at;
+    for (const auto& [step, element] : events) at.push_back(step);
+    std::ostringstream os;
+    os << "the contact of node " << model.nodes[model.contacts[contact].node].id << " slid off the free end of member "
+       << model.elements[events.front().second].member << " (past element " << model.elements[events.front().second].id
+       << "'s end) and let go in ";
+    write_steps(os, at);
+    notes.push_back(os.str());
+  }
+  return notes;
+}
+
 /// Converged steps whose tangent has negative eigenvalues: unstable equilibria under their loads.
 /// One note per run of consecutive such steps, with its cause: the limit point where the run
 /// begins (a snap-through's falling branch), or, where none does, a bifurcation point passed on
@@ -402,6 +426,7 @@ void close_path(const Model& model, RunResult& result, ControlType control) {
     for (std::string& note : jump_notes(result.steps)) result.notes.push_back(std::move(note));
   for (std::string& note : stability_notes(result.steps, result.limit_points, result.critical_points))
     result.notes.push_back(std::move(note));
+  for (std::string& note : slid_off_notes(model, result.steps)) result.notes.push_back(std::move(note));
   for (std::string& note : strain_notes(model, result.steps)) result.notes.push_back(std::move(note));
 }
 

@@ -704,6 +704,9 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
       }
       out.criterion = criterion;
       out.carried_nothing = nothing_carried;
+      for (size_t k = 0; k < state.contacts.size(); ++k)
+        if (!state.contacts[k].active && state.contacts[k].slid_off_element >= 0)
+          out.slid_off.emplace_back(static_cast<int>(k), state.contacts[k].slid_off_element);
       if (contacts_) contacts_->accept(state.displacements, state.chord_rotations, state.contacts);
       return out;
     }

@@ -58,6 +58,9 @@ struct NewtonOutcome {
   /// Accepted on round-off because the structure carries next to nothing (its forces at rounding
   /// level: a contact let go, or nothing loads it): its relative residual is noise.
   bool carried_nothing = false;
+  /// Contacts released in the step because their point left a beam's free end, and stayed so:
+  /// (contact index, the element whose end it left).
+  std::vector<std::pair<int, int>> slid_off;
   /// Failed because the loads are too small to resolve against the rounding in the model's
   /// forces: a smaller step cannot help.
   bool loads_unresolvable = false;

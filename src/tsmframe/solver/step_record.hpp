@@ -28,6 +28,9 @@ struct StepRecord {
   std::vector<double> residual_norms;  ///< relative ‖R‖ of each iterate, iterate 0 first
   std::string criterion;               ///< "force" or "round-off" (converged steps)
   bool carried_nothing = false;        ///< round-off because the structure carried next to nothing
+  /// Contacts that let go in the step because their point left a beam's free end: (contact
+  /// index, the element whose end it left).
+  std::vector<std::pair<int, int>> slid_off;
   int cutbacks = 0;                    ///< failed attempts halved away before this step
   /// Negative eigenvalues of the tangent stiffness at the converged state (its inertia): 0 a
   /// stable equilibrium, n > 0 an unstable one (past a limit or bifurcation point); −1 unknown
