@@ -333,7 +333,11 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   else std::vector<Block>().swap(deferred_z_);
   dense_.resize(0, 0);
   // The solves go level by level (a barrier per level): only where levels hold several rows.
-  parallel_top_levels_ = parallel_top_ && 2 * shared >= static_cast<int>(top_rows_.size());
+  parallel_top_levels_ = parallel_top_ && 2 * shared >= static_cast<int>(top_rows_.size()) && n >= util::smallest_shared_model;
+  // A small matrix keeps the stages' arithmetic (paths, a dense top: bit-identical either way)
+  // but runs them on one thread: a ring of 80 elements between two plates spent 2.5× its time
+  // starting and waking the second thread for them (74 % of its samples in libgomp).
+  team_ = n >= util::smallest_shared_model;
 }
 
 TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, int t_end, double* forward, int* slot, bool finish,
@@ -439,7 +443,7 @@ bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
   // same order as row by row, so the result is the same bit for bit.
   const int threads = omp_get_max_threads();
   if (thread_slot_.size() < static_cast<size_t>(threads) * size_) thread_slot_.resize(static_cast<size_t>(threads) * size_);
-#pragma omp parallel
+#pragma omp parallel if (team_)
   for (const Stage& stage : stages_) {
     if (!stage.path) {
 #pragma omp for schedule(dynamic, 1) reduction(&& : ok)

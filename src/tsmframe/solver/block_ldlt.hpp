@@ -110,6 +110,7 @@ class BlockLDLT {
   bool parallel_top_ = false;    ///< enough rows above the tasks to run their stages in parallel
   bool parallel_tasks_ = false;  ///< several tasks, in a matrix big enough to share out (util::smallest_shared_model)
   bool parallel_top_levels_ = false;  ///< the solves: the levels hold enough rows side by side
+  bool team_ = false;  ///< a matrix big enough for the rows above the tasks to run on every thread (util::smallest_shared_model)
   /// Stages of top_rows_ [begin, end): a level of several rows, or a path of single-row levels.
   struct Stage {
     int begin = 0, end = 0;
