@@ -97,11 +97,14 @@ NodeOnElement node_on_element(const element::InitialChord& initial, const elemen
   const Eigen::Vector2d rel = node_position - (initial.start + d.head<2>());
   NodeOnElement out;
   out.alpha = rel.dot(e) / chord.length;
-  PointLoadLaw law = point_load_law(section, initial.length, out.alpha, 0.25);
-  if (flexibility_i != 0.0 || flexibility_j != 0.0)  // w from the nodes' rotations through the connections
-    law = connected_law(law, element::basic_stiffness(section, initial.length).bottomRightCorner<2, 2>(), flexibility_i,
-                        flexibility_j).law;
-  const double w = -(law.h_i * (d[2] - chord.rotation) + law.h_j * (d[5] - chord.rotation));
+  std::array<double, 2> h = point_load_moments(section, initial.length, out.alpha);
+  if (flexibility_i != 0.0 || flexibility_j != 0.0) {  // w from the nodes' rotations through the connections
+    const PointLoadLaw law = connected_law(point_load_law(section, initial.length, out.alpha, 0.25),
+                                           element::basic_stiffness(section, initial.length).bottomRightCorner<2, 2>(),
+                                           flexibility_i, flexibility_j).law;
+    h = {law.h_i, law.h_j};
+  }
+  const double w = -(h[0] * (d[2] - chord.rotation) + h[1] * (d[5] - chord.rotation));
   out.gap = rel.dot(n) - w;
   return out;
 }

@@ -1,5 +1,7 @@
 #include "tsmframe/contact/contact_force_law.hpp"
 
+#include <array>
+
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
@@ -21,13 +23,20 @@ element::Matrix3 contact_bending_stiffness(const element::SectionStiffness& sect
   return k;
 }
 
+std::array<double, 2> point_load_moments(const element::SectionStiffness& section, double l0, double alpha) {
+  const double psi = section.shear_flexibility, span = l0 * l0 + 12.0 * psi;
+  const double s = std::clamp(alpha, 0.0, 1.0), a = s * l0, b = (1.0 - s) * l0, p = a * b;
+  return {-(b * l0 + 6.0 * psi) * p / (l0 * span), (a * l0 + 6.0 * psi) * p / (l0 * span)};
+}
+
 PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0, double alpha, double edge) {
   const double psi = section.shear_flexibility, span = l0 * l0 + 12.0 * psi;
   PointLoadLaw law;
   {
     const double s = std::clamp(alpha, 0.0, 1.0), a = s * l0, b = (1.0 - s) * l0, p = a * b;
-    law.h_i = -(b * l0 + 6.0 * psi) * p / (l0 * span);
-    law.h_j = (a * l0 + 6.0 * psi) * p / (l0 * span);
+    const std::array<double, 2> h = point_load_moments(section, l0, alpha);
+    law.h_i = h[0];
+    law.h_j = h[1];
     if (alpha >= 0.0 && alpha <= 1.0) {
       law.dh_i = -l0 * ((b * l0 + 6.0 * psi) * (1.0 - 2.0 * s) - p) / span;
       law.dh_j = l0 * (p + (a * l0 + 6.0 * psi) * (1.0 - 2.0 * s)) / span;

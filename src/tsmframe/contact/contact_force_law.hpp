@@ -11,6 +11,8 @@
 // element end lives: only in c, which vanishes like b³ (Euler–Bernoulli) or b (Timoshenko).
 // h and the beam's free shape −h·θ are smooth and vanish at both ends.
 
+#include <array>
+
 #include "tsmframe/element/force_law.hpp"
 
 namespace tsm::contact {
@@ -32,6 +34,9 @@ struct PointLoadLaw {
 /// c_min at α = δ or 1 − δ; Timoshenko, whose c falls only like b/(G A_s), much closer to the
 /// node (at b ≈ δ³ l0³/(3Ψ)), unless its shear flexibility Ψ is negligible.
 PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0, double alpha, double edge);
+/// Its h_i, h_j alone (the same values): the free shape's end moments per unit Y, without the
+/// compliance — what measuring a gap needs.
+std::array<double, 2> point_load_moments(const element::SectionStiffness& section, double l0, double alpha);
 
 /// The law seen from the nodes' rotations where the beam's ends are connected to its nodes by a
 /// hinge (flexibility ∞) or a rotational spring (flexibility 1/k ≥ 0) instead of rigidly:
