@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <omp.h>
 #include <sstream>
 #include <thread>
 
@@ -399,6 +400,10 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
   std::atomic<size_t> next{0};
   std::mutex report;
   auto worker = [&] {
+    // Each case on one thread: the cases share the cores. (A thread's OpenMP setting is its own:
+    // the caller's omp_set_num_threads does not reach the pool's threads, whose cases opened
+    // two-thread teams on two busy cores.)
+    omp_set_num_threads(1);
     for (size_t k; (k = next.fetch_add(1)) < n;) {
       rows[k] = run_case(study, k, study.keep ? keep_directory : std::string());
       if (progress) {
