@@ -47,6 +47,14 @@ class Study : public ::testing::Test {
       "loads": [{"node": 2, "fy": 1.0}],
       "analysis": {"control": {"type": "load", "steps": 1}, "cutback": false}})");
   }
+  /// The study file `s` is refused: exit 2, one line `FILE: expected…`, nothing written.
+  void expect_refused(const json& s, const std::string& expected) {
+    const std::string file = write("bad.json", s);
+    const Outcome o = run_cli("study " + file + " --out " + (dir_ / "out").string());
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_NE(o.output.find(file + ": " + expected), std::string::npos) << o.output;
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+  }
   fs::path dir_;
 };
 
@@ -100,11 +108,7 @@ TEST_F(Study, BadStudyInputExitsTwoWithThePath) {
   for (const Bad& b : cases) {
     json s = {{"model", cantilever()}};
     s["sweep"] = json::parse(b.sweep);
-    const std::string file = write("bad.json", s);
-    const Outcome o = run_cli("study " + file + " --out " + (dir_ / "out").string());
-    EXPECT_EQ(o.exit_code, 2) << o.output;
-    EXPECT_NE(o.output.find(file + ": " + b.expected), std::string::npos) << o.output;
-    EXPECT_FALSE(fs::exists(dir_ / "out"));
+    expect_refused(s, b.expected);
   }
 }
 
@@ -181,11 +185,7 @@ TEST_F(Study, BadRecordsExitTwoWithThePath) {
   for (const Bad& b : cases) {
     json s = {{"model", cantilever()}, {"sweep", json::parse(R"([{"name": "n", "path": "/members/0/divisions", "values": [2]}])")}};
     s["record"] = json::parse(b.record);
-    const std::string file = write("bad.json", s);
-    const Outcome o = run_cli("study " + file + " --out " + (dir_ / "out").string());
-    EXPECT_EQ(o.exit_code, 2) << o.output;
-    EXPECT_NE(o.output.find(file + ": " + b.expected), std::string::npos) << o.output;
-    EXPECT_FALSE(fs::exists(dir_ / "out"));
+    expect_refused(s, b.expected);
   }
 }
 

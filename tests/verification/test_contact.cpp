@@ -14,6 +14,7 @@
 
 #include "support/dense.hpp"
 #include "support/models.hpp"
+#include "support/rk4.hpp"
 #include "tsmframe/assembly/global_system.hpp"
 #include "tsmframe/contact/contact_tracker.hpp"
 #include "tsmframe/model/mechanism.hpp"
@@ -69,17 +70,7 @@ std::array<double, 3> integrate_to(double a, double h, double P, double theta_c,
   auto f = [&](const std::array<double, 3>& q) {  // q = (x, y, θ)
     return std::array<double, 3>{std::cos(q[2]), std::sin(q[2]), (a - q[0]) * Fy - (h - q[1]) * Fx};
   };
-  auto rk4 = [&](const std::array<double, 3>& q, double ds) {
-    std::array<double, 3> k1 = f(q), t, k2, k3, k4, out;
-    for (int i = 0; i < 3; ++i) t[i] = q[i] + 0.5 * ds * k1[i];
-    k2 = f(t);
-    for (int i = 0; i < 3; ++i) t[i] = q[i] + 0.5 * ds * k2[i];
-    k3 = f(t);
-    for (int i = 0; i < 3; ++i) t[i] = q[i] + ds * k3[i];
-    k4 = f(t);
-    for (int i = 0; i < 3; ++i) out[i] = q[i] + ds / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-    return out;
-  };
+  auto rk4 = [&](const std::array<double, 3>& q, double ds) { return rk4_step(f, q, ds); };
   const double ds = 1e-4;
   std::array<double, 3> q = {0.0, 0.0, 0.0};
   double s = 0.0;

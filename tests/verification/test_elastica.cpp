@@ -7,6 +7,7 @@
 #include <array>
 
 #include "support/models.hpp"
+#include "support/rk4.hpp"
 
 namespace {
 
@@ -25,16 +26,7 @@ Tip elastica_tip(double p) {
     auto f = [&](const std::array<double, 4>& s) {
       return std::array<double, 4>{s[1], -p * std::cos(s[0]), std::cos(s[0]), std::sin(s[0])};
     };
-    for (int k = 0; k < n; ++k) {
-      std::array<double, 4> k1 = f(y), t, k2, k3, k4;
-      for (int i = 0; i < 4; ++i) t[i] = y[i] + 0.5 * h * k1[i];
-      k2 = f(t);
-      for (int i = 0; i < 4; ++i) t[i] = y[i] + 0.5 * h * k2[i];
-      k3 = f(t);
-      for (int i = 0; i < 4; ++i) t[i] = y[i] + h * k3[i];
-      k4 = f(t);
-      for (int i = 0; i < 4; ++i) y[i] += h / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-    }
+    for (int k = 0; k < n; ++k) y = rk4_step(f, y, h);
     end = y;
     return y[1];  // θ'(L), zero at the solution
   };

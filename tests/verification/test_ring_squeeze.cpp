@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "support/models.hpp"
+#include "support/rk4.hpp"
 
 namespace {
 
@@ -68,16 +69,7 @@ QuarterEnd integrate_quarter(double P, double M0, double EI) {
   const int steps = 1000;
   const double ds = pi * R / 2 / steps;
   std::array<double, 3> q = {0.0, 0.0, 0.0};
-  for (int k = 0; k < steps; ++k) {
-    std::array<double, 3> k1 = f(q), t, k2, k3, k4;
-    for (int i = 0; i < 3; ++i) t[i] = q[i] + 0.5 * ds * k1[i];
-    k2 = f(t);
-    for (int i = 0; i < 3; ++i) t[i] = q[i] + 0.5 * ds * k2[i];
-    k3 = f(t);
-    for (int i = 0; i < 3; ++i) t[i] = q[i] + ds * k3[i];
-    k4 = f(t);
-    for (int i = 0; i < 3; ++i) q[i] += ds / 6.0 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-  }
+  for (int k = 0; k < steps; ++k) q = rk4_step(f, q, ds);
   return {q[0], q[1], q[2]};
 }
 
