@@ -315,18 +315,16 @@ std::vector<std::string> nothing_carried_notes(const std::vector<StepRecord>& st
 /// node, with the steps and the element whose end it left (the path lost that support there;
 /// under load control a step may so have jumped to where the beam no longer holds the node).
 std::vector<std::string> slid_off_notes(const Model& model, const std::vector<StepRecord>& steps) {
-  std::map<int, std::vector<std::pair<int, int>>> by_contact;  // contact → (step, element)
+  std::map<std::pair<int, int>, std::vector<int>> steps_of;  // (contact, element) → steps
   for (const StepRecord& s : steps)
     if (s.converged)
-      for (const auto& [contact, element] : s.slid_off) by_contact[contact].emplace_back(s.step, element);
+      for (const auto& [contact, element] : s.slid_off) steps_of[{contact, element}].push_back(s.step);
   std::vector<std::string> notes;
-  for (const auto& [contact, events] : by_contact) {
-    std::vector<int> at;
-    for (const auto& [step, element] : events) at.push_back(step);
+  for (const auto& [key, at] : steps_of) {
+    const auto [contact, element] = key;
     std::ostringstream os;
     os << "the contact of node " << model.nodes[model.contacts[contact].node].id << " slid off the free end of member "
-       << model.elements[events.front().second].member << " (past element " << model.elements[events.front().second].id
-       << "'s end) and let go in ";
+       << model.elements[element].member << " (past element " << model.elements[element].id << "'s end) and let go in ";
     write_steps(os, at);
     notes.push_back(os.str());
   }

@@ -1,14 +1,15 @@
 #include "tsmframe/study/study.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <atomic>
-#include <cmath>
-#include <set>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
-#include <omp.h>
+#include <set>
 #include <sstream>
 #include <thread>
 
