@@ -231,6 +231,8 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
        "contacts[0].nodes[1]: node 5 already has a contact entry"},
       {"contact nodes empty", [](json& m) { m["contacts"] = json::array({{{"nodes", json::array()}, {"members", "all"}}}); },
        "contacts[0].nodes: no node listed"},
+      {"a load beyond 1e50", [](json& m) { m["loads"][0]["fy"] = -1e300; },
+       "loads[0].fy: beyond ±1e50 (-1e+300): no unit system needs it"},
       {"load path standing still", [](json& m) { m["analysis"]["control"]["path"] = {1.0, 1.0}; }, "analysis.control.path[1]: repeats the load factor"},
       {"arc-length without max_steps",
        [](json& m) { m["analysis"]["control"] = {{"type", "arc-length"}, {"initial_increment", 0.1}}; },
@@ -356,6 +358,16 @@ TEST_F(Cli, InvalidJsonNamesLineAndColumn) {
   const Outcome o = run_cli("run " + model + " --out " + (dir_ / "out").string());
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_NE(o.output.find("invalid JSON at line 3, column 14"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  // A number beyond a double's range is bad input too (it was an "internal error", exit 1).
+  json m = cantilever();
+  std::string text = m.dump(2);
+  text.replace(text.find("100000.0"), 8, "1e400");
+  const std::string huge = write("huge.json", text);
+  const Outcome h = run_cli("run " + huge + " --out " + (dir_ / "out").string());
+  EXPECT_EQ(h.exit_code, 2) << h.output;
+  EXPECT_NE(h.output.find(huge + ": invalid JSON: number overflow parsing '1e400' (beyond a double's range)"), std::string::npos)
+      << h.output;
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 

@@ -68,10 +68,21 @@ void check_keys(const json& object, const std::string& path, std::initializer_li
   }
 }
 
+constexpr double largest_number = 1e50;  // |x| of any number in a model
+
+std::string format_plain(double x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+
 double number(const json& value, const std::string& path) {
   if (!value.is_number()) fail(path, std::string("expected a number, found ") + type_name(value));
   const double x = value.get<double>();
   if (!std::isfinite(x)) fail(path, "the number is not finite");
+  // No unit system needs more, and products of a few such numbers (EA · l, a load times a
+  // displacement) would overflow to infinity mid-analysis instead of failing here.
+  if (std::abs(x) > largest_number) fail(path, "beyond ±1e50 (" + format_plain(x) + "): no unit system needs it, and products of such numbers overflow");
   return x;
 }
 
@@ -815,6 +826,11 @@ Model read_model_text(const std::string& text) {
     const auto colon = reason.find("syntax error");
     if (colon != std::string::npos) reason = reason.substr(colon);
     fail("", "invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " + reason);
+  } catch (const json::exception& e) {  // a number beyond a double's range (out_of_range 406)
+    std::string reason = e.what();
+    const auto bracket = reason.find("] ");
+    if (bracket != std::string::npos) reason = reason.substr(bracket + 2);
+    fail("", "invalid JSON: " + reason + " (beyond a double's range)");
   }
   return read_model(document);
 }

@@ -213,7 +213,7 @@ Study read_study(const json& doc, const std::string& directory) {
     if (!in) fail("model_file", "cannot read " + file.string());
     try {
       s.model = json::parse(in);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {
       fail("model_file", file.string() + ": invalid JSON (" + std::string(e.what()) + ")");
     }
   }
@@ -246,7 +246,7 @@ Study read_study_file(const std::string& path) {
   json doc;
   try {
     doc = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
     fail("", std::string("invalid JSON: ") + e.what());
   }
   return read_study(doc, std::filesystem::path(path).parent_path().string());
