@@ -5,7 +5,8 @@ leaves in out/ (Debian's /usr/bin/python3 with python3-matplotlib; nothing else)
     /usr/bin/python3 scripts/report.py [OUT]      (default OUT = out)
 
 Reads   OUT/studies/fig3/study.csv, OUT/studies/fig7/study.csv and cases/*/steps.csv,
-        OUT/cantilever-circle/results.json, OUT/contact-push/results.json
+        OUT/cantilever-circle/results.json, OUT/contact-push/results.json, and every
+        OUT/<example>/results.json of examples/*.json (a section of their shapes and notes)
 Writes  OUT/plots/*.png and *.svg, OUT/report.html (self-contained: images embedded)
 """
 import base64
@@ -206,6 +207,42 @@ def fig6():
     return save(fig, "fig6-deformed-shapes")
 
 
+# ---- The examples: each one's deformed shapes and how its run ended ----
+
+def examples():
+    """[(name, title, summary, notes, png)] for every examples/*.json run into OUT/<name>/."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from plot_run import magnification  # plot_run draws with this module's draw_shape
+    source = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples")
+    rows = []
+    for file in sorted(os.listdir(source)):
+        name, ext = os.path.splitext(file)
+        path = os.path.join(OUT, name, "results.json")
+        if ext != ".json" or not os.path.exists(path):
+            continue
+        with open(path) as f:
+            results = json.load(f)
+        steps = results["steps"]
+        converged = [s for s in steps if s["converged"]]
+        summary = (f"{results['status']}: {len(converged)} steps, {sum(s['iterations'] for s in steps)} iterations"
+                   + (f", λ = {converged[-1]['load_factor']:.4g} at the end" if converged else ""))
+        states = [s for s in steps if "displacements" in s]
+        if len(states) > 6:
+            states = [states[round(k * (len(states) - 1) / 5)] for k in range(6)]
+        fig, ax = plt.subplots(figsize=(4.2, 3.0))
+        draw_shape(ax, results, {"displacements": {str(n["id"]): [0, 0, 0] for n in results["nodes"]}}, color="0.75", lw=0.8)
+        scale = magnification(results, states)
+        cmap = plt.get_cmap("viridis")
+        for k, state in enumerate(states):
+            draw_shape(ax, results, state, scale=scale, color=cmap(k / max(1, len(states) - 1)), lw=1.0)
+        ax.set_aspect("equal")
+        ax.set_xticks([])
+        ax.set_yticks([])
+        ax.set_title(name + (f" (displacements × {scale:g})" if scale != 1.0 else ""), fontsize=8)
+        rows.append((name, results.get("title", ""), summary, results.get("notes", []), save(fig, f"example-{name}")))
+    return rows
+
+
 def embed(png):
     if not png:
         return "<p><em>(not produced: run scripts/run.sh first)</em></p>"
@@ -279,7 +316,19 @@ instead of asking Newton to converge at α → 1.
 With the paper's force law kept to the node, Euler–Bernoulli does fail near the element end at some
 positions (listed above) while Timoshenko passes everywhere — the paper's ordering — but the largest
 α it reaches before that (≈ 99 %) is higher than the paper's 87–92 %, since our step halving gets
-closer to the edge.</p></body></html>""")
+closer to the edge.</p>""")
+    example_rows = examples()
+    if example_rows:
+        parts.append("""<h2>The examples</h2>
+<p>Every model in <code>examples/</code>, run by <code>scripts/run.sh</code> into <code>out/&lt;name&gt;/</code>
+(results.json, steps.csv; <code>tsmframe run … --plot</code> draws the full plots): its deformed shapes from
+the undeformed (grey) to the last step (yellow), how the run ended, and its notes.</p>""")
+        for name, title, summary, notes, png in example_rows:
+            note_list = "".join(f"<li>{e(n)}</li>" for n in notes)
+            parts.append(f'<div style="display:flex;gap:1em;align-items:flex-start;margin:1em 0">'
+                         f'<div style="flex:0 0 360px">{embed(png)}</div><div><b>{e(name)}</b>: {e(title)}<br>'
+                         f'<em>{e(summary)}</em>{"<ul>" + note_list + "</ul>" if notes else ""}</div></div>')
+    parts.append("</body></html>")
     os.makedirs(OUT, exist_ok=True)
     with open(os.path.join(OUT, "report.html"), "w") as f:
         f.write("\n".join(parts))

@@ -7,6 +7,7 @@ writes non-empty PNG files; the study report is written.
     /usr/bin/python3 tests/python/test_outputs.py TSMFRAME_BINARY SOURCE_DIR
 """
 import csv
+import html
 import json
 import math
 import os
@@ -157,6 +158,30 @@ class Plots(unittest.TestCase):
                 self.assertGreater(os.path.getsize(path), 1000, name)
             with open(os.path.join(out, "plots", "deformed.png"), "rb") as f:
                 self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+
+    def test_the_report_shows_each_example_run_with_its_shapes_and_notes(self):
+        # out/ as scripts/run.sh leaves it, for two examples and no studies: the report has a
+        # section per example (its shapes drawn, how it ended, its notes) and says the studies'
+        # plots were not produced rather than failing.
+        with tempfile.TemporaryDirectory() as d:
+            for name in ("portal-frame", "push-on-a-node"):
+                r = run("run", os.path.join(SOURCE, "examples", name + ".json"), "--out", os.path.join(d, name), "-q")
+                self.assertEqual(r.returncode, 0, r.stderr)
+            r = subprocess.run(["/usr/bin/python3", os.path.join(SOURCE, "scripts", "report.py"), d],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(os.path.join(d, "report.html")) as f:
+                page = f.read()
+            self.assertIn("<h2>The examples</h2>", page)
+            self.assertIn("<b>portal-frame</b>", page)
+            self.assertIn("<em>converged: 10 steps, 30 iterations, λ = 1 at the end</em>", page)
+            with open(os.path.join(d, "push-on-a-node", "results.json")) as f:
+                notes = json.load(f)["notes"]
+            self.assertTrue(notes)
+            self.assertIn(f"<li>{html.escape(notes[0])}</li>", page)  # its strain note
+            for name in ("portal-frame", "push-on-a-node"):
+                self.assertGreater(os.path.getsize(os.path.join(d, "plots", f"example-{name}.png")), 1000)
+            self.assertIn("not produced: run scripts/run.sh first", page)
 
     def test_a_paragraph_long_title_is_wrapped_not_a_page_wide_plot(self):
         # The example's title is a paragraph; drawn on one line it made the figure 4,213 px wide
