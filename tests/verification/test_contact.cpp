@@ -377,6 +377,45 @@ TEST(ContactResting, ACantileverTipRestingOnABeamSharesTheLoadAsTwoSpringsInSeri
   expect_equilibrium(model, r.steps.back());
 }
 
+TEST(ContactResting, AMatLyingOnABeamPassesItsLoadOnAsADistributedLoad) {
+  // A flexible mat (67 elements, I = 1e-8) drawn at the gap above a simply supported beam (10 m,
+  // 200 elements), every mat node a contact node on the beam (one entry: "nodes": {"members":
+  // [1]}), the mat held across by one ux only, under 2 kN/m over its 9.99 m in 5 steps. All 68
+  // nodes rest on the beam and press it; the beam's supports carry the whole load and its
+  // mid-span deflection is that of the distributed load, 5wL⁴/384EI with w = 2 kN/m × 9.99/10 —
+  // to the spacing of the 68 point loads, 1e-3.
+  json m = {{"materials", {{"steel", {{"E", 2e11}, {"nu", 0.3}}}}},
+            {"sections", {{"beam", {{"A", 4e-3}, {"I", 2e-5}}}, {"mat", {{"A", 1e-3}, {"I", 1e-8}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
+                                   {{"id", 3}, {"x", 0.005}, {"y", 0.05}}, {{"id", 4}, {"x", 9.995}, {"y", 0.05}}})},
+            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 200}, {"material", "steel"}, {"section", "beam"}},
+                                     {{"from", 3}, {"to", 4}, {"divisions", 67}, {"material", "steel"}, {"section", "mat"},
+                                      {"load", {{"fy", -2000.0}}}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}},
+                                      {{"node", 3}, {"fix", {"ux"}}}})},
+            {"contacts", json::array({{{"nodes", {{"members", {1}}}}, {"members", {0}}, {"gap", 0.05}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 5}}}, {"output", "last"}}}};
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const StepRecord& last = r.steps.back();
+  ASSERT_EQ(last.contacts.size(), 68u);
+  for (const tsm::solver::ContactPoint& c : last.contacts) {
+    EXPECT_GE(c.element, 0);
+    EXPECT_GT(c.force, 0.0);
+  }
+  const double total = 2000.0 * 9.99, EI = 2e11 * 2e-5;
+  const double carried = last.reactions[tsm::dofs_per_node * model.node_index(1) + 1] + last.reactions[tsm::dofs_per_node * model.node_index(2) + 1];
+  EXPECT_NEAR(carried, total, 1e-7 * total);  // to the residual tolerance
+  int middle = -1;
+  for (int k = 0; k < model.node_count(); ++k)
+    if ((model.nodes[k].position - Eigen::Vector2d(5.0, 0.0)).norm() < 1e-9) middle = model.nodes[k].id;
+  ASSERT_GE(middle, 0);
+  const double expected = 5.0 * (total / 10.0) * std::pow(10.0, 4) / (384.0 * EI);
+  EXPECT_NEAR(-node_displacement(model, last, middle)[1], expected, 1e-3 * expected);
+  expect_equilibrium(model, last);
+}
+
 TEST(ContactResting, ALoadRidingOnABeamFollowsItsInfluenceLine) {
   // A node drawn at the gap (5 cm) above a simply supported beam (10 m), its ux prescribed (1 → 9
   // m) and its uy free, pressed down by λ·10 kN: held across the beam by its contact alone (it
