@@ -231,6 +231,12 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
        "contacts[0].nodes[1]: node 5 already has a contact entry"},
       {"contact nodes empty", [](json& m) { m["contacts"] = json::array({{{"nodes", json::array()}, {"members", "all"}}}); },
        "contacts[0].nodes: no node listed"},
+      {"every step's state kept, beyond 8 GB",
+       [](json& m) {
+         m["members"][0]["divisions"] = 100000;
+         m["analysis"]["control"]["steps"] = 10000;
+       },
+       "analysis.output: keeping the full state of 10000 steps of 100000 elements takes ~80 GB of memory"},
       {"a load beyond 1e50", [](json& m) { m["loads"][0]["fy"] = -1e300; },
        "loads[0].fy: beyond ±1e50 (-1e+300): no unit system needs it"},
       {"load path standing still", [](json& m) { m["analysis"]["control"]["path"] = {1.0, 1.0}; }, "analysis.control.path[1]: repeats the load factor"},

@@ -24,6 +24,7 @@ using nlohmann::json;
 constexpr long max_divisions = 10'000'000;        // per member: a typo must not exhaust memory
 constexpr long max_elements = 20'000'000;         // per model
 constexpr long max_steps = 10'000'000;
+constexpr double max_kept_state_bytes = 8e9;  // the converged states an output selection keeps (check_kept_states)
 constexpr double coordinate_match = 1e-9;         // × model size (FORMAT.md)
 
 std::string quote_text(const std::string& text) { return json(text).dump(); }
@@ -175,6 +176,7 @@ class Reader {
     read_contacts();
     check_resting_contacts();
     read_analysis();
+    check_kept_states();
     if (auto mechanism = find_mechanism(model_)) fail("supports", *mechanism);
     if (!model_.reference_prescribed.any()) model_.reference_prescribed.resize(0);  // nothing prescribed moves
     return std::move(model_);
@@ -766,6 +768,29 @@ class Reader {
       fail(child(path, "type"), "unknown control " + quote_text(type) + " (expected \"load\", \"displacement\" or \"arc-length\")");
     }
     if (c.contains("steps")) control.steps = static_cast<int>(bounded_integer(c["steps"], child(path, "steps"), 1, max_steps));
+  }
+
+  /// The steps whose full state the output selection keeps (in memory until the run ends, then in
+  /// results.json) must fit: a step count meant as 100 and typed as 100,000 on a large model would
+  /// otherwise run for hours and then run out of memory. Load and displacement control only,
+  /// whose step count is known (arc-length's max_steps is a bound, not a count).
+  void check_kept_states() const {
+    const AnalysisSettings& a = model_.analysis;
+    if (a.control.type == ControlType::arc_length) return;
+    const double steps = static_cast<double>(a.control.steps) * std::max<size_t>(1, a.control.path.empty() ? 1 : a.control.path.size() - 1);
+    const double kept = a.output.kind == OutputSelection::Kind::last ? 1.0
+                        : a.output.kind == OutputSelection::Kind::every ? std::ceil(steps / a.output.every) + 1.0
+                                                                         : steps;
+    // Per kept step: displacements and reactions (3 per node), element forces (4 per element), 8 bytes each.
+    const double bytes = kept * 8.0 * (6.0 * model_.node_count() + 4.0 * static_cast<double>(model_.elements.size()));
+    if (bytes > max_kept_state_bytes) {
+      std::ostringstream os;
+      os.precision(3);
+      os << "keeping the full state of " << static_cast<long long>(kept) << " steps of " << model_.elements.size()
+         << " elements takes ~" << bytes / 1e9 << " GB of memory, and more in results.json (at most "
+         << max_kept_state_bytes / 1e9 << " GB): give \"output\" a step interval k (every k-th step) or \"last\", or fewer steps";
+      fail("analysis.output", os.str());
+    }
   }
 
   void read_output(const json& o, const std::string& path) {
