@@ -22,7 +22,7 @@ import os as _os
 
 import numpy as _np
 
-from ._core import __version__, run_json as _run_json
+from ._core import __version__, run_json as _run_json, study_json as _study_json
 
 __all__ = ["Model", "Result", "run", "load", "__version__"]
 
@@ -146,6 +146,26 @@ class Model:
 
 def _ref(node):
     return list(node) if isinstance(node, (tuple, list)) else node
+
+
+def study(definition, jobs=0):
+    """Run a parameter study (a tsmframe-study/1 document: a dict, or a path to one; README
+    "Parameter studies") with its cases in parallel on `jobs` threads (0: all cores). Returns one
+    dict per case in case order, with study.csv's columns: the parameters' values, status,
+    converged, steps, iterations, last_iterations, load_factor, seconds, the first contact's
+    story where the model has contacts, each `record` (None where the case has no value), message.
+    A bad study file raises ValueError (JSON path: reason); a failing case is a row."""
+    if isinstance(definition, (str, _os.PathLike)):
+        path = _os.fspath(definition)
+        try:
+            with open(path) as f:
+                text = f.read()
+        except OSError as e:
+            raise ValueError(f"{path}: cannot read ({e.strerror})") from None
+        directory = _os.path.dirname(_os.path.abspath(path))
+    else:
+        text, directory = _json.dumps(definition), _os.getcwd()
+    return _study_json(text, directory, jobs)
 
 
 def load(path):

@@ -87,6 +87,28 @@ def test_one_contact_entry_for_many_nodes():
         tf.Model().contact(1, nodes=[2])
 
 
+def test_a_study_runs_its_cases_and_returns_their_rows():
+    # The README's cantilever (EI = 2.05e7) under 1 kN over two meshes: each row has the
+    # parameter, how the case ended and the recorded tip deflection, PL³/3EI for an
+    # Euler–Bernoulli mesh whatever its divisions (to the geometric effect, 1e-5 here). A bad
+    # study file raises ValueError with its JSON path; a case that fails is a row.
+    m = tf.Model("cantilever").material("steel", E=2.05e11).section("s", A=1e-2, I=1e-4)
+    m.node(1, 0, 0).node(2, 4, 0).member(1, 2, "steel", "s", divisions=8).support(1, "fixed").load(2, fy=-1e3)
+    definition = {"format": "tsmframe-study/1", "model": m.to_dict(),
+                  "sweep": [{"name": "divisions", "path": "/members/0/divisions", "values": [2, 16]},
+                            {"name": "allowed_iterations", "path": "/analysis/max_iterations", "values": [50, 1]}],
+                  "record": [{"name": "tip_uy", "quantity": "displacement", "node": [4.0, 0.0], "dof": "uy"}]}
+    rows = tf.study(definition, jobs=2)
+    assert [(r["case"], r["divisions"], r["allowed_iterations"]) for r in rows] == [
+        (1, "2", "50"), (2, "2", "1"), (3, "16", "50"), (4, "16", "1")]
+    exact = -1e3 * 4.0 ** 3 / (3 * 2.05e11 * 1e-4)
+    for r in (rows[0], rows[2]):
+        assert r["converged"] and r["tip_uy"] == pytest.approx(exact, rel=1e-5)
+    assert not rows[1]["converged"] and rows[1]["message"]  # one Newton iteration is not enough
+    with pytest.raises(ValueError, match=r"record\[0\]\.quantity: unknown quantity"):
+        tf.study({**definition, "record": [{"name": "x", "quantity": "stress"}]})
+
+
 def test_bad_model_raises_value_error_with_the_path():
     doc = tf.load(os.path.join(SOURCE, "examples", "portal-frame.json")).to_dict()
     doc["members"][1]["section"] = "nope"

@@ -219,14 +219,18 @@ Study read_study(const json& doc, const std::string& directory) {
   }
   if (!doc.contains("sweep") || !doc["sweep"].is_array() || doc["sweep"].empty())
     fail("sweep", "missing (required: a non-empty array of parameters)");
-  for (size_t k = 0; k < doc["sweep"].size(); ++k) s.parameters.push_back(read_parameter(doc["sweep"][k], child("sweep", k)));
+  // Every column of study.csv has a name of its own: the fixed ones, the parameters', the records'.
+  std::set<std::string> names = {"case", "status", "converged", "steps", "iterations", "last_iterations", "load_factor",
+                                 "seconds", "message", "contact_first_element", "contact_max_alpha_first",
+                                 "contact_last_element", "contact_elements_passed"};
+  for (size_t k = 0; k < doc["sweep"].size(); ++k) {
+    s.parameters.push_back(read_parameter(doc["sweep"][k], child("sweep", k)));
+    if (!names.insert(s.parameters.back().name).second)
+      fail(child(child("sweep", k), "name"), "\"" + s.parameters.back().name + "\" names another column already");
+  }
   if (s.case_count() > 1000000) fail("sweep", "more than a million cases");
   if (doc.contains("record")) {
     if (!doc["record"].is_array()) fail("record", "expected an array of {\"name\": …, \"quantity\": …}");
-    std::set<std::string> names = {"case", "status", "converged", "steps", "iterations", "last_iterations", "load_factor",
-                                   "seconds", "message", "contact_first_element", "contact_max_alpha_first",
-                                   "contact_last_element", "contact_elements_passed"};
-    for (const Parameter& p : s.parameters) names.insert(p.name);
     for (size_t k = 0; k < doc["record"].size(); ++k) {
       s.records.push_back(read_record(doc["record"][k], child("record", k)));
       if (!names.insert(s.records.back().name).second)
