@@ -1,13 +1,27 @@
 #include "tsmframe/assembly/dof_map.hpp"
 
+#include <optional>
+#include <utility>
+
 #include "tsmframe/assembly/elimination_order.hpp"
+#include "tsmframe/model/resting_contact.hpp"
 #include "tsmframe/util/first_touch.hpp"
 
 namespace tsm::assembly {
 
 DofMap::DofMap(const Model& model) {
   const int n = model.node_count();
-  const std::vector<int> order = elimination_order(node_graph(model));
+  // Contacts resting from the start join their node to the element they rest on: ordered as if
+  // joined by an element. A mat lying on a beam, 1,000 nodes on 3,000 elements, ordered as two
+  // separate chains filled in completely once its contacts joined them (minutes in a dense block).
+  std::vector<std::pair<int, int>> resting;
+  for (const ContactSpec& spec : model.contacts)
+    if (const std::optional<RestingContact> rest = resting_contact(model, spec)) {
+      const Element& e = model.elements[rest->element];
+      resting.emplace_back(spec.node, e.start);
+      resting.emplace_back(spec.node, e.end);
+    }
+  const std::vector<int> order = elimination_order(node_graph(model, resting));
 
   util::assign_touched(equation_, model.dof_count(), -1);
   util::assign_touched(node_block_, n, -1);

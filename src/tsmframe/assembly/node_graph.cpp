@@ -6,7 +6,7 @@
 
 namespace tsm::assembly {
 
-NodeGraph node_graph(const Model& model) {
+NodeGraph node_graph(const Model& model, const std::vector<std::pair<int, int>>& extra) {
   const int n = model.node_count();
   NodeGraph g;
   util::assign_touched(g.start, n + 1, 0);
@@ -15,6 +15,10 @@ NodeGraph node_graph(const Model& model) {
     ++g.start[e.start + 1];
     ++g.start[e.end + 1];
   }
+  for (const auto& [a, b] : extra) {
+    ++g.start[a + 1];
+    ++g.start[b + 1];
+  }
   for (int k = 0; k < n; ++k) g.start[k + 1] += g.start[k];
   util::resize_touched(g.neighbours, g.start[n]);
   std::vector<int> fill(g.start.begin(), g.start.end() - 1);
@@ -22,6 +26,10 @@ NodeGraph node_graph(const Model& model) {
   for (const Element& e : model.elements) {
     g.neighbours[fill[e.start]++] = e.end;
     g.neighbours[fill[e.end]++] = e.start;
+  }
+  for (const auto& [a, b] : extra) {
+    g.neighbours[fill[a]++] = b;
+    g.neighbours[fill[b]++] = a;
   }
   // Sort and drop duplicates (two elements between the same nodes) in place, compacting.
   int write = 0;
