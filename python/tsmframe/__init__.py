@@ -144,6 +144,15 @@ class Model:
             f.write(self.to_json())
 
 
+def _read_text(path):
+    """A file's text; ValueError "PATH: cannot read: reason" where it cannot be read."""
+    try:
+        with open(path) as f:
+            return f.read()
+    except OSError as e:
+        raise ValueError(f"{path}: cannot read: {e.strerror}") from None
+
+
 def _ref(node):
     return list(node) if isinstance(node, (tuple, list)) else node
 
@@ -157,12 +166,7 @@ def study(definition, jobs=0):
     A bad study file raises ValueError (JSON path: reason); a failing case is a row."""
     if isinstance(definition, (str, _os.PathLike)):
         path = _os.fspath(definition)
-        try:
-            with open(path) as f:
-                text = f.read()
-        except OSError as e:
-            raise ValueError(f"{path}: cannot read ({e.strerror})") from None
-        directory = _os.path.dirname(_os.path.abspath(path))
+        text, directory = _read_text(path), _os.path.dirname(_os.path.abspath(path))
     else:
         text, directory = _json.dumps(definition), _os.getcwd()
     return _study_json(text, directory, jobs)
@@ -260,11 +264,7 @@ def run(model, threads=0):
         text = model
     else:
         path = _os.fspath(model)
-        try:
-            with open(path) as f:
-                text = f.read()
-        except OSError as e:
-            raise ValueError(f"{path}: cannot read: {e.strerror}") from None
+        text = _read_text(path)
         try:
             return Result(_run_json(text, threads))
         except ValueError as e:
