@@ -273,21 +273,20 @@ TEST(ContactResting, PushedThroughBetweenTheEdgesTheLoadPassesAMaximumThatArcLen
 
 /// Two overlapping cantilevers of 2 m (EB, 20 elements each): the lower clamped at (0, 0), the
 /// upper at (3, 0.05) with its free tip, node 4, at (1, 0.05) pushed down by 6 MN in 20 steps; the
-/// upper tip may touch the lower beam, and (with `lower_tip`) the lower tip, node 2, the upper.
-json overlapping_cantilevers(bool lower_tip) {
+/// upper tip may touch the lower beam, and the lower tip, node 2, the upper.
+json overlapping_cantilevers() {
   json m = {{"materials", {{"steel", {{"E", 2.05e11}, {"nu", 0.3}}}}},
             {"sections", {{"bar", {{"A", 1e-3}, {"I", 1e-6}}}}},
             {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 2.0}, {"y", 0.0}},
                                    {{"id", 3}, {"x", 3.0}, {"y", 0.05}}, {{"id", 4}, {"x", 1.0}, {"y", 0.05}}})},
             {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 3}, {"type", "fixed"}}})},
             {"loads", json::array({{{"node", 4}, {"fy", -6e6}}})},
-            {"contacts", json::array({{{"node", 4}, {"members", {0}}}})},
+            {"contacts", json::array({{{"node", 4}, {"members", {0}}}, {{"node", 2}, {"members", {1}}}})},
             {"analysis", {{"control", {{"type", "load"}, {"steps", 20}}}}}};
   const auto member = [](int from, int to) {
     return json{{"from", from}, {"to", to}, {"divisions", 20}, {"element", "euler-bernoulli"}, {"material", "steel"}, {"section", "bar"}};
   };
   m["members"] = json::array({member(1, 2), member(3, 4)});
-  if (lower_tip) m["contacts"].push_back({{"node", 2}, {"members", {1}}});
   return m;
 }
 
@@ -296,12 +295,11 @@ TEST(ContactResting, ACantileverPressedOntoACantileverSlidesOffAtAMaximumThatLoa
   // upper at (3, 0.05) with its free tip at (1, 0.05), pushed down by 6 MN in 20 steps; each tip
   // may touch the other beam. The upper tip lands on the lower beam and slides along it towards
   // its free end as both bend: the load has a maximum (~157 kN), past which the tip slides on
-  // under a falling load. (Without the lower tip's contact, load control jumps across the
-  // maximum to the upper beam hanging past the lower's end.) Load control reached it
+  // under a falling load. Load control reached it
   // with its steps cut back to the smallest size, grown again, and failed there with no halving
   // left in that attempt — which the run did not name as a limit point (it required halvings in
   // the failing attempt itself). Arc-length control passes the maximum.
-  json m = overlapping_cantilevers(true);
+  json m = overlapping_cantilevers();
   tsm::Model model;
   const RunResult loaded = run(m, model);
   ASSERT_EQ(loaded.status, tsm::solver::Status::cutback_limit) << loaded.message;
@@ -330,23 +328,33 @@ TEST(ContactResting, ACantileverPressedOntoACantileverSlidesOffAtAMaximumThatLoa
   expect_equilibrium(model, arc.steps.back());
 }
 
-TEST(ContactResting, ATipThatSlidesOffTheOtherBeamsFreeEndIsNoted) {
-  // Without the lower tip's contact, load control's step from λ 0.0156 to 0.0281 (94 to 169 kN,
-  // past the ~157 kN maximum) lands where the upper tip has slid off the lower beam's free end
-  // and hangs past it — an equilibrium, but not the path's: the note says the contact let go there.
+TEST(ContactDetection, APusherThatSlidesOffAFreeEndIsNoted) {
+  // A rigid pusher 5 mm under a 2 m cantilever (10 elements) moves 1.5 m along it and 3 cm up in
+  // 31 steps: it lifts the beam, slides along it across element ends and off its free end, and
+  // lets go there. (Found as two overlapping cantilevers under load control, one step jumping past
+  // the maximum to the upper tip hanging past the lower beam's end, silently.)
+  json m = {{"materials", {{"steel", {{"E", 2e11}, {"nu", 0.3}}}}},
+            {"sections", {{"s", {{"A", 1e-3}, {"I", 1e-6}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 2.0}, {"y", 0.0}},
+                                   {{"id", 9}, {"x", 1.0}, {"y", -0.005}}})},
+            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 10}, {"material", "steel"}, {"section", "s"}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 9}, {"fix", {"rz"}}}})},
+            {"prescribed", json::array({{{"node", 9}, {"ux", 1.5}, {"uy", 0.03}}})},
+            {"contacts", json::array({{{"node", 9}, {"members", {0}}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 31}}}}}};
   tsm::Model model;
-  const RunResult r = run(overlapping_cantilevers(false), model);
+  const RunResult r = run(m, model);
   ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
-  std::string said;
-  for (const std::string& note : r.notes)
-    if (note.find("slid off") != std::string::npos) said = note;
   int let_go = -1;
   for (const StepRecord& s : r.steps)
     if (s.converged && let_go < 0 && !s.slid_off.empty()) let_go = s.step;
   ASSERT_GT(let_go, 1);
-  EXPECT_GE(r.steps[let_go - 2].contacts.at(0).element, 0) << "in contact the step before";
+  EXPECT_EQ(r.steps[let_go - 2].contacts.at(0).element, 9) << "on the last element the step before";
   EXPECT_LT(r.steps[let_go - 1].contacts.at(0).element, 0);
-  EXPECT_EQ(said, "the contact of node 4 slid off the free end of member 0 (past element 20's end) and let go in step " +
+  std::string said;
+  for (const std::string& note : r.notes)
+    if (note.find("slid off") != std::string::npos) said = note;
+  EXPECT_EQ(said, "the contact of node 9 slid off the free end of member 0 (past element 10's end) and let go in step " +
                       std::to_string(let_go));
 }
 
