@@ -555,6 +555,8 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
     const double m_floor = f.moment + std::max(std::abs(law.h_i), std::abs(law.h_j)) * y_floor;
     force += 4.0 * f.force * f.force + 6.0 * y_floor * y_floor;
     moment += 2.0 * m_floor * m_floor;
+    floor.contacts_force += 6.0 * y_floor * y_floor;
+    ++floor.contacts;
     if (y_floor > floor.contact_force) {
       floor.contact_node = a.node;
       floor.contact_force = y_floor;
@@ -564,6 +566,7 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
   }
   floor.force = std::sqrt(force);
   floor.moment = std::sqrt(moment);
+  floor.contacts_force = std::sqrt(floor.contacts_force);
   return floor;
 }
 

@@ -53,6 +53,9 @@ struct RoundingFloor {
   double contact_force = 0.0;
   double compliance = 0.0;
   bool at_edge = false;
+  /// All active contacts' share of `force` (the root of their squared terms) and how many.
+  double contacts_force = 0.0;
+  int contacts = 0;
 };
 
 class GlobalSystem {

@@ -637,10 +637,19 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
              << "resolved (a larger load, in proportion, is)";
           out.message = iterate_text(os.str().c_str(), it);
           // Most of that rounding in one contact's force: say which, and what makes it so stiff.
-          if (floor.contact_node >= 0 && 6.0 * floor.contact_force * floor.contact_force >= 0.5 * floor.force * floor.force) {
+          // Or in many contacts' forces together: say how many, and the stiffest.
+          const bool one = 6.0 * floor.contact_force * floor.contact_force >= 0.5 * floor.force * floor.force;
+          const bool together = floor.contacts > 1 && floor.contacts_force * floor.contacts_force >= 0.5 * floor.force * floor.force;
+          if (floor.contact_node >= 0 && (one || together)) {
             std::ostringstream contact;
-            contact << "; most of that rounding is in the force of the contact at node " << model.nodes[floor.contact_node].id
-                    << " (±" << floor.contact_force << "), as stiff as the element it touches is at its point (1/c = "
+            if (one)
+              contact << "; most of that rounding is in the force of the contact at node " << model.nodes[floor.contact_node].id
+                      << " (±" << floor.contact_force << ")";
+            else
+              contact << "; most of that rounding is in the forces of the " << floor.contacts
+                      << " contacts in touch (together ±" << floor.contacts_force << "; the largest ±" << floor.contact_force
+                      << ", at node " << model.nodes[floor.contact_node].id << ")";
+            contact << ", as stiff as the element it touches is at its point (1/c = "
                     << 1.0 / floor.compliance << "; a member far stiffer than what presses on it makes it so: 100× "
                     << "worked in our tests)";
             if (floor.at_edge)
