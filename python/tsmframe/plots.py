@@ -71,17 +71,23 @@ def plot_load_displacement(result, node_id, dof="uy", ax=None, **kw):
     return ax
 
 
-def plot_contact(result, ax=None, **kw):
-    """Contact position (element − 1 + α) of every contact node against the load factor."""
+def plot_contact(result, ax=None, legend_limit=12, **kw):
+    """Contact position (element − 1 + α) against the load factor, for every contact node that
+    touched at some converged step (a model with many contact nodes: those that never touched
+    are left out). The legend names them where there are at most `legend_limit`."""
     ax = _axes(ax)
     lam = result.load_factor[result.converged == 1]
-    for c, node in enumerate(result.contact_nodes):
+    touched = [c for c in range(len(result.contact_nodes)) if (result.contact_element[:, c] > 0).any()]
+    for c in touched:
         where = np.where(result.contact_element[:, c] > 0, result.contact_element[:, c] - 1 + result.contact_alpha[:, c], np.nan)
-        ax.plot(lam, where, ".-", label=f"contact node {node}", **kw)
+        ax.plot(lam, where, ".-", label=f"contact node {result.contact_nodes[c]}", **kw)
     ax.set_xlabel("load factor λ")
     ax.set_ylabel("contact position (element − 1 + α)")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    if 0 < len(touched) <= legend_limit:
+        ax.legend(fontsize=8)
+    elif touched:
+        ax.set_title(f"{len(touched)} of {len(result.contact_nodes)} contact nodes touched", fontsize=9)
     return ax
 
 

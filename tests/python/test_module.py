@@ -235,3 +235,23 @@ def test_plots_are_written_as_png(tmp_path):
         plt.close(fig)
         assert path.stat().st_size > 5000
         assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_a_contact_plot_of_many_contact_nodes_shows_those_that_touched():
+    # The ring between plates: 80 contact nodes, of which 22 touch at some step; a legend of 80
+    # entries covered the plot. The plot draws the 22 and, past 12, says so in its title instead.
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    r = tf.run(os.path.join(SOURCE, "examples", "ring-between-plates.json"))
+    touched = int(((r.contact_element > 0).any(axis=0)).sum())
+    assert 2 < touched < len(r.contact_nodes)
+    fig, ax = plt.subplots()
+    r.plot_contact(ax=ax)
+    assert len(ax.lines) == touched
+    assert ax.get_legend() is None and ax.get_title() == f"{touched} of 80 contact nodes touched"
+    plt.close(fig)
+    fig, ax = plt.subplots()
+    r.plot_contact(ax=ax, legend_limit=100)
+    assert len(ax.get_legend().get_texts()) == touched
+    plt.close(fig)
