@@ -13,6 +13,7 @@
 #include "tsmframe/assembly/global_system.hpp"
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/solver/block_ldlt.hpp"
+#include "tsmframe/study/study.hpp"
 #include "tsmframe/element/beam_element.hpp"
 #include "tsmframe/util/parallel_for.hpp"
 
@@ -184,6 +185,27 @@ TEST(Threads, TheRoundingFloorIsTheSameOnOneAndTwoThreads) {
   EXPECT_NEAR(two.force, std::sqrt(force), 1e-12 * std::sqrt(force));
   EXPECT_NEAR(two.moment, std::sqrt(moment), 1e-12 * std::sqrt(moment));
   EXPECT_GT(two.force, 0.0);
+}
+
+TEST(Threads, AStudyRunsEachCaseOnOneThreadAndLeavesTheCallersSettingAlone) {
+  // Every worker of a study, the calling thread among them, runs its cases on one thread (the
+  // cases share the cores); afterwards the calling thread's setting is its own again (Python's
+  // tf.study: a later tf.run used one thread).
+  BeamSpec b;
+  b.divisions = 4;
+  json m = beam_model(b);
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}});
+  m["loads"] = json::array({{{"node", 2}, {"fy", 1e-3}}});
+  json s = {{"model", m}, {"sweep", json::array({{{"name", "n"}, {"path", "/members/0/divisions"}, {"values", {2, 3, 4, 5}}}})},
+            {"record", json::array({{{"name", "tip"}, {"quantity", "displacement"}, {"node", 2}, {"dof", "uy"}}})}};
+  const tsm::study::Study study = tsm::study::read_study(s, ".");
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(2);
+  const std::vector<tsm::study::CaseResult> rows = tsm::study::run_study(study, 2, "");
+  EXPECT_EQ(omp_get_max_threads(), 2);
+  ASSERT_EQ(rows.size(), 4u);
+  for (const tsm::study::CaseResult& r : rows) EXPECT_TRUE(r.converged) << r.message;
+  omp_set_num_threads(before);
 }
 
 }  // namespace

@@ -419,7 +419,9 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
   };
   std::vector<std::thread> pool;
   for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  const int callers = omp_get_max_threads();  // the calling thread works too: its setting back after
   worker();
+  omp_set_num_threads(callers);
   for (std::thread& t : pool) t.join();
   return rows;
 }
