@@ -38,8 +38,10 @@ py::dict run_json(const std::string& text, int threads) {
   tsm::solver::RunResult result;
   {
     py::gil_scoped_release release;
+    const int callers = omp_get_max_threads();  // `threads` for this run only, not for the next
     if (threads > 0) omp_set_num_threads(threads);
     result = tsm::solver::run_analysis(model);
+    omp_set_num_threads(callers);
   }
   const py::ssize_t n = model.node_count(), m = static_cast<py::ssize_t>(model.elements.size());
   const py::ssize_t c = static_cast<py::ssize_t>(model.contacts.size());
