@@ -328,6 +328,38 @@ TEST(ContactResting, ACantileverPressedOntoACantileverSlidesOffAtAMaximumThatLoa
   expect_equilibrium(model, arc.steps.back());
 }
 
+TEST(ContactDetection, ManyContactsClosingTogetherSettleGivenIterationsAndTheFailureSaysSo) {
+  // A pinned beam (10 m, 200 Timoshenko elements, EI 2e4) drawn 1 cm above a simply supported one
+  // (600 elements), every node of it a contact node on the lower beam (one entry), loaded in one
+  // step to the first contacts: the set of contacts in touch settles a few per converged iterate,
+  // here in 75 iterations. With the default 50 the step fails, and its message names the way out.
+  json m = {{"materials", {{"steel", {{"E", 2e11}, {"nu", 0.3}}}}},
+            {"sections", {{"beam", {{"A", 4e-3}, {"I", 2e-5}, {"shear_area", 3.3e-3}}},
+                          {"top", {{"A", 1e-3}, {"I", 1e-7}, {"shear_area", 8e-4}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
+                                   {{"id", 3}, {"x", 0.005}, {"y", 0.06}}, {{"id", 4}, {"x", 9.995}, {"y", 0.06}}})},
+            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 600}, {"material", "steel"}, {"section", "beam"}, {"element", "timoshenko"}},
+                                     {{"from", 3}, {"to", 4}, {"divisions", 200}, {"material", "steel"}, {"section", "top"}, {"element", "timoshenko"},
+                                      {"load", {{"fy", -20000.0 / 10240.0}}}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}},
+                                      {{"node", 3}, {"type", "pinned"}}, {{"node", 4}, {"type", "pinned"}}})},
+            {"contacts", json::array({{{"nodes", {{"members", {1}}}}, {"members", {0}}, {"gap", 0.05}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 1}}}, {"cutback", false}}}};
+  tsm::Model model;
+  const RunResult failed = run(m, model);
+  ASSERT_EQ(failed.status, tsm::solver::Status::max_iterations) << failed.message;
+  EXPECT_NE(failed.message.find("so the set of contacts in touch did not settle (with 201 contact nodes it may settle "
+                                "given more: analysis.max_iterations, now 50, or smaller steps)"),
+            std::string::npos)
+      << failed.message;
+  m["analysis"]["max_iterations"] = 300;
+  const RunResult settled = run(m, model);
+  ASSERT_EQ(settled.status, tsm::solver::Status::converged) << settled.message;
+  for (const tsm::solver::ContactPoint& c : settled.steps.back().contacts)
+    if (c.element >= 0) EXPECT_GT(c.force, 0.0);
+  expect_equilibrium(model, settled.steps.back());
+}
+
 TEST(ContactDetection, APusherThatSlidesOffAFreeEndIsNoted) {
   // A rigid pusher 5 mm under a 2 m cantilever (10 elements) moves 1.5 m along it and 3 cm up in
   // 31 steps: it lifts the beam, slides along it across element ends and off its free end, and

@@ -736,9 +736,15 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
   std::ostringstream os;
   os << "no convergence in " << settings_.max_iterations << " iterations (last relative residual "
      << out.residual_norms.back() << ")";
-  if (unsettled > 0)  // the equilibrium was found, but never with a set of contacts that all press
+  if (unsettled > 0) {  // the equilibrium was found, but never with a set of contacts that all press
     os << ": " << unsettled << " converged iterates had a contact pull or a node through a beam, so the set of "
        << "contacts in touch did not settle";
+    // Many contacts closing together settle a few per converged iterate: a beam pressed onto
+    // another along its length (165 contacts) needed 300 iterations for its first step.
+    if (state.contacts.size() > 8)
+      os << " (with " << state.contacts.size() << " contact nodes it may settle given more: analysis.max_iterations, now "
+         << settings_.max_iterations << ", or smaller steps)";
+  }
   out.message = os.str();
   return out;
 }
