@@ -6,7 +6,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -138,7 +137,7 @@ py::dict run_json(const std::string& text, int threads) {
   return out;
 }
 
-py::list study_json(const std::string& text, const std::string& directory, int jobs) {
+std::string study_json(const std::string& text, const std::string& directory, int jobs) {
   tsm::study::Study study;
   try {
     nlohmann::json document;
@@ -156,33 +155,9 @@ py::list study_json(const std::string& text, const std::string& directory, int j
     py::gil_scoped_release release;
     rows = tsm::study::run_study(study, jobs, "");
   }
-  const bool contacts = !study.model.value("contacts", nlohmann::json::array()).empty();
-  py::list out;  // one dict per case, the columns of study.csv (numbers as numbers)
-  for (const tsm::study::CaseResult& r : rows) {
-    py::dict row;
-    row["case"] = r.index + 1;
-    for (size_t p = 0; p < study.parameters.size(); ++p) row[py::str(study.parameters[p].name)] = study.parameters[p].labels[r.choice[p]];
-    row["status"] = r.status;
-    row["converged"] = r.converged;
-    row["steps"] = r.steps;
-    row["iterations"] = r.iterations;
-    row["last_iterations"] = r.last_iterations;
-    row["load_factor"] = r.load_factor;
-    row["seconds"] = r.seconds;
-    if (contacts) {
-      row["contact_first_element"] = r.contact_first_element;
-      row["contact_max_alpha_first"] = r.contact_max_alpha_first;
-      row["contact_last_element"] = r.contact_last_element;
-      row["contact_elements_passed"] = r.contact_elements_passed;
-    }
-    for (size_t k = 0; k < study.records.size(); ++k) {
-      const double v = k < r.recorded.size() ? r.recorded[k] : NAN;
-      row[py::str(study.records[k].name)] = std::isnan(v) ? py::object(py::none()) : py::object(py::float_(v));
-    }
-    row["message"] = r.message;
-    out.append(row);
-  }
-  return out;
+  std::ostringstream out;  // the CLI's study.json
+  tsm::study::write_study_json(out, study, rows);
+  return out.str();
 }
 
 }  // namespace
@@ -195,6 +170,6 @@ PYBIND11_MODULE(_core, module) {
              "Raises ValueError (JSON path: reason) for bad input.");
   module.def("study_json", &study_json, py::arg("text"), py::arg("directory") = ".", py::arg("jobs") = 0,
              "Run a study given as tsmframe-study/1 JSON text (model_file relative to `directory`), the cases in "
-             "parallel on `jobs` threads (0: all cores); returns one dict per case, study.csv's columns. "
+             "parallel on `jobs` threads (0: all cores); returns the text of the CLI's study.json. "
              "Raises ValueError (JSON path: reason) for a bad study file.");
 }

@@ -169,7 +169,7 @@ def study(definition, jobs=0):
         text, directory = _read_text(path), _os.path.dirname(_os.path.abspath(path))
     else:
         text, directory = _json.dumps(definition), _os.getcwd()
-    return _study_json(text, directory, jobs)
+    return _json.loads(_study_json(text, directory, jobs))["cases"]  # study.json's rows, as the CLI writes them
 
 
 def load(path):

@@ -777,7 +777,8 @@ class Reader {
   void check_kept_states() const {
     const AnalysisSettings& a = model_.analysis;
     if (a.control.type == ControlType::arc_length) return;
-    const double steps = static_cast<double>(a.control.steps) * std::max<size_t>(1, a.control.path.empty() ? 1 : a.control.path.size() - 1);
+    const double legs = a.control.path.empty() ? 1.0 : static_cast<double>(a.control.path.size());  // from λ = 0 to each point
+    const double steps = static_cast<double>(a.control.steps) * legs;
     const double kept = a.output.kind == OutputSelection::Kind::last ? 1.0
                         : a.output.kind == OutputSelection::Kind::every ? std::ceil(steps / a.output.every) + 1.0
                                                                          : steps;

@@ -333,11 +333,11 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
   else std::vector<Block>().swap(deferred_z_);
   dense_.resize(0, 0);
   // The solves go level by level (a barrier per level): only where levels hold several rows.
-  parallel_top_levels_ = parallel_top_ && 2 * shared >= static_cast<int>(top_rows_.size()) && n >= util::smallest_shared_model;
   // A small matrix keeps the stages' arithmetic (paths, a dense top: bit-identical either way)
   // but runs them on one thread: a ring of 80 elements between two plates spent 2.5× its time
   // starting and waking the second thread for them (74 % of its samples in libgomp).
   team_ = n >= util::smallest_shared_model;
+  parallel_top_levels_ = parallel_top_ && 2 * shared >= static_cast<int>(top_rows_.size()) && team_;
 }
 
 TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, int t_end, double* forward, int* slot, bool finish,

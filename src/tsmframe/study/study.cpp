@@ -28,6 +28,11 @@ using io::InputError;
 
 [[noreturn]] void fail(const std::string& path, const std::string& reason) { throw InputError(path, reason); }
 
+// The columns of study.csv and study.json besides case, the parameters, the records and message.
+constexpr const char* run_columns[] = {"status", "converged", "steps", "iterations", "last_iterations", "load_factor", "seconds"};
+constexpr const char* contact_columns[] = {"contact_first_element", "contact_max_alpha_first", "contact_last_element",
+                                           "contact_elements_passed"};  // models with contacts
+
 std::string child(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
 std::string child(const std::string& path, size_t k) { return path + "[" + std::to_string(k) + "]"; }
 
@@ -220,9 +225,9 @@ Study read_study(const json& doc, const std::string& directory) {
   if (!doc.contains("sweep") || !doc["sweep"].is_array() || doc["sweep"].empty())
     fail("sweep", "missing (required: a non-empty array of parameters)");
   // Every column of study.csv has a name of its own: the fixed ones, the parameters', the records'.
-  std::set<std::string> names = {"case", "status", "converged", "steps", "iterations", "last_iterations", "load_factor",
-                                 "seconds", "message", "contact_first_element", "contact_max_alpha_first",
-                                 "contact_last_element", "contact_elements_passed"};
+  std::set<std::string> names = {"case", "message"};
+  names.insert(std::begin(run_columns), std::end(run_columns));
+  names.insert(std::begin(contact_columns), std::end(contact_columns));
   for (size_t k = 0; k < doc["sweep"].size(); ++k) {
     s.parameters.push_back(read_parameter(doc["sweep"][k], child("sweep", k)));
     if (!names.insert(s.parameters.back().name).second)
@@ -437,6 +442,43 @@ std::string csv_field(const std::string& text) {
 
 }  // namespace
 
+void write_study_json(std::ostream& out, const Study& study, const std::vector<CaseResult>& rows) {
+  const bool contacts = !study.model.value("contacts", json::array()).empty();
+  io::JsonWriter w(out);
+  w.begin_object();
+  w.key("format").value("tsmframe-study-results/1");
+  w.key("title").value(study.title);
+  w.key("parameters").begin_array();
+  for (const Parameter& p : study.parameters) {
+    w.newline().begin_object().key("name").value(p.name).key("values").begin_array();
+    for (const std::string& l : p.labels) w.value(l);
+    w.end_array().end_object();
+  }
+  w.end_array();
+  w.newline().key("cases").begin_array();
+  for (const CaseResult& r : rows) {
+    w.newline().begin_object();
+    w.key("case").value(static_cast<int>(r.index + 1));
+    for (size_t p = 0; p < study.parameters.size(); ++p) w.key(study.parameters[p].name).value(study.parameters[p].labels[r.choice[p]]);
+    w.key("status").value(r.status).key("converged").value(r.converged).key("steps").value(r.steps);
+    w.key("iterations").value(r.iterations).key("last_iterations").value(r.last_iterations);
+    w.key("load_factor").value(r.load_factor).key("seconds").value(r.seconds);
+    if (contacts) {
+      w.key("contact_first_element").value(r.contact_first_element);
+      w.key("contact_max_alpha_first").value(r.contact_max_alpha_first);
+      w.key("contact_last_element").value(r.contact_last_element);
+      w.key("contact_elements_passed").value(r.contact_elements_passed);
+    }
+    for (size_t k = 0; k < study.records.size(); ++k)  // null where the case has no value
+      w.key(study.records[k].name).value(k < r.recorded.size() ? r.recorded[k] : NAN);
+    w.key("message").value(r.message);
+    w.end_object();
+  }
+  w.end_array();
+  w.newline().end_object();
+  out << '\n';
+}
+
 void write_study(const std::string& directory, const Study& study, const std::vector<CaseResult>& rows) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
@@ -445,8 +487,9 @@ void write_study(const std::string& directory, const Study& study, const std::ve
   auto write_csv = [&](std::ostream& out) {
     out << "case";
     for (const Parameter& p : study.parameters) out << ',' << csv_field(p.name);
-    out << ",status,converged,steps,iterations,last_iterations,load_factor,seconds";
-    if (contacts) out << ",contact_first_element,contact_max_alpha_first,contact_last_element,contact_elements_passed";
+    for (const char* column : run_columns) out << ',' << column;
+    if (contacts)
+      for (const char* column : contact_columns) out << ',' << column;
     for (const Record& record : study.records) out << ',' << csv_field(record.name);
     out << ",message\n";
     for (const CaseResult& r : rows) {
@@ -462,42 +505,8 @@ void write_study(const std::string& directory, const Study& study, const std::ve
       out << ',' << csv_field(r.message) << '\n';
     }
   };
-  auto write_json = [&](std::ostream& out) {
-    io::JsonWriter w(out);
-    w.begin_object();
-    w.key("format").value("tsmframe-study-results/1");
-    w.key("title").value(study.title);
-    w.key("parameters").begin_array();
-    for (const Parameter& p : study.parameters) {
-      w.newline().begin_object().key("name").value(p.name).key("values").begin_array();
-      for (const std::string& l : p.labels) w.value(l);
-      w.end_array().end_object();
-    }
-    w.end_array();
-    w.newline().key("cases").begin_array();
-    for (const CaseResult& r : rows) {
-      w.newline().begin_object();
-      w.key("case").value(static_cast<int>(r.index + 1));
-      for (size_t p = 0; p < study.parameters.size(); ++p) w.key(study.parameters[p].name).value(study.parameters[p].labels[r.choice[p]]);
-      w.key("status").value(r.status).key("converged").value(r.converged).key("steps").value(r.steps);
-      w.key("iterations").value(r.iterations).key("last_iterations").value(r.last_iterations);
-      w.key("load_factor").value(r.load_factor).key("seconds").value(r.seconds);
-      if (contacts) {
-        w.key("contact_first_element").value(r.contact_first_element);
-        w.key("contact_max_alpha_first").value(r.contact_max_alpha_first);
-        w.key("contact_last_element").value(r.contact_last_element);
-        w.key("contact_elements_passed").value(r.contact_elements_passed);
-      }
-      for (size_t k = 0; k < study.records.size(); ++k)  // null where the case has no value
-        w.key(study.records[k].name).value(k < r.recorded.size() ? r.recorded[k] : NAN);
-      w.key("message").value(r.message);
-      w.end_object();
-    }
-    w.end_array();
-    w.newline().end_object();
-    out << '\n';
-  };
   const std::filesystem::path dir(directory);
+  auto write_json = [&](std::ostream& out) { write_study_json(out, study, rows); };
   io::write_files_atomically({{(dir / "study.csv").string(), write_csv}, {(dir / "study.json").string(), write_json}});
 }
 

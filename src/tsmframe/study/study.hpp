@@ -19,6 +19,7 @@
 // Paths are JSON pointers (RFC 6901) into the model.
 
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,9 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
 /// The case's model JSON (the base model with the case's assignments).
 nlohmann::json case_model(const Study& study, const std::vector<size_t>& choice);
 std::vector<size_t> case_choice(const Study& study, size_t index);
+
+/// study.json's text (the rows as its "cases"), to `out`.
+void write_study_json(std::ostream& out, const Study& study, const std::vector<CaseResult>& rows);
 
 /// study.csv and study.json into `directory` (atomically).
 void write_study(const std::string& directory, const Study& study, const std::vector<CaseResult>& rows);
