@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "tsmframe/io/input_error.hpp"
+#include "tsmframe/io/json_writer.hpp"
 #include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/model/hinges.hpp"
 #include "tsmframe/model/resting_contact.hpp"
@@ -71,19 +72,13 @@ void check_keys(const json& object, const std::string& path, std::initializer_li
 
 constexpr double largest_number = 1e50;  // |x| of any number in a model
 
-std::string format_plain(double x) {
-  std::ostringstream os;
-  os << x;
-  return os.str();
-}
-
 double number(const json& value, const std::string& path) {
   if (!value.is_number()) fail(path, std::string("expected a number, found ") + type_name(value));
   const double x = value.get<double>();
   if (!std::isfinite(x)) fail(path, "the number is not finite");
   // No unit system needs more, and products of a few such numbers (EA · l, a load times a
   // displacement) would overflow to infinity mid-analysis instead of failing here.
-  if (std::abs(x) > largest_number) fail(path, "beyond ±1e50 (" + format_plain(x) + "): no unit system needs it, and products of such numbers overflow");
+  if (std::abs(x) > largest_number) fail(path, "beyond ±1e50 (" + format_number(x) + "): no unit system needs it, and products of such numbers overflow");
   return x;
 }
 
