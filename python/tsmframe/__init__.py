@@ -109,7 +109,7 @@ class Model:
 
     def contact(self, node=None, members="all", nodes=None, **options):
         """A contact node, or several with the same options: nodes=[refs] or nodes={"members": [i, …]}
-        (every node of those members); options: element, frame, gap, edge, sliding_tangent (FORMAT.md, README)."""
+        (every node of those members); options: element, frame, gap, edge, max_stiffness_ratio, sliding_tangent (FORMAT.md, README)."""
         if (node is None) == (nodes is None):
             raise ValueError("contact: give node or nodes (not both)")
         if node is not None:

@@ -198,6 +198,13 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
          m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"edge", 0.5}}});
        },
        "contacts[0].edge: must lie between 1e-12 and 0.25"},
+      {"contact stiffness ratio below 1",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});
+         m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
+         m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"max_stiffness_ratio", 0.5}}});
+       },
+       "contacts[0].max_stiffness_ratio: must be at least 1"},
       {"contact node twice",
        [](json& m) {
          m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});

@@ -105,6 +105,30 @@ TEST(ContactForceLaw, ComplianceFloorHoldsWithinTheEdgeZone) {
   EXPECT_EQ(point_load_law(stiff, 0.5, 0.999, 0.01).compliance, c_min);
 }
 
+TEST(ContactForceLaw, AStiffnessCapFloorsTheComplianceWhereverItBinds) {
+  // min_compliance (the contact's max_stiffness_ratio against its node's own elements) is a floor
+  // like the edge's: where the point's compliance with both ends held, (α(1−α) l0)³/(3EI), is
+  // below it, c is the floor and flat in α; elsewhere the law is untouched.
+  const SectionStiffness eb{.EA = 1.0, .EI = 2.0, .shear_flexibility = 0.0};
+  const double l0 = 0.5, cap = 1e-5;  // binds where α(1−α) < (3 EI cap)^(1/3) / l0 = 0.0783
+  for (double alpha : {0.0, 0.03, 0.08, 0.95, 1.0}) {
+    const PointLoadLaw law = point_load_law(eb, l0, alpha, 0.01, cap);
+    EXPECT_EQ(law.compliance, cap) << alpha;
+    EXPECT_EQ(law.dcompliance, 0.0) << alpha;
+    EXPECT_EQ(law.h_i, point_load_law(eb, l0, alpha, 0.01).h_i) << "the free shape is the plain law's";
+  }
+  for (double alpha : {0.09, 0.3, 0.5, 0.9}) {
+    const PointLoadLaw capped = point_load_law(eb, l0, alpha, 0.01, cap), plain = point_load_law(eb, l0, alpha, 0.01);
+    EXPECT_NEAR(capped.compliance, std::pow(alpha * (1.0 - alpha) * l0, 3) / (3.0 * 2.0), 1e-15) << alpha;
+    EXPECT_GT(capped.compliance, cap) << alpha;
+    EXPECT_EQ(capped.compliance, plain.compliance) << alpha;
+    EXPECT_EQ(capped.dcompliance, plain.dcompliance) << alpha;
+  }
+  // Below the edge's floor the cap changes nothing.
+  const double c_edge = std::pow(0.01 * 0.99 * l0, 3) / (3.0 * 2.0);
+  EXPECT_EQ(point_load_law(eb, l0, 0.0, 0.01, 0.5 * c_edge).compliance, c_edge);
+}
+
 // ---- Hinged and sprung ends (connected_law) ----
 
 struct Ends {

@@ -547,7 +547,7 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
     const contact::ContactResponse r = contact::contact_response(a.data, d, rotations[a.element], false);
     const element::BeamResponse plain = element::beam_response(a.data.initial, a.data.k0, d.head<6>(), rotations[a.element], false);
     const element::RoundOffFloor f = element::round_off_floor(a.data.initial, a.data.k0, d.head<6>(), plain);
-    const contact::PointLoadLaw law = contact::point_load_law(a.data.section, a.data.initial.length, r.alpha, a.data.edge);
+    const contact::PointLoadLaw law = contact::point_load_law(a.data.section, a.data.initial.length, r.alpha, a.data.edge, a.data.min_compliance);
     const double coordinates = d.head<2>().cwiseAbs().sum() + d.segment<2>(3).cwiseAbs().sum() +
                                d.segment<2>(6).cwiseAbs().sum() + (a.data.contact_start - a.data.initial.start).norm() +
                                a.data.initial.length;
@@ -561,7 +561,12 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
       floor.contact_node = a.node;
       floor.contact_force = y_floor;
       floor.compliance = law.compliance;
-      floor.at_edge = law.compliance <= contact::point_load_law(a.data.section, a.data.initial.length, 0.0, a.data.edge).compliance * (1.0 + 1e-12);
+      // At the floor: the contact's stiffness cap where that binds, else its edge near a beam node.
+      const double edge_floor = contact::point_load_law(a.data.section, a.data.initial.length, 0.0, a.data.edge).compliance;
+      const bool at_floor = law.compliance <= std::max(edge_floor, a.data.min_compliance) * (1.0 + 1e-12);
+      floor.at_cap = at_floor && a.data.min_compliance > edge_floor;
+      floor.at_edge = at_floor && !floor.at_cap;
+      floor.uncapped = a.data.min_compliance == 0.0;
     }
   }
   floor.force = std::sqrt(force);

@@ -48,11 +48,14 @@ struct RoundingFloor {
   double moment = 0.0;
   /// The active contact whose force Y rounds the most (its contact node; −1 where none is
   /// active): ±`contact_force`, its compliance `compliance` at the point, `at_edge` where that is
-  /// the compliance floor near a beam node (the contact's `edge`).
+  /// the compliance floor near a beam node (the contact's `edge`), `at_cap` where it is the floor
+  /// its stiffness cap sets (max_stiffness_ratio).
   int contact_node = -1;
   double contact_force = 0.0;
   double compliance = 0.0;
   bool at_edge = false;
+  bool at_cap = false;
+  bool uncapped = false;  ///< its node is held by no element (a rigid pusher): no stiffness cap
   /// All active contacts' share of `force` (the root of their squared terms) and how many.
   double contacts_force = 0.0;
   int contacts = 0;

@@ -63,7 +63,7 @@ ContactResponse cantilever_frame_response(const ContactElementData& data, const 
   r.deformations = dd;
 
   const LoadShare g = load_share(psi, l0, r.alpha);
-  const PointLoadLaw law = point_load_law(data.section, l0, r.alpha, data.edge);  // c: as the chord element's
+  const PointLoadLaw law = point_load_law(data.section, l0, r.alpha, data.edge, data.min_compliance);  // c: as the chord element's
   const Eigen::Matrix2d kp = cantilever_stiffness(data.section, l0);
   const Eigen::Vector2d gv(g.q, g.m), bend(dd[1], dd[2]);
   const double Y = (dd[3] + gv.dot(bend)) / law.compliance;

@@ -41,7 +41,7 @@ ContactResponse contact_response(const ContactElementData& data, const Vector9& 
   const double theta_i = d[2] - r.chord.rotation, theta_j = d[5] - r.chord.rotation;
   r.deformations << r.chord.elongation, theta_i, theta_j, r.normal - data.offset;
 
-  PointLoadLaw law = point_load_law(data.section, l0, r.alpha, data.edge);  // Eq. 6–9, split
+  PointLoadLaw law = point_load_law(data.section, l0, r.alpha, data.edge, data.min_compliance);  // Eq. 6–9, split
   Eigen::Matrix2d k_plain = data.k0.bottomRightCorner<2, 2>();
   if (data.connected()) {  // a hinge or a spring between an end and its node: condensed out
     const ConnectedLaw connected = connected_law(law, k_plain, data.flexibility_i, data.flexibility_j);

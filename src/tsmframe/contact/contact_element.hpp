@@ -27,6 +27,7 @@ struct ContactElementData {
   Eigen::Vector2d contact_start;      ///< X_c, the contact node as drawn
   double offset = 0.0;                ///< δy_c at which Y = 0 on a straight beam (side · gap)
   double edge = 1e-2;                 ///< compliance clamp, see point_load_law
+  double min_compliance = 0.0;        ///< the stiffness cap's compliance floor (0: none), see point_load_law
   bool sliding_term = true;           ///< include J (∂S/∂α)(∂α/∂x)ᵀ in the tangent
   bool cantilever_frame = false;      ///< FORMULATION §2b's frame instead of the chord (Eq. 6–9)
   /// How the element's ends are joined to its nodes: 0 rigidly, ∞ by a hinge (a member's

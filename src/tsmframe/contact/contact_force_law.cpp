@@ -29,7 +29,8 @@ std::array<double, 2> point_load_moments(const element::SectionStiffness& sectio
   return {-(b * l0 + 6.0 * psi) * p / (l0 * span), (a * l0 + 6.0 * psi) * p / (l0 * span)};
 }
 
-PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0, double alpha, double edge) {
+PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0, double alpha, double edge,
+                            double min_compliance) {
   const double psi = section.shear_flexibility, span = l0 * l0 + 12.0 * psi;
   PointLoadLaw law;
   {
@@ -47,7 +48,7 @@ PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0,
   const double scale = 3.0 * section.EI * l0 * span;
   law.compliance = p * omega / scale;
   // The floor: an Euler–Bernoulli point at edge·l0 from a beam node, c = δ³(1−δ)³ l0³ / 3EI.
-  const double floor = std::pow(edge * (1.0 - edge) * l0, 3) / (3.0 * section.EI);
+  const double floor = std::max(std::pow(edge * (1.0 - edge) * l0, 3) / (3.0 * section.EI), min_compliance);
   if (law.compliance <= floor) {
     law.compliance = floor;
   } else if (alpha >= 0.0 && alpha <= 1.0) {

@@ -32,8 +32,11 @@ struct PointLoadLaw {
 /// an Euler–Bernoulli point `edge`·l0 from a beam node, c_min = (δ(1−δ) l0)³ / 3EI, δ = edge —
 /// FORMULATION §3's explicit rule for a contact at or next to a node. Euler–Bernoulli reaches
 /// c_min at α = δ or 1 − δ; Timoshenko, whose c falls only like b/(G A_s), much closer to the
-/// node (at b ≈ δ³ l0³/(3Ψ)), unless its shear flexibility Ψ is negligible.
-PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0, double alpha, double edge);
+/// node (at b ≈ δ³ l0³/(3Ψ)), unless its shear flexibility Ψ is negligible. Nor below
+/// `min_compliance`: the contact's stiffness cap (ContactSpec::max_stiffness_ratio), a floor of
+/// the same kind wherever the point's own compliance falls below it.
+PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0, double alpha, double edge,
+                            double min_compliance = 0.0);
 /// Its h_i, h_j alone (the same values): the free shape's end moments per unit Y, without the
 /// compliance — what measuring a gap needs.
 std::array<double, 2> point_load_moments(const element::SectionStiffness& section, double l0, double alpha);

@@ -95,6 +95,7 @@ class ContactTracker {
     std::vector<double> shear_flexibility;  ///< per element: Ψ of the contact law
     double gap = 0.0;
     double edge = -1.0;
+    double min_compliance = 0.0;        ///< 1 / (max_stiffness_ratio · own_stiffness), 0: none
     bool sliding_term = true;
     bool cantilever_frame = false;
   };
@@ -114,6 +115,8 @@ class ContactTracker {
   /// How the element's ends are joined to its nodes (ContactElementData::flexibility_i, _j):
   /// ∞ at a hinge, 1/k at an end spring, 0 where rigid.
   std::pair<double, double> end_flexibilities(int element) const;
+  /// The stiffest element holding `node`: the largest EA/l0 or 12EI/l0³ (0 where none does).
+  double own_stiffness(int node) const;
   /// The compliance floor's edge δ of a contact (its own, or the default).
   static double edge_of(const Spec& spec);
   /// `pulled`: released because it would pull (else: it left a free end).

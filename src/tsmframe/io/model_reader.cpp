@@ -558,7 +558,7 @@ class Reader {
       const std::string path = child("contacts", k);
       const json& c = contacts[k];
       expect_object(c, path);
-      check_keys(c, path, {"node", "nodes", "members", "element", "frame", "gap", "edge", "sliding_tangent"});
+      check_keys(c, path, {"node", "nodes", "members", "element", "frame", "gap", "edge", "max_stiffness_ratio", "sliding_tangent"});
       if (c.contains("node") && c.contains("nodes")) fail(child(path, "nodes"), "give either node or nodes, not both");
       if (!c.contains("nodes")) {
         read_contact(c, path, required_node(c, path), child(path, "node"), false);
@@ -648,6 +648,10 @@ class Reader {
     if (auto edge = optional_number(c, "edge", path)) {
       if (!(*edge >= 1e-12 && *edge <= 0.25)) fail(child(path, "edge"), "must lie between 1e-12 and 0.25 (a fraction of the element length)");
       spec.edge = *edge;
+    }
+    if (auto ratio = optional_number(c, "max_stiffness_ratio", path)) {
+      if (!(*ratio >= 1.0)) fail(child(path, "max_stiffness_ratio"), "must be at least 1 (the contact's stiffness at most this many times the stiffest element holding its node)");
+      spec.max_stiffness_ratio = *ratio;
     }
     if (c.contains("sliding_tangent")) spec.sliding_tangent = boolean(c["sliding_tangent"], child(path, "sliding_tangent"));
     if (auto gap = optional_number(c, "gap", path)) {

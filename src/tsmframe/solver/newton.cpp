@@ -649,12 +649,17 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
               contact << "; most of that rounding is in the forces of the " << floor.contacts
                       << " contacts in touch (together ±" << floor.contacts_force << "; the largest ±" << floor.contact_force
                       << ", at node " << model.nodes[floor.contact_node].id << ")";
-            contact << ", as stiff as the element it touches is at its point (1/c = "
-                    << 1.0 / floor.compliance << "; a member far stiffer than what presses on it makes it so: 100× "
-                    << "worked in our tests)";
-            if (floor.at_edge)
+            contact << ", as stiff as the element it touches is at its point (1/c = " << 1.0 / floor.compliance
+                    << "; a member far stiffer than what presses on it makes it so)";
+            if (floor.at_cap)
+              contact << ": that is the contact's cap, \"max_stiffness_ratio\" times the stiffest element holding its "
+                         "node (a smaller ratio softens it)";
+            else if (floor.at_edge)
               contact << ": the point is at a beam node, where the contact's \"edge\" sets that compliance (a larger "
                          "edge, 0.1 say, softens it)";
+            else if (floor.uncapped)
+              contact << ": a node no element holds (a rigid pusher) has no stiffness cap; a touched member 100× "
+                         "stiffer than what loads it worked in our tests";
             out.message += contact.str();
           }
           return out;
