@@ -36,7 +36,7 @@ struct RunOptions {
   int threads = 0;  // 0: all cores
 };
 
-std::string progress_line(const tsm::solver::StepRecord& step, bool log_iterations) {
+std::string progress_line(const tsm::Model& model, const tsm::solver::StepRecord& step, bool log_iterations) {
   std::ostringstream os;
   os << "step " << step.step << "  load factor " << tsm::io::format_number(step.load_factor) << "  iterations "
      << step.iterations << "  residual "
@@ -48,11 +48,19 @@ std::string progress_line(const tsm::solver::StepRecord& step, bool log_iteratio
   if (log_iterations) {
     os << "\n  residual per iterate:";
     for (double r : step.residual_norms) os << ' ' << tsm::io::format_number(r);
-    // α of each contact per iterate: element:α (element:α+other at a vertex), or "-" when the
-    // node is not in contact.
-    for (size_t c = 0; !step.contact_iterates.empty() && c < step.contact_iterates.front().size(); ++c) {
-      os << "\n  contact " << c + 1 << " element:alpha per iterate:";
-      for (const auto& iterate : step.contact_iterates) {
+    // How many contacts touch at each iterate, then α of each contact that touched at some
+    // iterate: element:α (element:α+other at a vertex), or "-" when the node is not in contact.
+    const auto& iterates = step.contact_iterates;
+    if (!iterates.empty() && !iterates.front().empty()) {
+      os << "\n  contacts in touch per iterate:";
+      for (const auto& iterate : iterates)
+        os << ' ' << std::count_if(iterate.begin(), iterate.end(), [](const tsm::solver::ContactPoint& p) { return p.element >= 0; });
+    }
+    for (size_t c = 0; !iterates.empty() && c < iterates.front().size(); ++c) {
+      if (std::none_of(iterates.begin(), iterates.end(), [&](const auto& iterate) { return iterate[c].element >= 0; }))
+        continue;
+      os << "\n  contact at node " << model.nodes[model.contacts[c].node].id << " element:alpha per iterate:";
+      for (const auto& iterate : iterates) {
         const tsm::solver::ContactPoint& p = iterate[c];
         if (p.element < 0) os << " -";
         else os << ' ' << p.element + 1 << ':' << tsm::io::format_number(p.alpha);
@@ -82,7 +90,7 @@ int run(const RunOptions& options) {
     if (error) vtk_error = vtk_dir.string() + ": " + error.message();
   }
   const auto observer = [&](const tsm::solver::StepRecord& step) {
-    if (!options.quiet) std::cerr << progress_line(step, options.log_iterations) << std::endl;
+    if (!options.quiet) std::cerr << progress_line(model, step, options.log_iterations) << std::endl;
     if (!options.vtk || !vtk_error.empty() || !step.converged || !step.has_state) return;
     char name[32];
     std::snprintf(name, sizeof name, "step-%05d.vtu", step.step);

@@ -297,7 +297,8 @@ TEST_F(Cli, ContactResultsInJsonAndCsv) {
   const fs::path out = dir_ / "out";
   const Outcome o = run_cli("run " + model + " --out " + out.string() + " --log-iterations");
   ASSERT_EQ(o.exit_code, 0) << o.output;
-  EXPECT_NE(o.output.find("contact 1 element:alpha per iterate: 2:"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("contact at node 100 element:alpha per iterate: 2:"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("contacts in touch per iterate: 1 1"), std::string::npos) << o.output;
   std::ifstream in(out / "results.json");
   const json r = json::parse(in);
   const json& last = r["steps"].back();
