@@ -146,6 +146,10 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
          m["loads"][0]["node"] = json::array({4.0, 0.0});
        },
        "loads[0].node: 2 nodes at [4, 0]"},
+      {"arc sweep that misses the end node",  // nodes (0, 0), (4, 0) on a circle about (2, 2): π/2 or −3π/2 reaches
+       [](json& m) { m["members"][0]["arc"] = {{"center", {2.0, 2.0}}, {"sweep", 1.0}}; },
+       "members[0].arc.sweep: the sweep from the start node does not end at the end node (1.5707963267948966 or "
+       "-4.71238898038469 does)"},
       {"mechanism", [](json& m) { m["supports"][0]["type"] = "pinned"; }, "supports: structure is a mechanism"},
       {"free node", [](json& m) { m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", 1.0}}); }, "supports: structure is a mechanism: node 5 is held by no element"},
       {"beam on a knife edge drawn on its axis",

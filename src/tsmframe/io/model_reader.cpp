@@ -429,7 +429,14 @@ class Reader {
     if (std::abs((b - centre).norm() - radius) > 1e-6 * radius) fail(child(path, "center"), "the start and end nodes are not on one circle about the centre");
     const double start = std::atan2(a.y() - centre.y(), a.x() - centre.x());
     const Eigen::Vector2d reached = centre + radius * Eigen::Vector2d(std::cos(start + sweep), std::sin(start + sweep));
-    if ((reached - b).norm() > 1e-6 * radius) fail(child(path, "sweep"), "the sweep from the start node does not end at the end node");
+    if ((reached - b).norm() > 1e-6 * radius) {
+      // Name the sweeps that do reach it: the short way round and the long one (a closed ring: ±2π).
+      double to_end = std::atan2(b.y() - centre.y(), b.x() - centre.x()) - start;
+      to_end = std::remainder(to_end, two_pi);
+      const double other = to_end > 0.0 ? to_end - two_pi : to_end + two_pi;
+      fail(child(path, "sweep"), "the sweep from the start node does not end at the end node (" + format_number(to_end) +
+                                     " or " + format_number(other) + " does)");
+    }
     if (closed != (std::abs(std::abs(sweep) - two_pi) < 1e-9)) fail(path, "a full circle must start and end at the same node");
     std::vector<Eigen::Vector2d> points;
     for (long d = 1; d < divisions; ++d) {
