@@ -139,7 +139,7 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
       {"empty member load", [](json& m) { m["members"][0]["load"] = json::object(); }, "members[0].load: give fx, fy or pressure"},
       {"member load typo", [](json& m) { m["members"][0]["load"] = {{"fz", 1.0}}; }, "members[0].load.fz: unknown key"},
       {"unknown release", [](json& m) { m["members"][0]["release"] = "top"; }, "members[0].release: unknown release \"top\""},
-      {"no node at point", [](json& m) { m["loads"][0]["node"] = json::array({4.5, 0.0}); }, "loads[0].node: no node at [4.5, 0]"},
+      {"no node at point", [](json& m) { m["loads"][0]["node"] = json::array({4.5, 0.0}); }, "loads[0].node: no node at [4.5, 0] (the nearest, node 2, is at [4, 0], 0.5 away)"},
       {"several nodes at point",
        [](json& m) {
          m["nodes"].push_back({{"id", 9}, {"x", 4.0}, {"y", 0.0}});

@@ -159,7 +159,7 @@ TEST_F(Study, ARecordThatACaseCannotGiveIsABadInputRow) {
   EXPECT_TRUE(r["cases"][0]["mid_uy"].is_number());
   EXPECT_EQ(r["cases"][1]["status"], "bad-input");
   EXPECT_TRUE(r["cases"][1]["mid_uy"].is_null());
-  EXPECT_EQ(r["cases"][1]["message"], "record[0].node: no node at [0.5,0.0]");
+  EXPECT_EQ(r["cases"][1]["message"], "record[0].node: no node at [0.5, 0] (the nearest, node 4, is at [0.666667, 0], 0.166667 away)");
   s["record"] = json::array({{{"name", "R"}, {"quantity", "reaction"}, {"node", 2}, {"dof", "uy"}},
                              {{"name", "F"}, {"quantity", "contact_force"}, {"node", 2}}});
   o = run_cli("study " + write("study.json", s) + " --out " + (dir_ / "out2").string() + " -q");

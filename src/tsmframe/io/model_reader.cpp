@@ -15,6 +15,7 @@
 #include "tsmframe/io/json_writer.hpp"
 #include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/model/hinges.hpp"
+#include "tsmframe/model/node_lookup.hpp"
 #include "tsmframe/model/resting_contact.hpp"
 
 namespace tsm::io {
@@ -26,7 +27,6 @@ constexpr long max_divisions = 10'000'000;        // per member: a typo must not
 constexpr long max_elements = 20'000'000;         // per model
 constexpr long max_steps = 10'000'000;
 constexpr double max_kept_state_bytes = 8e9;  // the converged states an output selection keeps (check_kept_states)
-constexpr double coordinate_match = 1e-9;         // × model size (FORMAT.md)
 
 std::string quote_text(const std::string& text) { return json(text).dump(); }
 
@@ -258,17 +258,9 @@ class Reader {
   /// A node given by id (`3`) or by coordinates (`[4.5, 0.0]`, matching exactly one node).
   int node_ref(const json& value, const std::string& path) const {
     if (value.is_array()) {
-      const Eigen::Vector2d p = point(value, path);
-      const double tolerance = coordinate_match * model_.size;
-      int found = -1, matches = 0;
-      for (int k = 0; k < model_.node_count(); ++k)
-        if ((model_.nodes[k].position - p).norm() <= tolerance) {
-          if (matches++ == 0) found = k;
-        }
-      std::ostringstream os;
-      os << "[" << p.x() << ", " << p.y() << "]";
-      if (matches == 0) fail(path, "no node at " + os.str());
-      if (matches > 1) fail(path, std::to_string(matches) + " nodes at " + os.str() + " (use a node id)");
+      std::string problem;
+      const int found = node_at(model_, point(value, path), problem);
+      if (found < 0) fail(path, problem);
       return found;
     }
     if (!value.is_number()) fail(path, std::string("expected a node id or [x, y], found ") + type_name(value));

@@ -18,6 +18,7 @@
 #include "tsmframe/io/json_writer.hpp"
 #include "tsmframe/io/model_reader.hpp"
 #include "tsmframe/io/results_writer.hpp"
+#include "tsmframe/model/node_lookup.hpp"
 #include "tsmframe/solver/analysis.hpp"
 
 namespace tsm::study {
@@ -182,11 +183,9 @@ int resolve_node(const Model& model, const json& ref, const std::string& path) {
     if (index < 0) fail(path, "unknown node " + ref.dump());
     return index;
   }
-  const Eigen::Vector2d p(ref[0].get<double>(), ref[1].get<double>());
-  int found = -1, matches = 0;
-  for (int k = 0; k < model.node_count(); ++k)
-    if ((model.nodes[k].position - p).norm() <= 1e-9 * model.size && matches++ == 0) found = k;
-  if (matches != 1) fail(path, (matches == 0 ? "no node at " : std::to_string(matches) + " nodes at ") + ref.dump());
+  std::string problem;
+  const int found = node_at(model, Eigen::Vector2d(ref[0].get<double>(), ref[1].get<double>()), problem);
+  if (found < 0) fail(path, problem);
   return found;
 }
 
