@@ -96,4 +96,71 @@ TEST(ImperfectColumnStability, ItsRisingPathIsStable) {
   EXPECT_TRUE(r.notes.empty());
 }
 
+// ---- A snap-through under load control (the von Mises truss) ----
+// Two pin-jointed bars from (∓a, 0) to the apex (0, h), EA, the apex loaded down by P. The bars'
+// law is the elements' axial one, N = EA (l − l0)/l0 with exact compatibility, so the truss is
+// exact: P(w) = 2 EA (l0 − l)/l0 · (h − w)/l, l = √(a² + (h − w)²) at an apex deflection w. P
+// rises to a maximum, falls through zero at w = h and rises again on the inverted side.
+struct VonMises {
+  double a = 1.0, h = 0.1, EA = 1e6;
+  double load(double w) const {
+    const double l0 = std::hypot(a, h), l = std::hypot(a, h - w);
+    return 2.0 * EA * (l0 - l) / l0 * (h - w) / l;
+  }
+  double maximum() const {  // dP/dw = 0 before w = h: by trisection
+    double lo = 0.0, hi = h;
+    for (int k = 0; k < 200; ++k) {
+      const double m1 = lo + (hi - lo) / 3.0, m2 = hi - (hi - lo) / 3.0;
+      if (load(m1) < load(m2)) lo = m1;
+      else hi = m2;
+    }
+    return load(0.5 * (lo + hi));
+  }
+  double inverted(double P) const {  // the equilibrium beyond w = 2h (P rising there)
+    double lo = 2.0 * h, hi = 100.0 * h;
+    for (int k = 0; k < 200; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      if (load(mid) < P) lo = mid;
+      else hi = mid;
+    }
+    return 0.5 * (lo + hi);
+  }
+  json model(double P, int steps) const {
+    return {{"materials", {{"s", {{"E", EA / 1e-3}}}}},
+            {"sections", {{"x", {{"A", 1e-3}, {"I", 1e-9}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", -a}, {"y", 0.0}}, {{"id", 2}, {"x", a}, {"y", 0.0}},
+                                   {{"id", 3}, {"x", 0.0}, {"y", h}}})},
+            {"members", json::array({{{"from", 1}, {"to", 3}, {"material", "s"}, {"section", "x"}, {"release", "both"}},
+                                     {{"from", 3}, {"to", 2}, {"material", "s"}, {"section", "x"}, {"release", "both"}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "pinned"}}})},
+            {"loads", json::array({{{"node", 3}, {"fy", -P}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", steps}}}}}};
+  }
+};
+
+TEST(SnapThrough, LoadControlPastTheVonMisesTrussMaximumLandsOnTheInvertedEquilibriumAndSaysSo) {
+  // 1.5 × the maximum in 10 steps: step 7 (1.05 ×) has no equilibrium nearby and Newton lands on
+  // the inverted one, 0.19 further down (24 × the step before per unit load, 101 × the step
+  // after). Found as a user loading a shallow arch so, which said nothing of the jump. The path
+  // ends where the exact truss does, to rounding.
+  const VonMises truss;
+  const double P = 1.5 * truss.maximum();
+  tsm::Model model;
+  const auto r = run(truss.model(P, 10), model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const int apex = model.node_index(3);
+  EXPECT_NEAR(-r.steps.back().displacements[3 * apex + 1], truss.inverted(P), 1e-12);
+  int noted = 0;
+  for (const std::string& note : r.notes)
+    if (note.find("snapped through") != std::string::npos) {
+      ++noted;
+      EXPECT_EQ(note.rfind("step 7 moved ", 0), 0u) << note;
+    }
+  EXPECT_EQ(noted, 1);
+  // Up to 0.95 × the maximum (a steepening path, no jump): no such note.
+  const auto below = run(truss.model(0.95 * truss.maximum(), 10), model);
+  ASSERT_EQ(below.status, tsm::solver::Status::converged) << below.message;
+  for (const std::string& note : below.notes) EXPECT_EQ(note.find("snapped through"), std::string::npos) << note;
+}
+
 }  // namespace

@@ -38,6 +38,7 @@ constexpr int bisection_rounds = 30;            // a bifurcation's load factor: 
 constexpr double bisection_tolerance = 1e-6;    // … of its bracket, down to this fraction of λ  // a current stiffness below this × the first step's: near a maximum
 
 std::string format_ratio(double ratio) {
+  if (ratio >= 10.0 && ratio < 1e15) return std::to_string(std::llround(ratio));  // 233, not 2.3e+02
   std::ostringstream os;
   os.precision(2);
   os << ratio;
@@ -104,6 +105,16 @@ void take_axial_strain(const Model& model, StepRecord& record) {
   record.strained_element = element;
 }
 
+/// The farthest a node's (u, v) moved from `before` (null: from zero) to `now`.
+double largest_move(const Eigen::VectorXd& now, const Eigen::VectorXd* before) {
+  double largest = 0.0;
+  for (Eigen::Index k = 0; k + 1 < now.size(); k += dofs_per_node) {
+    const double du = now[k] - (before ? (*before)[k] : 0.0), dv = now[k + 1] - (before ? (*before)[k + 1] : 0.0);
+    largest = std::max(largest, du * du + dv * dv);
+  }
+  return std::sqrt(largest);
+}
+
 /// Appends step records to a run: converged steps get their state (only the newest keeps it
 /// unless the output selection wants it), every step goes to the observer.
 class Recorder {
@@ -140,6 +151,7 @@ class Recorder {
     record.monitored.resize(dofs_per_node * static_cast<int>(settings.monitor.size()));
     for (size_t m = 0; m < settings.monitor.size(); ++m)
       record.monitored.segment<3>(dofs_per_node * m) = state.displacements.segment<3>(dofs_per_node * settings.monitor[m]);
+    record.largest_move = largest_move(state.displacements, last_with_state_ >= 0 ? &result_.steps[last_with_state_].displacements : nullptr);
     // The previous step's state goes first (unless the output keeps it): the peak memory holds one state, not two.
     if (last_with_state_ >= 0 && !keeps_state(settings.output, result_.steps[last_with_state_].step)) {
       StepRecord& previous = result_.steps[last_with_state_];
@@ -287,6 +299,46 @@ std::vector<std::string> jump_notes(const std::vector<StepRecord>& steps) {
   return notes;
 }
 
+/// Under load control a step that jumps across a limit point, or off an unstable branch, lands
+/// on a distant equilibrium: it moves far more per unit of λ than the steps around it (an arch
+/// snapping through: 21× the step before, 230× the step after). Noted where a converged step
+/// moves ≥ snap_ratio × as far per unit λ as the converged step before it and as the one after
+/// it — or, at the end of the path, where it leaves an unstable state for a stable one. A steep
+/// but smooth path (a pipe ring flattening at nearly constant pressure) grows its steps
+/// gradually on both sides (≤ 4.3× the step after there). Steps whose contact slid off a free
+/// end have their own note.
+std::vector<std::string> snap_notes(const std::vector<StepRecord>& steps) {
+  constexpr double snap_ratio = 5.0;
+  std::vector<const StepRecord*> path;
+  for (const StepRecord& s : steps)
+    if (s.converged) path.push_back(&s);
+  std::vector<std::string> notes;
+  double before_lambda = 0.0;
+  std::vector<double> rate(path.size(), 0.0);  // move per unit λ
+  for (size_t k = 0; k < path.size(); ++k) {
+    const double dl = std::abs(path[k]->load_factor - before_lambda);
+    rate[k] = dl > 0.0 ? path[k]->largest_move / dl : 0.0;
+    before_lambda = path[k]->load_factor;
+  }
+  for (size_t k = 1; k < path.size(); ++k) {
+    const StepRecord& s = *path[k];
+    if (!s.slid_off.empty() || !(rate[k - 1] > 0.0) || rate[k] < snap_ratio * rate[k - 1]) continue;
+    const bool last = k + 1 == path.size();
+    const bool settles = !last && rate[k] >= snap_ratio * rate[k + 1];
+    const bool stabilises = path[k - 1]->negative_eigenvalues > 0 && s.negative_eigenvalues == 0;
+    if (!settles && !stabilises) continue;
+    std::ostringstream os;
+    os << "step " << s.step << " moved " << format_ratio(rate[k] / rate[k - 1])
+       << " times as far per unit of load as the step before it";
+    if (settles) os << " and " << format_ratio(rate[k] / rate[k + 1]) << " times as far as the step after it";
+    os << " (up to " << s.largest_move << " at a node): the structure probably snapped through there — load control "
+       << "jumps across a limit point, or off an unstable branch, onto a distant equilibrium, leaving the path between out; "
+          "arc-length control follows it";
+    notes.push_back(os.str());
+  }
+  return notes;
+}
+
 /// "step 4", "steps 4 and 9", "6 steps from 4 to 12": the steps a note is about (ascending, ≥ 1).
 void write_steps(std::ostream& os, const std::vector<int>& steps) {
   if (steps.size() == 1) os << "step " << steps.front();
@@ -422,6 +474,8 @@ void close_path(const Model& model, RunResult& result, ControlType control) {
   result.notes = nothing_carried_notes(result.steps);
   if (control == ControlType::displacement)
     for (std::string& note : jump_notes(result.steps)) result.notes.push_back(std::move(note));
+  if (control == ControlType::load)
+    for (std::string& note : snap_notes(result.steps)) result.notes.push_back(std::move(note));
   for (std::string& note : stability_notes(result.steps, result.limit_points, result.critical_points))
     result.notes.push_back(std::move(note));
   for (std::string& note : slid_off_notes(model, result.steps)) result.notes.push_back(std::move(note));

@@ -32,6 +32,9 @@ struct StepRecord {
   /// index, the element whose end it left).
   std::vector<std::pair<int, int>> slid_off;
   int cutbacks = 0;                    ///< failed attempts halved away before this step
+  /// The farthest a node moved in the step, ‖Δ(u, v)‖ against the converged step before it
+  /// (converged steps): with Δλ, how soft the step was (snap notes under load control).
+  double largest_move = 0.0;
   /// Negative eigenvalues of the tangent stiffness at the converged state (its inertia): 0 a
   /// stable equilibrium, n > 0 an unstable one (past a limit or bifurcation point); −1 unknown
   /// (a contact is active, or a follower load is not conservative: the tangent is then not
