@@ -65,24 +65,25 @@ class Model:
 
     def member(self, start, end, material, section, divisions=1, element="euler-bernoulli", arc=None, release=None,
                load=None, pressure=None, end_springs=None):
-        """A straight member (or an arc: arc=(centre_x, centre_y, sweep_radians)) of `divisions` elements;
+        """A straight member (or an arc: arc=(centre_x, centre_y, sweep_radians), or the model file's
+        {"center": [x, y], "sweep": s}) of `divisions` elements;
         release: "start", "end" or "both" puts a hinge (no moment) at that end; load=(fx, fy): a
         distributed load, force per unit length in global directions; pressure=p: a follower load
         per unit current length, normal to the deformed member, pushing from its left side (seen
-        from start to end) to its right; end_springs={"start": k, "end": k}: rotational springs
+        from start to end) to its right (load may also be the file's {"fx": …, "fy": …}); end_springs={"start": k, "end": k}: rotational springs
         (semi-rigid connections, moment per radian) between the member's ends and their nodes."""
         entry = {"from": _ref(start), "to": _ref(end), "divisions": divisions, "element": element,
                  "material": material, "section": section}
-        if arc is not None:
-            entry["arc"] = {"center": [arc[0], arc[1]], "sweep": arc[2]}
+        if arc is not None:  # (cx, cy, sweep) or the file's {"center": [cx, cy], "sweep": s}
+            entry["arc"] = dict(arc) if isinstance(arc, dict) else {"center": [arc[0], arc[1]], "sweep": arc[2]}
         if release is not None:
             entry["release"] = release
         if end_springs is not None:
             entry["end_springs"] = dict(end_springs)
         if load is not None or pressure is not None:
             entry["load"] = {}
-        if load is not None:
-            entry["load"].update({"fx": load[0], "fy": load[1]})
+        if load is not None:  # (fx, fy) or the file's {"fx": …, "fy": …}
+            entry["load"].update(dict(load) if isinstance(load, dict) else {"fx": load[0], "fy": load[1]})
         if pressure is not None:
             entry["load"]["pressure"] = pressure
         self._doc["members"].append(entry)
