@@ -510,6 +510,24 @@ Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacement
   return forces;
 }
 
+std::vector<ContactDirection> GlobalSystem::contact_directions(const Eigen::VectorXd& displacements,
+                                                              const std::vector<double>& rotations,
+                                                              const std::vector<contact::ActiveContact>& contacts) const {
+  std::vector<ContactDirection> directions;
+  directions.reserve(contacts.size());
+  for (const contact::ActiveContact& a : contacts) {
+    const std::array<int, 9> g = contact_dofs(model_.elements[a.element], a.node);
+    const contact::ContactResponse r = contact::contact_response(a.data, gather(displacements, g), rotations[a.element], false);
+    ContactDirection d;
+    for (int k = 0; k < 9; ++k) d.equation[k] = dofs_.equation(g[k]);
+    d.u = r.point_u;
+    d.stiffness = r.point_stiffness;
+    d.Y = r.forces[3];
+    directions.push_back(d);
+  }
+  return directions;
+}
+
 RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                                            const std::vector<contact::ActiveContact>& contacts) const {
   // Squares summed: element errors taken as independent. Asked for only when Newton stagnates.

@@ -61,6 +61,15 @@ struct RoundingFloor {
   int contacts = 0;
 };
 
+/// An active contact's point load seen from the free equations (contact_directions): Y acts as
+/// Y · u on its three nodes, and its stiffness part is stiffness · u uᵀ.
+struct ContactDirection {
+  std::array<int, 9> equation{};  ///< free equation of each entry of u, −1 where constrained
+  Eigen::Matrix<double, 9, 1> u;
+  double stiffness = 0.0;  ///< 1/c
+  double Y = 0.0;
+};
+
 class GlobalSystem {
  public:
   GlobalSystem(const Model& model, const DofMap& dofs);
@@ -113,6 +122,9 @@ class GlobalSystem {
   /// The contact elements' sliding terms from the same evaluation: K_ff = tangent() + Σ u vᵀ
   /// (their symmetric parts are in tangent()).
   const std::vector<solver::RankOne>& contact_rank_one() const { return contact_rank_one_; }
+  /// Each active contact's (in `contacts`' order) point load direction and stiffness at `displacements`.
+  std::vector<ContactDirection> contact_directions(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+                                                   const std::vector<contact::ActiveContact>& contacts) const;
   /// The follower loads' stiffness where it is not symmetric (the nodes where a loaded stretch
   /// ends: a free end, a change of pressure), as rank-one terms: K_ff = tangent() + Σ u vᵀ,
   /// exactly, beside the contacts' sliding terms. Empty where the load is conservative.

@@ -79,6 +79,8 @@ ContactResponse cantilever_frame_response(const ContactElementData& data, const 
   // Reported in the chord frame: N along the chord, the end moments, Y.
   const Eigen::Vector2d e(r.chord.cos, r.chord.sin);
   r.forces << r.nodal_forces.segment<2>(3).dot(e), r.nodal_forces[2], r.nodal_forces[5], Y;
+  r.point_u = J * Vector4(0.0, g.q, g.m, 1.0);
+  r.point_stiffness = 1.0 / law.compliance;
   if (!with_tangent) return r;
 
   Eigen::Matrix4d D = Eigen::Matrix4d::Zero();

@@ -55,6 +55,8 @@ ContactResponse contact_response(const ContactElementData& data, const Vector9& 
 
   const ContactEquilibriumMatrix J = contact_equilibrium_matrix(r.chord, r.alpha);
   r.nodal_forces = J * r.forces;
+  r.point_u = J * Vector4(0.0, law.h_i, law.h_j, 1.0);
+  r.point_stiffness = 1.0 / law.compliance;
   if (!with_tangent) return r;
 
   // ∂S/∂d: the plain element's k0 plus the point load's rank-one part (h, 1)(h, 1)ᵀ / c.

@@ -43,6 +43,11 @@ struct ContactResponse {
   Vector4 deformations;   ///< (δl, θ_i, θ_j, δy_c)
   Vector4 forces;         ///< S = (N, M_i, M_j, Y)
   Vector9 nodal_forces;   ///< J S
+  /// The point load's direction and stiffness: Y acts on the nodes as Y · point_u (point_u =
+  /// J (0, h_i, h_j, 1)ᵀ), and its stiffness part is point_stiffness · point_u point_uᵀ with
+  /// point_stiffness = 1/c — what letting go of the contact takes out (Newton's look-ahead).
+  Vector9 point_u = Vector9::Zero();
+  double point_stiffness = 0.0;
   Matrix9 tangent;        ///< ∂(J S)/∂D (when asked for) = symmetric_tangent + sliding_u sliding_vᵀ
   Matrix9 symmetric_tangent;  ///< J (∂S/∂d) Jᵀ + K_G
   Vector9 sliding_u = Vector9::Zero();  ///< the sliding term is the rank-one u vᵀ: u = J ∂S/∂α …

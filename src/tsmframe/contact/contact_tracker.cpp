@@ -411,6 +411,17 @@ void ContactTracker::release(const Spec& spec, const Eigen::VectorXd& D, const s
   state.force = state.Y = 0.0;
 }
 
+int ContactTracker::release_as_pulling(const std::vector<int>& which, const Eigen::VectorXd& D,
+                                       const std::vector<double>& rotations, std::vector<ContactState>& states) const {
+  int released = 0;
+  for (const int k : which) {
+    if (!states[k].active || states[k].partner >= 0) continue;
+    release(specs_[k], D, rotations, states[k], true);
+    ++released;
+  }
+  return released;
+}
+
 void ContactTracker::hand_over(const Spec& spec, const Eigen::VectorXd& D, const std::vector<double>& rotations,
                                bool release_pulling, ContactState& state, std::vector<char>& occupied,
                                ContactChanges& changes) const {

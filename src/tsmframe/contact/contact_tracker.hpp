@@ -81,6 +81,11 @@ class ContactTracker {
   /// node through: the active set then needs that contact back.
   int allow_touching_again(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
                            std::vector<ContactState>& states) const;
+  /// Lets go of the contacts `which` (indices, each active on one element) as a contact that
+  /// pulls lets go: Newton's look-ahead found that they would pull once the pulling ones have let
+  /// go. Returns how many it released.
+  int release_as_pulling(const std::vector<int>& which, const Eigen::VectorXd& displacements,
+                         const std::vector<double>& chord_rotations, std::vector<ContactState>& states) const;
   /// At a converged state: inactive contacts take their current sides as reference.
   void accept(const Eigen::VectorXd& displacements, const std::vector<double>& chord_rotations,
               std::vector<ContactState>& states) const;

@@ -107,6 +107,10 @@ class NewtonSolver {
   std::vector<contact::ActiveContact> active_contacts(const State& state) const;
   /// At a converged iterate: releases contacts that pull and re-evaluates. Returns whether any was.
   bool release_pulling_contacts(State& state);
+  /// At a converged iterate where contacts pull: the contacts that pull once those have let go,
+  /// and so on (a linearised active-set iteration on the tangent here, see newton.cpp); empty
+  /// where it does not apply. Sets `overwrote_tangent` when it factorised the tangent in place.
+  std::vector<int> look_ahead_releases(State& state, bool& overwrote_tangent);
   /// What one pass over the unbalanced force yields.
   struct ResidualPass {
     std::array<double, 2> norms{};  ///< 2-norms of R per kind: forces, moments
