@@ -1730,4 +1730,49 @@ TEST(ContactRelease, ANodeThatLetGoByPullingMayNotBeThroughTheBeamAnywhere) {
   EXPECT_FALSE(tracker.passed_through(at(1.2, -0.1), rotations, states));     // beyond the free end
 }
 
+TEST(ContactRelease, ANodeThatLetGoOfARingIsThroughItOnlyWhereItIsInside) {
+  // A closed ring (radius 1, 120 elements) and a node above its top that lets go by pulling. The
+  // side it pressed from, carried round the ring, is the wrong one for the elements at the
+  // ring's bottom, whose span the node above the top also lies across: it was called "through"
+  // the ring there, and a rope draped over a ring (I = 1e-10) never settled its contacts.
+  // Only the element nearest across the node's position counts.
+  const json m = {{"materials", {{"steel", {{"E", 2e11}}}}},
+                  {"sections", {{"ring", {{"A", 1e-2}, {"I", 1e-4}}}}},
+                  {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", -1.0}}, {{"id", 100}, {"x", 0.01}, {"y", 1.01}}})},
+                  {"members", json::array({{{"from", 1}, {"to", 1}, {"arc", {{"center", {0.0, 0.0}}, {"sweep", 2.0 * std::numbers::pi}}},
+                                            {"divisions", 120}, {"material", "steel"}, {"section", "ring"}}})},
+                  {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 100}, {"type", "fixed"}}})},
+                  {"contacts", json::array({{{"node", 100}, {"members", {0}}}})},
+                  {"analysis", {{"control", {{"type", "load"}, {"steps", 1}}}}}};
+  const tsm::Model model = tsm::io::read_model(m);
+  tsm::contact::ContactTracker tracker(model);
+  std::vector<tsm::contact::ContactState> states = tracker.initial_states();
+  int top = -1;  // the element under the node
+  for (size_t e = 0; e < model.elements.size(); ++e) {
+    const Eigen::Vector2d a = model.nodes[model.elements[e].start].position, b = model.nodes[model.elements[e].end].position;
+    if (a.y() > 0.9 && b.y() > 0.9 && std::min(a.x(), b.x()) <= 0.01 && std::max(a.x(), b.x()) >= 0.01) top = static_cast<int>(e);
+  }
+  ASSERT_GE(top, 0);
+  const Eigen::Vector2d a = model.nodes[model.elements[top].start].position, b = model.nodes[model.elements[top].end].position;
+  const Eigen::Vector2d n(-(b - a).y(), (b - a).x());
+  const int side = n.dot(Eigen::Vector2d(0.01, 1.01) - a) > 0.0 ? 1 : -1;  // the node's side of the top element
+  states[0].active = true;
+  states[0].element = top;
+  states[0].side = side;
+  const std::vector<double> rotations(model.elements.size(), 0.0);
+  const int node = model.node_index(100);
+  const auto at = [&](double x, double y) {  // the node moved to (x, y), the ring as drawn
+    Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
+    D.segment<2>(3 * node) = Eigen::Vector2d(x - 0.01, y - 1.01);
+    return D;
+  };
+  const tsm::contact::ContactChanges changes =
+      tracker.update(at(0.01, 1.005), rotations, {tsm::contact::ContactEvaluation{0.5, side * 10.0}}, states, true);
+  ASSERT_EQ(changes.released, 1);
+  EXPECT_FALSE(tracker.passed_through(at(0.01, 1.02), rotations, states));   // above the ring
+  EXPECT_FALSE(tracker.passed_through(at(0.3, 1.2), rotations, states));     // above, further on
+  EXPECT_TRUE(tracker.passed_through(at(0.01, 0.99), rotations, states));    // just inside, under the top
+  EXPECT_TRUE(tracker.passed_through(at(0.0, 0.0), rotations, states));      // at the centre
+}
+
 }  // namespace

@@ -613,13 +613,20 @@ bool ContactTracker::node_passed_through(size_t k, const Eigen::VectorXd& D, con
     if (expected * where.gap < -touch_tolerance_) return true;
   }
   if (!state.released_pulled) return false;  // off a free end: it may go round it
+  // The element of the beam nearest the node across its span: a node through the beam lies just
+  // beyond the element it went through. Elements farther across are no guide: the side carried
+  // round a closed ring from the element it left is the wrong one on the ring's far side, whose
+  // span the node above the ring also lies across (a rope draped over a ring was "through" it).
+  int nearest = -1;
+  double nearest_gap = 0.0;
   for (size_t ci = 0; ci < specs_[k].candidates.size(); ++ci) {
-    const int expected = state.reference_side[ci];
-    if (expected != 1 && expected != -1) continue;
     const NodeOnElement where = locate(specs_[k], specs_[k].candidates[ci], D, rotations);
-    if (where.alpha >= 0.0 && where.alpha <= 1.0 && expected * where.gap < -touch_tolerance_) return true;
+    if (where.alpha < 0.0 || where.alpha > 1.0) continue;
+    if (nearest < 0 || std::abs(where.gap) < std::abs(nearest_gap)) nearest = static_cast<int>(ci), nearest_gap = where.gap;
   }
-  return false;
+  if (nearest < 0) return false;
+  const int expected = state.reference_side[nearest];
+  return (expected == 1 || expected == -1) && expected * nearest_gap < -touch_tolerance_;
 }
 
 std::pair<int, int> ContactTracker::blocked(const std::vector<ContactState>& states) const {
