@@ -76,24 +76,26 @@ ContactTracker::ContactTracker(const Model& model) : model_(model) {
     }
     s.gap = c.gap;
     s.edge = c.edge;
-    // The stiffness cap: a contact at most max_stiffness_ratio × as stiff as the stiffest element
-    // holding its node (a node no element holds — a rigid pusher — has none).
-    const double own = own_stiffness(c.node);
-    if (own > 0.0) s.min_compliance = 1.0 / (c.max_stiffness_ratio * own);
+    s.max_stiffness_ratio = c.max_stiffness_ratio;
     s.sliding_term = c.sliding_tangent;
     s.cantilever_frame = c.frame == "cantilever";
     specs_.push_back(std::move(s));
   }
 }
 
-double ContactTracker::own_stiffness(int node) const {
+double ContactTracker::cap_compliance(const Spec& spec, int element) const {
+  const double angle = initial_[element].angle;
+  const Eigen::Vector2d normal(-std::sin(angle), std::cos(angle));
   double stiffest = 0.0;
-  for (int i = node_start_[node]; i < node_start_[node + 1]; ++i) {
-    const element::SectionStiffness& s = model_.elements[node_elements_[i]].section;
-    const double l0 = initial_[node_elements_[i]].length;
-    stiffest = std::max({stiffest, s.EA / l0, 12.0 * s.EI / (l0 * l0 * l0)});
+  for (int p = node_start_[spec.node]; p < node_start_[spec.node + 1]; ++p) {
+    const int e = node_elements_[p];
+    const element::SectionStiffness& s = model_.elements[e].section;
+    const double l0 = initial_[e].length;
+    const double along = std::cos(initial_[e].angle) * normal.x() + std::sin(initial_[e].angle) * normal.y();
+    const double c2 = along * along;  // the element's axis against the contact's normal
+    stiffest = std::max(stiffest, c2 * s.EA / l0 + (1.0 - c2) * 12.0 * s.EI / (l0 * l0 * l0));
   }
-  return stiffest;
+  return stiffest > 0.0 ? 1.0 / (spec.max_stiffness_ratio * stiffest) : 0.0;
 }
 
 double ContactTracker::edge_of(const Spec& spec) { return spec.edge >= 0.0 ? spec.edge : default_edge(); }
@@ -328,7 +330,7 @@ std::vector<ActiveContact> ContactTracker::active_contacts(const std::vector<Con
     a.data.contact_start = model_.nodes[spec.node].position;
     a.data.offset = side * spec.gap;
     a.data.edge = edge_of(spec);
-    a.data.min_compliance = spec.min_compliance;
+    a.data.min_compliance = cap_compliance(spec, a.element);
     a.data.sliding_term = spec.sliding_term;
     a.data.cantilever_frame = spec.cantilever_frame;
     std::tie(a.data.flexibility_i, a.data.flexibility_j) = end_flexibilities(a.element);

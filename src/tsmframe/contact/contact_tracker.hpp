@@ -100,7 +100,7 @@ class ContactTracker {
     std::vector<double> shear_flexibility;  ///< per element: Ψ of the contact law
     double gap = 0.0;
     double edge = -1.0;
-    double min_compliance = 0.0;        ///< 1 / (max_stiffness_ratio · own_stiffness), 0: none
+    double max_stiffness_ratio = 0.0;   ///< the cap: see cap_compliance
     bool sliding_term = true;
     bool cantilever_frame = false;
   };
@@ -120,8 +120,11 @@ class ContactTracker {
   /// How the element's ends are joined to its nodes (ContactElementData::flexibility_i, _j):
   /// ∞ at a hinge, 1/k at an end spring, 0 where rigid.
   std::pair<double, double> end_flexibilities(int element) const;
-  /// The stiffest element holding `node`: the largest EA/l0 or 12EI/l0³ (0 where none does).
-  double own_stiffness(int node) const;
+  /// The stiffness cap's compliance for the contact of `spec` on `element`: 1 / (ratio · k), k
+  /// the stiffest element holding the contact node across that element (as drawn: EA/l0 along
+  /// the element's axis, 12EI/l0³ across it, mixed by the angle to the touched element's
+  /// normal); 0 where no element holds the node (a rigid pusher: no cap).
+  double cap_compliance(const Spec& spec, int element) const;
   /// The compliance floor's edge δ of a contact (its own, or the default).
   static double edge_of(const Spec& spec);
   /// `pulled`: released because it would pull (else: it left a free end).

@@ -61,7 +61,10 @@ RoundOffFloor round_off_floor(const InitialChord& initial, const Matrix3& k0, co
   const double l0 = initial.length, l = response.chord.length;
   // δl and β come from Δ0 + (u_j − u_i): an absolute error of about ε(|u_i| + |u_j| + l0).
   const double length_error = eps * (std::abs(d[0]) + std::abs(d[1]) + std::abs(d[3]) + std::abs(d[4]) + l0);
-  const double chord_angle_error = length_error / l + eps * std::abs(response.chord.rotation);
+  // β = φ − φ0 from two angles up to π in size: ε of each (an inclined or curved member's
+  // chords carry ~1e-15 rad of it; a ring moved rigidly was "carrying" its moments' rounding).
+  const double chord_angle_error =
+      length_error / l + eps * (std::abs(response.chord.rotation) + 2.0 * std::abs(initial.angle));
   // A chord-angle error turns θ_i and θ_j alike: M_i, M_j change by the row sums of k0.
   const double moment_i = std::abs(k0(1, 1) + k0(1, 2)) * chord_angle_error + eps * (k0(1, 1) * std::abs(d[2]) + std::abs(k0(1, 2) * d[5]));
   const double moment_j = std::abs(k0(2, 1) + k0(2, 2)) * chord_angle_error + eps * (std::abs(k0(2, 1) * d[2]) + k0(2, 2) * std::abs(d[5]));

@@ -70,8 +70,9 @@ struct ContactSpec {
   std::string frame = "chord";  ///< "chord" or "cantilever"
   double gap = 0.0;             ///< distance from the centre line at which contact starts
   double edge = -1.0;           ///< compliance clamp zone (contact_force_law); < 0: default per theory
-  /// The contact at most this many times as stiff as the stiffest element holding its node
-  /// (EA/l0 or 12EI/l0³): a compliance floor that keeps rounding resolvable on far stiffer members.
+  /// The contact at most this many times as stiff as the stiffest element holding its node, in
+  /// the contact's direction (EA/l0 along an element, 12EI/l0³ across it): a compliance floor
+  /// that keeps rounding resolvable on far stiffer members.
   double max_stiffness_ratio = 1e4;
   bool sliding_tangent = true;  ///< consistent tangent (false: leave the sliding term out)
   /// Per member: Ψ for a "timoshenko" override (members drawn as Euler–Bernoulli included).
