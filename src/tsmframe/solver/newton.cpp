@@ -12,6 +12,7 @@
 #include "tsmframe/util/parallel_for.hpp"
 #include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/model/resting_contact.hpp"
+#include "tsmframe/solver/release_forecast.hpp"
 
 namespace tsm::solver {
 namespace {
@@ -146,29 +147,30 @@ std::vector<int> NewtonSolver::look_ahead_releases(State& state, bool& overwrote
   // Where dozens of contacts close along a beam, the step's predictor runs the free part through
   // it and closes too many; at the converged iterate only the outermost over-held contacts pull
   // (the held zone's edge carries a couple), and releasing them moves the edge by a node or two
-  // per converged iterate — a beam pressed onto another took 3 iterates for each. Here the
-  // release is looked ahead on the tangent at this state: letting go of the set S takes its point
-  // loads Y_S u_S off the nodes and their stiffness k u uᵀ out of K, so the would-be forces of S
-  // solve (I − K_S G_SS) Y'_S = Y_S and every other contact's is Y_i + k_i G_iS Y'_S, with
-  // G = Uᵀ K⁻¹ U (one solve per contact). S grows by the contacts that would pull until it no
-  // longer changes; the released ones then let go together. Newton corrects what the linearised
-  // forecast gets wrong (a node released too soon comes back through passed_through).
+  // per converged iterate — a beam pressed onto another took 3 iterates for each. The release is
+  // looked ahead on the tangent here instead (forecast_releases; G = Uᵀ K⁻¹ U, one solve per
+  // contact), and those that would pull once the pulling ones have let go let go with them.
+  // Newton corrects what the linearised forecast gets wrong (a node released too soon comes back
+  // through passed_through).
   overwrote_tangent = false;
   std::vector<int> also;
   constexpr size_t fewest = 4, most = 400;  // contacts in touch: below, nothing to gain; above, the solves cost
   const std::vector<contact::ActiveContact> active = active_contacts(state);
   if (active.size() < fewest || active.size() > most || !system_.follower_rank_one().empty()) return also;
-  // Contact k's entries in `active` (two at a vertex), and which pull now.
+  // Contact k's entries in `active` (two at a vertex, which stay out of the forecast).
   std::vector<int> owner, side;
+  std::vector<char> may_join;
   bool pulls = false;
   for (size_t k = 0; k < state.contacts.size(); ++k) {
     const contact::ContactState& c = state.contacts[k];
     if (!c.active) continue;
     owner.push_back(static_cast<int>(k));
     side.push_back(c.side);
+    may_join.push_back(c.partner < 0);
     if (c.partner >= 0) {
       owner.push_back(static_cast<int>(k));
       side.push_back(c.partner_side);
+      may_join.push_back(0);
       if (-c.side * c.Y < 0.0 || -c.partner_side * c.partner_Y < 0.0) return also;  // a vertex opens: as before
     }
     pulls = pulls || c.force < 0.0;
@@ -184,8 +186,10 @@ std::vector<int> NewtonSolver::look_ahead_releases(State& state, bool& overwrote
   if (!solver_.factorize(system_.tangent_for_factorisation(), system_.contact_rank_one())) return also;
   const int n = static_cast<int>(directions.size());
   Eigen::MatrixXd G(n, n);
-  Eigen::VectorXd column(system_.dofs().free_count());
+  Eigen::VectorXd column(system_.dofs().free_count()), stiffness(n), Y(n);
   for (int j = 0; j < n; ++j) {
+    stiffness[j] = directions[j].stiffness;
+    Y[j] = directions[j].Y;
     column.setZero();
     for (int e = 0; e < 9; ++e)
       if (directions[j].equation[e] >= 0) column[directions[j].equation[e]] += directions[j].u[e];
@@ -198,41 +202,10 @@ std::vector<int> NewtonSolver::look_ahead_releases(State& state, bool& overwrote
     }
   }
   if (!G.allFinite()) return also;
-  // Compression of entry i: −side · Y. S starts as the pulling contacts (vertices never join).
-  std::vector<char> released(n, 0), first(n, 0);
-  for (int i = 0; i < n; ++i) first[i] = released[i] = -side[i] * directions[i].Y < 0.0;
+  const std::vector<char> released = forecast_releases(G, stiffness, Y, side, may_join);
   for (int i = 0; i < n; ++i)
-    if (state.contacts[owner[i]].partner >= 0) first[i] = released[i] = 0;
-  constexpr int rounds = 50;
-  for (int round = 0; round < rounds; ++round) {
-    std::vector<int> S;
-    for (int i = 0; i < n; ++i)
-      if (released[i]) S.push_back(i);
-    const int m = static_cast<int>(S.size());
-    Eigen::MatrixXd A(m, m);
-    Eigen::VectorXd Y(m);
-    for (int a = 0; a < m; ++a) {
-      Y[a] = directions[S[a]].Y;
-      for (int b = 0; b < m; ++b) A(a, b) = (a == b ? 1.0 : 0.0) - directions[S[a]].stiffness * G(S[a], S[b]);
-    }
-    const Eigen::VectorXd would = A.partialPivLu().solve(Y);  // Y'_S
-    if (!would.allFinite()) return also;
-    std::vector<char> next(n, 0);
-    for (int a = 0; a < m; ++a) next[S[a]] = first[S[a]] || -side[S[a]] * would[a] < 0.0;
-    for (int i = 0; i < n; ++i) {
-      if (released[i] || state.contacts[owner[i]].partner >= 0) continue;
-      double y = directions[i].Y;
-      for (int a = 0; a < m; ++a) y += directions[i].stiffness * G(i, S[a]) * would[a];
-      next[i] = -side[i] * y < 0.0;
-    }
-    if (next == released) {
-      for (int i = 0; i < n; ++i)
-        if (released[i] && !first[i]) also.push_back(owner[i]);
-      return also;
-    }
-    released = next;
-  }
-  return also;  // no settled forecast: only the pulling ones let go
+    if (released[i] && !(-side[i] * Y[i] < 0.0)) also.push_back(owner[i]);  // beyond those that pull now
+  return also;
 }
 
 void NewtonSolver::reset(State& state) { evaluate(state); }

@@ -1,0 +1,21 @@
+#pragma once
+// Which contacts let go together at a converged iterate where some pull (Newton's look-ahead):
+// a linearised active-set iteration on the tangent there. Letting go of a set S takes S's point
+// loads Y_S u_S off the nodes and their stiffness k u uᵀ out of the tangent K, so the forces S's
+// contacts would have at the new state solve (I − K_S G_SS) Y'_S = Y_S, and every other
+// contact's is Y_i + k_i G_iS Y'_S, with G = Uᵀ K⁻¹ U over the contacts' point-load directions u
+// (assembly::ContactDirection). S starts as the contacts that pull and grows by those that would
+// (and loses those that would press again, except the first) until it no longer changes.
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace tsm::solver {
+
+/// Per contact entry whether it lets go: compression is −side · Y; `may_join` false keeps an
+/// entry out of S whatever it does (a vertex's two elements). Where the iteration has not
+/// settled after `rounds`, only the entries that pull now.
+std::vector<char> forecast_releases(const Eigen::MatrixXd& G, const Eigen::VectorXd& stiffness, const Eigen::VectorXd& Y,
+                                    const std::vector<int>& side, const std::vector<char>& may_join, int rounds = 50);
+
+}  // namespace tsm::solver
