@@ -122,6 +122,11 @@ TEST(StraightCable, WhereCutbackRunsOutTheFailureSaysHowToGoOn) {
   const auto failed = run(thin, model);
   ASSERT_EQ(failed.status, tsm::solver::Status::cutback_limit);
   EXPECT_NE(failed.message.find("analysis.max_cutbacks"), std::string::npos) << failed.message;
+  // … and why: the cable bends next to nothing against its stretching (EI/(EA l²) = 4e-12 here).
+  EXPECT_NE(failed.message.find("elements bend next to nothing against their stretching (EI/(EA l²) down to"),
+            std::string::npos)
+      << failed.message;
+  EXPECT_NE(failed.message.find("such a cable has no stiffness across it until it sags"), std::string::npos) << failed.message;
   thin["analysis"]["max_cutbacks"] = 45;
   const auto r = run(thin, model);
   ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;

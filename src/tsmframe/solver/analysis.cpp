@@ -74,6 +74,31 @@ std::string short_element_hint(const Model& model) {
   return os.str();
 }
 
+/// A failed first step's hint where elements bend next to nothing against their stretching
+/// (EI/(EA l0²) below 1e-10: a cable drawn straight, a cable of I = 1e-16 m⁴): straight, such a
+/// member has no stiffness across it until it sags, so the first iterate of any step from
+/// straight moves it in proportion to the load over EI alone; its first step has to start far
+/// smaller than ten halvings give (max_cutbacks 50 took a 20 m cable under its weight in 42
+/// steps, 0.01 s). Empty where there are none (bars hinged at both ends do not bend).
+std::string cable_hint(const Model& model) {
+  constexpr double limp = 1e-10;
+  int count = 0;
+  double limpest = INFINITY;
+  for (const Element& e : model.elements) {
+    if (!(e.section.EA > 0.0) || (e.release_start && e.release_end)) continue;
+    const double l0 = (model.nodes[e.end].position - model.nodes[e.start].position).norm();
+    const double ratio = e.section.EI / (e.section.EA * l0 * l0);
+    if (ratio < limp) ++count, limpest = std::min(limpest, ratio);
+  }
+  if (count == 0) return "";
+  std::ostringstream os;
+  os << "; " << count << " element" << (count > 1 ? "s bend" : " bends") << " next to nothing against "
+     << (count > 1 ? "their" : "its") << " stretching (EI/(EA l²) down to " << limpest
+     << "): drawn straight, such a cable has no stiffness across it until it sags — analysis.max_cutbacks 40–60 "
+        "lets its first step start small enough, or draw it with a small sag";
+  return os.str();
+}
+
 std::string failure_text(int step, double from, double to, const char* what, const NewtonOutcome& outcome,
                          int cutbacks) {
   std::ostringstream os;
@@ -693,9 +718,11 @@ RunResult run_stepped(const Model& model, const assembly::DofMap& dofs, NewtonSo
     // Cutback used all its halvings in a row (not a step already at its smallest after growing
     // again): a smaller step may pass — a straight cable's first iterate, from EI alone,
     // overshoots in proportion to the load.
-    if (settings.cutback && halvings >= settings.max_cutbacks && !limit_point && !failed.loads_unresolvable)
+    if (settings.cutback && halvings >= settings.max_cutbacks && !limit_point && !failed.loads_unresolvable) {
       result.message += "; analysis.max_cutbacks (now " + std::to_string(settings.max_cutbacks) +
                         ", at most 60) or more steps let a step start smaller";
+      if (state.load_factor == 0.0) result.message += cable_hint(model);  // the path's first step
+    }
     result.message += short_element_hint(model);
     recorder.finish(state);  // state is the newest converged step's again
     recorder.failed(std::move(record), failed.message);
