@@ -448,6 +448,24 @@ TEST(ContactResting, AColumnPushedAgainstARigidWallCarriesTheRestOfTheLoad) {
   expect_equilibrium(model, last);
 }
 
+TEST(ContactDetection, DisplacementControlOfADofReachedOnlyThroughAnOpenContactFailsAtOnceSayingSo) {
+  // The two beams, the lower beam's mid-span uy controlled: the load on the upper beam reaches it
+  // only once the contacts close, so at the start the dof does not move under the load. Ten
+  // cutbacks could not change that (the tangent at the step's start is the same); the run now
+  // stops at once, "singular", and says what to control instead.
+  json m = pressed_beams(-2000.0, 10);
+  m["analysis"]["control"] = {{"type", "displacement"}, {"node", {5.0, 0.0}}, {"dof", "uy"}, {"target", -0.05}, {"steps", 10}};
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::singular) << r.message;
+  ASSERT_EQ(r.steps.size(), 1u);
+  EXPECT_EQ(r.steps[0].cutbacks, 0);
+  EXPECT_NE(r.message.find("the controlled dof does not move under the load (if the load reaches it only through a "
+                           "contact still open, it does not until that closes"),
+            std::string::npos)
+      << r.message;
+}
+
 TEST(ContactDetection, APusherThatSlidesOffAFreeEndIsNoted) {
   // A rigid pusher 5 mm under a 2 m cantilever (10 elements) moves 1.5 m along it and 3 cm up in
   // 31 steps: it lifts the beam, slides along it across element ends and off its free end, and

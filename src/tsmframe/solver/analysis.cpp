@@ -671,7 +671,8 @@ RunResult run_stepped(const Model& model, const assembly::DofMap& dofs, NewtonSo
     // The smallest increment cutback may try: max_cutbacks halvings of the nominal step. Without
     // it, steps that keep converging ever closer to a barrier would never end.
     const double smallest = std::ldexp(nominal, -settings.max_cutbacks);
-    if (settings.cutback && halvings < settings.max_cutbacks && dt / 2.0 >= smallest * (1.0 - 1e-12)) {
+    if (settings.cutback && !outcome.size_independent && halvings < settings.max_cutbacks &&
+        dt / 2.0 >= smallest * (1.0 - 1e-12)) {
       ++halvings;
       increment = dt / 2.0;
       failed_increment = dt;
@@ -680,7 +681,7 @@ RunResult run_stepped(const Model& model, const assembly::DofMap& dofs, NewtonSo
       continue;
     }
     record.load_factor = by_displacement ? saved.load_factor() : value(t_end);
-    result.status = settings.cutback ? Status::cutback_limit : outcome.status;
+    result.status = settings.cutback && !outcome.size_independent ? Status::cutback_limit : outcome.status;
     const double from = value(t) * (by_displacement ? control.target : 1.0);
     const double to = value(t_end) * (by_displacement ? control.target : 1.0);
     NewtonOutcome failed = outcome;

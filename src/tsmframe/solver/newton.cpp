@@ -611,7 +611,14 @@ NewtonOutcome NewtonSolver::iterate_step(const PathConstraint& constraint, State
       const int k = constraint.equation;
       if (!(std::abs(a[k]) > 0.0) || !std::isfinite(a[k])) {
         out.status = Status::singular;
-        out.message = iterate_text("the controlled dof does not move under the load", it);
+        // Where the load reaches the dof only through a contact still open (a beam pressed onto
+        // another, the lower one's dof controlled), nothing moves it until that contact closes.
+        out.message = iterate_text(contacts_ ? "the controlled dof does not move under the load (if the load reaches it only "
+                                               "through a contact still open, it does not until that closes: control a dof "
+                                               "the load moves from the start, or use arc-length control)"
+                                             : "the controlled dof does not move under the load",
+                                   it);
+        out.size_independent = it == 1;  // the tangent at the step's start: a smaller step meets it too
         return out;
       }
       dlambda = (constraint.target - state.displacements[dofs.dof(k)] - b[k]) / a[k];

@@ -64,6 +64,9 @@ struct NewtonOutcome {
   /// Failed because the loads are too small to resolve against the rounding in the model's
   /// forces: a smaller step cannot help.
   bool loads_unresolvable = false;
+  /// The step failed at its first iterate for a reason its size does not change (the controlled
+  /// dof does not move under the load at the step's start): cutting it back cannot help.
+  bool size_independent = false;
 };
 
 /// Force and moment scales of the convergence test (unit-consistent: each kind on its own).
