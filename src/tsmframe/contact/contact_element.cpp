@@ -91,14 +91,24 @@ ContactResponse contact_response(const ContactElementData& data, const Vector9& 
   return r;
 }
 
+double alpha_on_element(const element::InitialChord& initial, const element::Vector6& d,
+                        const Eigen::Vector2d& node_position) {
+  // The chord's length and direction as current_chord forms them.
+  const Eigen::Vector2d delta = (initial.end - initial.start) + Eigen::Vector2d(d[3] - d[0], d[4] - d[1]);
+  const double length = delta.norm(), inverse = 1.0 / length;
+  const Eigen::Vector2d e(delta.x() * inverse, delta.y() * inverse);
+  const Eigen::Vector2d rel = node_position - (initial.start + d.head<2>());
+  return rel.dot(e) / length;
+}
+
 NodeOnElement node_on_element(const element::InitialChord& initial, const element::SectionStiffness& section,
                               const element::Vector6& d, double chord_rotation, const Eigen::Vector2d& node_position,
                               double flexibility_i, double flexibility_j) {
   const element::Chord chord = element::current_chord(initial, d, chord_rotation);
-  const Eigen::Vector2d e(chord.cos, chord.sin), n(-chord.sin, chord.cos);
+  const Eigen::Vector2d n(-chord.sin, chord.cos);
   const Eigen::Vector2d rel = node_position - (initial.start + d.head<2>());
   NodeOnElement out;
-  out.alpha = rel.dot(e) / chord.length;
+  out.alpha = alpha_on_element(initial, d, node_position);
   std::array<double, 2> h = point_load_moments(section, initial.length, out.alpha);
   if (flexibility_i != 0.0 || flexibility_j != 0.0) {  // w from the nodes' rotations through the connections
     const PointLoadLaw law = connected_law(point_load_law(section, initial.length, out.alpha, 0.25),

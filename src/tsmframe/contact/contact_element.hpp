@@ -69,6 +69,10 @@ struct NodeOnElement {
   double alpha = 0.0;
   double gap = 0.0;
 };
+/// node_on_element's α alone (the same arithmetic, without the chord's rotation or the free
+/// shape): what rules an element out before its gap is worth measuring.
+double alpha_on_element(const element::InitialChord& initial, const element::Vector6& element_displacements,
+                        const Eigen::Vector2d& node_position);
 NodeOnElement node_on_element(const element::InitialChord& initial, const element::SectionStiffness& section,
                               const element::Vector6& element_displacements, double chord_rotation,
                               const Eigen::Vector2d& node_position, double flexibility_i = 0.0,

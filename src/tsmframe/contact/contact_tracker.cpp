@@ -112,12 +112,17 @@ std::pair<double, double> ContactTracker::end_flexibilities(int element) const {
 }
 
 NodeOnElement ContactTracker::locate(const Spec& spec, int element, const Eigen::VectorXd& D,
-                                     const std::vector<double>& chord_rotations) const {
+                                     const std::vector<double>& chord_rotations, double lowest, double highest) const {
   const Element& e = model_.elements[element];
   const Eigen::Vector2d position = model_.nodes[spec.node].position + D.segment<2>(dofs_per_node * spec.node);
+  const element::Vector6 d = element_displacements(e, D);
+  // α first, from the chord alone: a node beyond the span asked for needs no gap (most of a
+  // long beam's elements, for each contact node).
+  if (const double alpha = alpha_on_element(initial_[element], d, position); alpha < lowest || alpha > highest)
+    return {alpha, std::numeric_limits<double>::quiet_NaN()};
   const auto [flexibility_i, flexibility_j] = end_flexibilities(element);
-  return node_on_element(initial_[element], contact_section(spec, element), element_displacements(e, D),
-                         chord_rotations[element], position, flexibility_i, flexibility_j);
+  return node_on_element(initial_[element], contact_section(spec, element), d, chord_rotations[element], position,
+                         flexibility_i, flexibility_j);
 }
 
 NodeOnElement ContactTracker::on_chord(const Spec& spec, int element, const Eigen::VectorXd& D) const {
@@ -241,7 +246,8 @@ void ContactTracker::reset_sides(const Spec& spec, const Eigen::VectorXd& D, con
   // through that node below.
   std::vector<signed char> past(spec.candidates.size(), 0);
   std::vector<NodeOnElement> where_all(spec.candidates.size());
-  for (size_t ci = 0; ci < spec.candidates.size(); ++ci) where_all[ci] = locate(spec, spec.candidates[ci], D, rotations);
+  for (size_t ci = 0; ci < spec.candidates.size(); ++ci)
+    where_all[ci] = locate(spec, spec.candidates[ci], D, rotations, -side_reach, 1.0 + side_reach);  // gap only there
   // Past an element's end node, its chord's line extended is no guide where the next element's
   // span holds the node: at a kink the line cuts across (just outside a convex arch, the next
   // chords' lines run outside it). There the side is carried from the element that holds it.
@@ -400,7 +406,7 @@ void ContactTracker::release(const Spec& spec, const Eigen::VectorXd& D, const s
   state.released_within.assign(spec.candidates.size(), 0);
   for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
     const int f = spec.candidates[ci];
-    const double alpha = locate(spec, f, D, rotations).alpha;
+    const double alpha = locate(spec, f, D, rotations, -alpha_tolerance, 1.0 + alpha_tolerance).alpha;
     if (alpha < -alpha_tolerance || alpha > 1.0 + alpha_tolerance) continue;
     for (const int node : {model_.elements[f].start, model_.elements[f].end})
       for (int p = node_start_[node]; p < node_start_[node + 1]; ++p)
@@ -554,7 +560,7 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
     double best_gap = INFINITY, best_alpha = 0.0;
     for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
       const int f = spec.candidates[ci];
-      const NodeOnElement where = locate(spec, f, D, rotations);
+      const NodeOnElement where = locate(spec, f, D, rotations, -alpha_tolerance, 1.0 + alpha_tolerance);
       if (where.alpha < -alpha_tolerance || where.alpha > 1.0 + alpha_tolerance) continue;
       const int reference = state.reference_side[ci];
       int side = 0;
@@ -608,7 +614,7 @@ bool ContactTracker::node_passed_through(size_t k, const Eigen::VectorXd& D, con
   for (size_t ci = 0; ci < specs_[k].candidates.size(); ++ci) {
     if (!state.released_within[ci]) continue;
     const int f = specs_[k].candidates[ci];
-    const NodeOnElement where = locate(specs_[k], f, D, rotations);
+    const NodeOnElement where = locate(specs_[k], f, D, rotations, 0.0, 1.0);
     if (where.alpha < 0.0 || where.alpha > 1.0) continue;
     const Eigen::Vector2d n = chord_normal(initial_[f], element_displacements(model_.elements[f], D), rotations[f]);
     const int expected = n.dot(released_normal) >= 0.0 ? state.released_side : -state.released_side;
@@ -622,7 +628,7 @@ bool ContactTracker::node_passed_through(size_t k, const Eigen::VectorXd& D, con
   int nearest = -1;
   double nearest_gap = 0.0;
   for (size_t ci = 0; ci < specs_[k].candidates.size(); ++ci) {
-    const NodeOnElement where = locate(specs_[k], specs_[k].candidates[ci], D, rotations);
+    const NodeOnElement where = locate(specs_[k], specs_[k].candidates[ci], D, rotations, 0.0, 1.0);
     if (where.alpha < 0.0 || where.alpha > 1.0) continue;
     if (nearest < 0 || std::abs(where.gap) < std::abs(nearest_gap)) nearest = static_cast<int>(ci), nearest_gap = where.gap;
   }

@@ -15,6 +15,7 @@
 // is exactly zero), so a contact starts with Y = 0 and no jump.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -104,8 +105,11 @@ class ContactTracker {
     bool sliding_term = true;
     bool cantilever_frame = false;
   };
+  /// Where the node is on `element` (node_on_element); its gap is measured only where α lies in
+  /// [lowest, highest] (NaN elsewhere: α alone rules the element out).
   NodeOnElement locate(const Spec& spec, int element, const Eigen::VectorXd& displacements,
-                       const std::vector<double>& chord_rotations) const;
+                       const std::vector<double>& chord_rotations, double lowest = -INFINITY,
+                       double highest = INFINITY) const;
   /// The contact node in the frame of an element's straight current chord: α along it, the
   /// signed distance across it (along n). Unlike locate(), meaningful far beyond the element.
   NodeOnElement on_chord(const Spec& spec, int element, const Eigen::VectorXd& displacements) const;
