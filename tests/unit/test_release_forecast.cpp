@@ -47,6 +47,9 @@ TEST(ReleaseForecast, AChainOfThreeLetsGoStepByStepInOneForecast) {
   const std::vector<char> released =
       forecast_releases(chain, Eigen::VectorXd::Ones(3), Eigen::Vector3d(-1.0, 0.1, 0.1), {-1, -1, -1}, {1, 1, 1});
   EXPECT_EQ(released, (std::vector<char>{1, 1, 1}));
+  // Allowed a set of two at most, it gives up at three: only the pulling one.
+  EXPECT_EQ(forecast_releases(chain, Eigen::VectorXd::Ones(3), Eigen::Vector3d(-1.0, 0.1, 0.1), {-1, -1, -1}, {1, 1, 1}, 50, 2),
+            (std::vector<char>{1, 0, 0}));
   // With one round only it has not settled: only the pulling one.
   EXPECT_EQ(forecast_releases(chain, Eigen::VectorXd::Ones(3), Eigen::Vector3d(-1.0, 0.1, 0.1), {-1, -1, -1}, {1, 1, 1}, 1),
             (std::vector<char>{1, 0, 0}));

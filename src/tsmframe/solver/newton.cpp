@@ -149,12 +149,13 @@ std::vector<int> NewtonSolver::look_ahead_releases(State& state, bool& overwrote
   // (the held zone's edge carries a couple), and releasing them moves the edge by a node or two
   // per converged iterate — a beam pressed onto another took 3 iterates for each. The release is
   // looked ahead on the tangent here instead (forecast_releases; G = Uᵀ K⁻¹ U, one solve per
-  // contact), and those that would pull once the pulling ones have let go let go with them.
+  // contact that lets go), and those that would pull once the pulling ones have let go let go
+  // with them.
   // Newton corrects what the linearised forecast gets wrong (a node released too soon comes back
   // through passed_through).
   overwrote_tangent = false;
   std::vector<int> also;
-  constexpr size_t fewest = 4, most = 400;  // contacts in touch: below, nothing to gain; above, the solves cost
+  constexpr size_t fewest = 4, most = 2000;  // contacts in touch: below, nothing to gain; above, the solves cost
   const std::vector<contact::ActiveContact> active = active_contacts(state);
   if (active.size() < fewest || active.size() > most || !system_.follower_rank_one().empty()) return also;
   // Contact k's entries in `active` (two at a vertex, which stay out of the forecast).
@@ -185,24 +186,29 @@ std::vector<int> NewtonSolver::look_ahead_releases(State& state, bool& overwrote
   overwrote_tangent = true;
   if (!solver_.factorize(system_.tangent_for_factorisation(), system_.contact_rank_one())) return also;
   const int n = static_cast<int>(directions.size());
-  Eigen::MatrixXd G(n, n);
-  Eigen::VectorXd column(system_.dofs().free_count()), stiffness(n), Y(n);
+  Eigen::VectorXd stiffness(n), Y(n);
   for (int j = 0; j < n; ++j) {
     stiffness[j] = directions[j].stiffness;
     Y[j] = directions[j].Y;
-    column.setZero();
-    for (int e = 0; e < 9; ++e)
-      if (directions[j].equation[e] >= 0) column[directions[j].equation[e]] += directions[j].u[e];
-    solver_.solve_in_place(column);
-    for (int i = 0; i < n; ++i) {
-      double g = 0.0;
-      for (int e = 0; e < 9; ++e)
-        if (directions[i].equation[e] >= 0) g += directions[i].u[e] * column[directions[i].equation[e]];
-      G(i, j) = g;
-    }
   }
-  if (!G.allFinite()) return also;
-  const std::vector<char> released = forecast_releases(G, stiffness, Y, side, may_join);
+  bool finite = true;
+  const auto column = [&](int j) {  // Uᵀ K⁻¹ u_j: one solve
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(system_.dofs().free_count());
+    for (int e = 0; e < 9; ++e)
+      if (directions[j].equation[e] >= 0) x[directions[j].equation[e]] += directions[j].u[e];
+    solver_.solve_in_place(x);
+    Eigen::VectorXd g(n);
+    for (int i = 0; i < n; ++i) {
+      double sum = 0.0;
+      for (int e = 0; e < 9; ++e)
+        if (directions[i].equation[e] >= 0) sum += directions[i].u[e] * x[directions[i].equation[e]];
+      g[i] = sum;
+    }
+    finite = finite && g.allFinite();
+    return g;
+  };
+  const std::vector<char> released = forecast_releases(column, stiffness, Y, side, may_join);
+  if (!finite) return also;
   for (int i = 0; i < n; ++i)
     if (released[i] && !(-side[i] * Y[i] < 0.0)) also.push_back(owner[i]);  // beyond those that pull now
   return also;

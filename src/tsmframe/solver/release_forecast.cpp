@@ -4,9 +4,15 @@
 
 namespace tsm::solver {
 
-std::vector<char> forecast_releases(const Eigen::MatrixXd& G, const Eigen::VectorXd& stiffness, const Eigen::VectorXd& Y,
-                                    const std::vector<int>& side, const std::vector<char>& may_join, int rounds) {
+std::vector<char> forecast_releases(const ForecastColumn& column, const Eigen::VectorXd& stiffness,
+                                    const Eigen::VectorXd& Y, const std::vector<int>& side,
+                                    const std::vector<char>& may_join, int rounds, int largest_set) {
   const int n = static_cast<int>(Y.size());
+  std::vector<Eigen::VectorXd> columns(n);  // G's columns asked for so far
+  const auto G = [&](int i, int j) -> double {
+    if (columns[j].size() == 0) columns[j] = column(j);
+    return columns[j][i];
+  };
   std::vector<char> pulling(n, 0);
   for (int i = 0; i < n; ++i) pulling[i] = may_join[i] && -side[i] * Y[i] < 0.0;
   std::vector<char> released = pulling;
@@ -15,6 +21,7 @@ std::vector<char> forecast_releases(const Eigen::MatrixXd& G, const Eigen::Vecto
     for (int i = 0; i < n; ++i)
       if (released[i]) S.push_back(i);
     const int m = static_cast<int>(S.size());
+    if (m > largest_set) break;
     Eigen::MatrixXd A(m, m);
     Eigen::VectorXd Y_S(m);
     for (int a = 0; a < m; ++a) {
@@ -35,6 +42,13 @@ std::vector<char> forecast_releases(const Eigen::MatrixXd& G, const Eigen::Vecto
     released = next;
   }
   return pulling;
+}
+
+std::vector<char> forecast_releases(const Eigen::MatrixXd& G, const Eigen::VectorXd& stiffness, const Eigen::VectorXd& Y,
+                                    const std::vector<int>& side, const std::vector<char>& may_join, int rounds,
+                                    int largest_set) {
+  return forecast_releases([&](int j) -> Eigen::VectorXd { return G.col(j); }, stiffness, Y, side, may_join, rounds,
+                           largest_set);
 }
 
 }  // namespace tsm::solver

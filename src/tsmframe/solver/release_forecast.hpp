@@ -5,17 +5,28 @@
 // contacts would have at the new state solve (I − K_S G_SS) Y'_S = Y_S, and every other
 // contact's is Y_i + k_i G_iS Y'_S, with G = Uᵀ K⁻¹ U over the contacts' point-load directions u
 // (assembly::ContactDirection). S starts as the contacts that pull and grows by those that would
-// (and loses those that would press again, except the first) until it no longer changes.
+// (and loses those that would press again, except the first) until it no longer changes. Only
+// G's columns of contacts in S are ever needed: one solve each, asked for as S grows.
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 namespace tsm::solver {
 
+/// G's column j, Uᵀ K⁻¹ u_j (one entry per contact).
+using ForecastColumn = std::function<Eigen::VectorXd(int j)>;
+
 /// Per contact entry whether it lets go: compression is −side · Y; `may_join` false keeps an
 /// entry out of S whatever it does (a vertex's two elements). Where the iteration has not
-/// settled after `rounds`, only the entries that pull now.
+/// settled after `rounds`, or S would grow beyond `largest_set` (its dense solve, |S|³, and one
+/// solve with K per member), only the entries that pull now.
+std::vector<char> forecast_releases(const ForecastColumn& column, const Eigen::VectorXd& stiffness,
+                                    const Eigen::VectorXd& Y, const std::vector<int>& side,
+                                    const std::vector<char>& may_join, int rounds = 50, int largest_set = 400);
+/// The same with G given whole.
 std::vector<char> forecast_releases(const Eigen::MatrixXd& G, const Eigen::VectorXd& stiffness, const Eigen::VectorXd& Y,
-                                    const std::vector<int>& side, const std::vector<char>& may_join, int rounds = 50);
+                                    const std::vector<int>& side, const std::vector<char>& may_join, int rounds = 50,
+                                    int largest_set = 400);
 
 }  // namespace tsm::solver
