@@ -91,14 +91,20 @@ ContactResponse contact_response(const ContactElementData& data, const Vector9& 
   return r;
 }
 
-double alpha_on_element(const element::InitialChord& initial, const element::Vector6& d,
-                        const Eigen::Vector2d& node_position) {
+ChordFrame chord_frame(const element::InitialChord& initial, const element::Vector6& d) {
   // The chord's length and direction as current_chord forms them.
   const Eigen::Vector2d delta = (initial.end - initial.start) + Eigen::Vector2d(d[3] - d[0], d[4] - d[1]);
-  const double length = delta.norm(), inverse = 1.0 / length;
-  const Eigen::Vector2d e(delta.x() * inverse, delta.y() * inverse);
-  const Eigen::Vector2d rel = node_position - (initial.start + d.head<2>());
-  return rel.dot(e) / length;
+  ChordFrame frame;
+  frame.length = delta.norm();
+  const double inverse = 1.0 / frame.length;
+  frame.e = Eigen::Vector2d(delta.x() * inverse, delta.y() * inverse);
+  frame.start = initial.start + d.head<2>();
+  return frame;
+}
+
+double alpha_on_element(const element::InitialChord& initial, const element::Vector6& d,
+                        const Eigen::Vector2d& node_position) {
+  return chord_frame(initial, d).alpha(node_position);
 }
 
 NodeOnElement node_on_element(const element::InitialChord& initial, const element::SectionStiffness& section,

@@ -69,6 +69,15 @@ struct NodeOnElement {
   double alpha = 0.0;
   double gap = 0.0;
 };
+/// An element's current chord as α needs it: its start X_i + u_i, unit direction e and length
+/// (current_chord's arithmetic).
+struct ChordFrame {
+  Eigen::Vector2d start, e;
+  double length = 0.0;
+  /// α of a point on this chord (node_on_element's).
+  double alpha(const Eigen::Vector2d& point) const { return (point - start).dot(e) / length; }
+};
+ChordFrame chord_frame(const element::InitialChord& initial, const element::Vector6& element_displacements);
 /// node_on_element's α alone (the same arithmetic, without the chord's rotation or the free
 /// shape): what rules an element out before its gap is worth measuring.
 double alpha_on_element(const element::InitialChord& initial, const element::Vector6& element_displacements,

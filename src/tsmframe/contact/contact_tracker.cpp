@@ -161,8 +161,16 @@ int ContactTracker::swept_crossing(const Spec& spec, const ContactState& state, 
     if (occupied[f] || (side != 1 && side != -1)) continue;
     const double before = side * state.reference_across[ci];
     if (!(before > spec.gap)) continue;
+    const Element& e = model_.elements[f];
+    const Eigen::Vector2d a = position(e.start), b = position(e.end);
+    if (const double alpha = alpha_on_chord(a, b, p1); alpha >= -alpha_tolerance && alpha <= 1.0 + alpha_tolerance)
+      continue;  // on_chord's α, without its square root
+    {  // Still on its side beyond the gap, surely (on_chord's distance, squared, with room for rounding).
+      const Eigen::Vector2d chord = b - a, r = p1 - a;
+      const double across = chord.x() * r.y() - chord.y() * r.x(), length2 = chord.squaredNorm();
+      if (length2 > 0.0 && side * across > 0.0 && across * across > spec.gap * spec.gap * length2 * (1.0 + 1e-9)) continue;
+    }
     const NodeOnElement now = on_chord(spec, f, D);
-    if (now.alpha >= -alpha_tolerance && now.alpha <= 1.0 + alpha_tolerance) continue;
     const double after = side * now.gap;
     if (after > spec.gap) continue;
     const double t = (before - spec.gap) / (before - after);
@@ -508,6 +516,17 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
       occupied[s.element] = 1;
       if (s.partner >= 0) occupied[s.partner] = 1;
     }
+  // Every element's current chord frame once: detection takes α of each inactive node on every
+  // candidate, and α alone rules out all but the few whose span holds it.
+  std::vector<ChordFrame> frames;
+  const auto frame_of = [&](int f) -> const ChordFrame& {
+    if (frames.empty()) {
+      frames.resize(model_.elements.size());
+      for (size_t e = 0; e < model_.elements.size(); ++e)
+        frames[e] = chord_frame(initial_[e], element_displacements(model_.elements[e], D));
+    }
+    return frames[f];
+  };
   size_t next = 0;
   for (size_t k = 0; k < specs_.size(); ++k) {
     const Spec& spec = specs_[k];
@@ -558,10 +577,12 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
     if (state.released_in_step) continue;
     int best = -1, best_side = 0;
     double best_gap = INFINITY, best_alpha = 0.0;
+    const Eigen::Vector2d node = model_.nodes[spec.node].position + D.segment<2>(dofs_per_node * spec.node);
     for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
       const int f = spec.candidates[ci];
-      const NodeOnElement where = locate(spec, f, D, rotations, -alpha_tolerance, 1.0 + alpha_tolerance);
-      if (where.alpha < -alpha_tolerance || where.alpha > 1.0 + alpha_tolerance) continue;
+      if (const double alpha = frame_of(f).alpha(node); alpha < -alpha_tolerance || alpha > 1.0 + alpha_tolerance)
+        continue;  // the same α as locate's
+      const NodeOnElement where = locate(spec, f, D, rotations);
       const int reference = state.reference_side[ci];
       int side = 0;
       if (reference == no_side) {

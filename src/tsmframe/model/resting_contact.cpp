@@ -12,6 +12,12 @@ ChordPlace place_on_chord(const Eigen::Vector2d& a, const Eigen::Vector2d& b, co
   return {r.dot(chord) / length2, (chord.x() * r.y() - chord.y() * r.x()) / std::sqrt(length2)};
 }
 
+double alpha_on_chord(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& x) {
+  const Eigen::Vector2d chord = b - a, r = x - a;
+  const double length2 = chord.squaredNorm();
+  return length2 > 0.0 ? r.dot(chord) / length2 : 0.0;
+}
+
 std::optional<RestingContact> resting_contact(const Model& model, const ContactSpec& contact) {
   const double tolerance = 1e-10 * model.size;  // as the contact tracker's "on the centre line"
   std::vector<bool> in_set(model.member_count, false);

@@ -28,6 +28,8 @@ struct ChordPlace {
   double across = 0.0;
 };
 ChordPlace place_on_chord(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& x);
+/// place_on_chord's α alone (the same arithmetic, no square root).
+double alpha_on_chord(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& x);
 
 /// The element `contact` rests on in the undeformed model (the nearest, if several), or none.
 std::optional<RestingContact> resting_contact(const Model& model, const ContactSpec& contact);
