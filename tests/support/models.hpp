@@ -37,6 +37,25 @@ inline solver::RunResult run(const json& m, Model& model) {
   return solver::run_analysis(model);
 }
 
+/// A pinned beam (10 m, `upper` Timoshenko elements, EI 2e4) drawn 1 cm above a simply supported
+/// one (`lower` elements, EI 4e6: 200 × as stiff), every node of it a contact node on the lower
+/// beam (one entry, gap 5 cm), under a uniform load fy (N/m) in `steps` steps
+/// (examples/beam-pressed-onto-beam.json has 100 over 300).
+inline json pressed_beams(double fy, int steps, int lower = 600, int upper = 200) {
+  return {{"materials", {{"steel", {{"E", 2e11}, {"nu", 0.3}}}}},
+          {"sections", {{"beam", {{"A", 4e-3}, {"I", 2e-5}, {"shear_area", 3.3e-3}}},
+                        {"top", {{"A", 1e-3}, {"I", 1e-7}, {"shear_area", 8e-4}}}}},
+          {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
+                                 {{"id", 3}, {"x", 0.005}, {"y", 0.06}}, {{"id", 4}, {"x", 9.995}, {"y", 0.06}}})},
+          {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", lower}, {"material", "steel"}, {"section", "beam"}, {"element", "timoshenko"}},
+                                   {{"from", 3}, {"to", 4}, {"divisions", upper}, {"material", "steel"}, {"section", "top"}, {"element", "timoshenko"},
+                                    {"load", {{"fy", fy}}}}})},
+          {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}},
+                                    {{"node", 3}, {"type", "pinned"}}, {{"node", 4}, {"type", "pinned"}}})},
+          {"contacts", json::array({{{"nodes", {{"members", {1}}}}, {"members", {0}}, {"gap", 0.05}}})},
+          {"analysis", {{"control", {{"type", "load"}, {"steps", steps}}}}}};
+}
+
 /// The reader's reason for refusing `m` (file: path: reason), or "" if it accepts it.
 inline std::string refusal(const json& m) {
   try {

@@ -336,25 +336,6 @@ int beam_node_at(const tsm::Model& model, double x) {
   return -1;
 }
 
-/// A pinned beam (10 m, 200 Timoshenko elements, EI 2e4) drawn 1 cm above a simply supported one
-/// (600 elements, EI 4e6: 200 × as stiff), every node of it a contact node on the lower beam (one
-/// entry), under a uniform load fy (N/m) in `steps` steps.
-json pressed_beams(double fy, int steps) {
-  json m = {{"materials", {{"steel", {{"E", 2e11}, {"nu", 0.3}}}}},
-            {"sections", {{"beam", {{"A", 4e-3}, {"I", 2e-5}, {"shear_area", 3.3e-3}}},
-                          {"top", {{"A", 1e-3}, {"I", 1e-7}, {"shear_area", 8e-4}}}}},
-            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
-                                   {{"id", 3}, {"x", 0.005}, {"y", 0.06}}, {{"id", 4}, {"x", 9.995}, {"y", 0.06}}})},
-            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 600}, {"material", "steel"}, {"section", "beam"}, {"element", "timoshenko"}},
-                                     {{"from", 3}, {"to", 4}, {"divisions", 200}, {"material", "steel"}, {"section", "top"}, {"element", "timoshenko"},
-                                      {"load", {{"fy", fy}}}}})},
-            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}},
-                                      {{"node", 3}, {"type", "pinned"}}, {{"node", 4}, {"type", "pinned"}}})},
-            {"contacts", json::array({{{"nodes", {{"members", {1}}}}, {"members", {0}}, {"gap", 0.05}}})},
-            {"analysis", {{"control", {{"type", "load"}, {"steps", steps}}}}}};
-  return m;
-}
-
 TEST(ContactDetection, ManyContactsClosingTogetherSettleInOneLookAheadAndAFailureSaysHow) {
   // The two beams loaded in one step to the first contacts: the predictor closes 85 contacts,
   // of which one is right. Released a few per converged iterate (the outermost pulling ones),

@@ -151,18 +151,8 @@ TEST(Threads, ContactsClosingAlongABeamGiveBitIdenticalResults) {
   // end) under 1 kN/m in 2 steps: contacts close by the dozen, the release looks ahead (one
   // factorisation and a solve per contact that lets go, on the shared solver) and the step is cut
   // back on the way.
-  json m = {{"materials", {{"steel", {{"E", 2e11}, {"nu", 0.3}}}}},
-            {"sections", {{"lower", {{"A", 4e-3}, {"I", 2e-5}, {"shear_area", 3.3e-3}}},
-                          {"upper", {{"A", 1e-3}, {"I", 1e-7}, {"shear_area", 8e-4}}}}},
-            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
-                                   {{"id", 3}, {"x", 0.005}, {"y", 0.06}}, {{"id", 4}, {"x", 9.995}, {"y", 0.06}}})},
-            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 750}, {"material", "steel"}, {"section", "lower"}, {"element", "timoshenko"}},
-                                     {{"from", 3}, {"to", 4}, {"divisions", 250}, {"material", "steel"}, {"section", "upper"}, {"element", "timoshenko"},
-                                      {"load", {{"fy", -1000.0}}}}})},
-            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}},
-                                      {{"node", 3}, {"type", "pinned"}}, {{"node", 4}, {"type", "pinned"}}})},
-            {"contacts", json::array({{{"nodes", {{"members", {1}}}}, {"members", {0}}, {"gap", 0.05}}})},
-            {"analysis", {{"control", {{"type", "load"}, {"steps", 2}}}, {"output", "all"}}}};
+  json m = pressed_beams(-1000.0, 2, 750, 250);
+  m["analysis"]["output"] = "all";
   const tsm::Model model = tsm::io::read_model(m);
   const auto [one, two] = run_with_one_and_two_threads(model);
   ASSERT_EQ(one.status, tsm::solver::Status::converged) << one.message;
