@@ -81,6 +81,11 @@ ContactTracker::ContactTracker(const Model& model) : model_(model) {
     s.cantilever_frame = c.frame == "cantilever";
     specs_.push_back(std::move(s));
   }
+  std::vector<char> candidate(n_elements, 0);
+  for (const Spec& spec : specs_)
+    for (const int f : spec.candidates) candidate[f] = 1;
+  for (int k = 0; k < n_elements; ++k)
+    if (candidate[k]) candidate_elements_.push_back(k);
 }
 
 double ContactTracker::cap_compliance(const Spec& spec, int element) const {
@@ -522,8 +527,7 @@ ContactChanges ContactTracker::update(const Eigen::VectorXd& D, const std::vecto
   const auto frame_of = [&](int f) -> const ChordFrame& {
     if (frames.empty()) {
       frames.resize(model_.elements.size());
-      for (size_t e = 0; e < model_.elements.size(); ++e)
-        frames[e] = chord_frame(initial_[e], element_displacements(model_.elements[e], D));
+      for (const int e : candidate_elements_) frames[e] = chord_frame(initial_[e], element_displacements(model_.elements[e], D));
     }
     return frames[f];
   };

@@ -154,6 +154,7 @@ class ContactTracker {
   std::vector<Spec> specs_;
   std::vector<element::InitialChord> initial_;
   std::vector<int> node_start_, node_elements_;  ///< elements at each node (CSR)
+  std::vector<int> candidate_elements_;          ///< elements some contact may touch, ascending
   double touch_tolerance_ = 0.0;                 ///< |gap| below this: on the centre line
 };
 
