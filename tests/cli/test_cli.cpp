@@ -209,6 +209,16 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
          m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"max_stiffness_ratio", 0.5}}});
        },
        "contacts[0].max_stiffness_ratio: must be at least 1"},
+      {"a free contact node drawn off its gap",  // only its uy free, 0.1 above the beam, gap 0.05
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 1.5}, {"y", 0.1}});
+         m["supports"].push_back({{"node", 5}, {"fix", {"ux", "rz"}}});
+         m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"gap", 0.05}}});
+       },
+       "supports: structure is a mechanism: node 5 is held by no element and its uy is not supported (a contact node is "
+       "held by its contact only if drawn at its \"gap\" from the beam and free in one direction only, across the beam: "
+       "else prescribe its motion, or make it a node of a beam) (contact node 5 is drawn 0.1 from the beam's centre line, "
+       "its gap is 0.05"},
       {"contact node twice",
        [](json& m) {
          m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});

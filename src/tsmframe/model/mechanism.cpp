@@ -48,7 +48,11 @@ std::string why_not_resting(const Model& model, const ContactSpec& contact) {
   else if (std::isfinite(nearest) && nearest > contact.gap + tolerance)
     os << " (contact node " << id << " is drawn " << nearest << " from the beam's centre line, its gap is " << contact.gap
        << ": a part that only contacts would hold cannot fall onto them in a static analysis — draw it touching, at "
-       << "the gap, or move it there with a prescribed displacement)";
+       << "the gap, or move it there with a prescribed displacement"
+       << (nearest < 1.1 * contact.gap ? "; the distance is to the elements' straight chords, which on an arc lie inside "
+                                          "the circle"
+                                        : "")
+       << ")";
   return os.str();
 }
 
@@ -82,7 +86,8 @@ std::optional<std::string> find_mechanism(const Model& model, bool resting_conta
                " is held by no element and its " + dof_name(dof) + " is not supported" +
                (contact_node ? std::string(" (a contact node is held by its contact only if drawn at its \"gap\" from the "
                                            "beam and free in one direction only, across the beam: else prescribe its "
-                                           "motion, or make it a node of a beam)")
+                                           "motion, or make it a node of a beam)") +
+                                   why_not_resting(model, *spec)
                              : std::string());
   }
   std::vector<std::vector<int>> parts(n);
