@@ -77,6 +77,11 @@ ContactTracker::ContactTracker(const Model& model) : model_(model) {
     s.gap = c.gap;
     s.edge = c.edge;
     s.max_stiffness_ratio = c.max_stiffness_ratio;
+    for (int p = node_start_[c.node]; p < node_start_[c.node + 1]; ++p) {
+      const int e = node_elements_[p];
+      const element::SectionStiffness& section = model.elements[e].section;
+      s.own.push_back({std::cos(initial_[e].angle), std::sin(initial_[e].angle), section.EA, section.EI, initial_[e].length});
+    }
     s.sliding_term = c.sliding_tangent;
     s.cantilever_frame = c.frame == "cantilever";
     specs_.push_back(std::move(s));
@@ -92,13 +97,10 @@ double ContactTracker::cap_compliance(const Spec& spec, int element) const {
   const double angle = initial_[element].angle;
   const Eigen::Vector2d normal(-std::sin(angle), std::cos(angle));
   double stiffest = 0.0;
-  for (int p = node_start_[spec.node]; p < node_start_[spec.node + 1]; ++p) {
-    const int e = node_elements_[p];
-    const element::SectionStiffness& s = model_.elements[e].section;
-    const double l0 = initial_[e].length;
-    const double along = std::cos(initial_[e].angle) * normal.x() + std::sin(initial_[e].angle) * normal.y();
+  for (const Spec::Own& o : spec.own) {
+    const double along = o.cos * normal.x() + o.sin * normal.y();
     const double c2 = along * along;  // the element's axis against the contact's normal
-    stiffest = std::max(stiffest, c2 * s.EA / l0 + (1.0 - c2) * 12.0 * s.EI / (l0 * l0 * l0));
+    stiffest = std::max(stiffest, c2 * o.EA / o.l0 + (1.0 - c2) * 12.0 * o.EI / (o.l0 * o.l0 * o.l0));
   }
   return stiffest > 0.0 ? 1.0 / (spec.max_stiffness_ratio * stiffest) : 0.0;
 }

@@ -102,6 +102,11 @@ class ContactTracker {
     double gap = 0.0;
     double edge = -1.0;
     double max_stiffness_ratio = 0.0;   ///< the cap: see cap_compliance
+    /// The elements holding the node, as drawn: axis (cos, sin of φ0), EA, EI and l0.
+    struct Own {
+      double cos = 0.0, sin = 0.0, EA = 0.0, EI = 0.0, l0 = 0.0;
+    };
+    std::vector<Own> own;
     bool sliding_term = true;
     bool cantilever_frame = false;
   };
