@@ -27,14 +27,14 @@ int main(int argc, char** argv) {
   tsm::assembly::GlobalSystem system(model, dofs);
   tsm::assembly::Evaluation evaluation;
   system.evaluate(Eigen::VectorXd::Zero(model.dof_count()), std::vector<double>(model.elements.size(), 0.0), true, evaluation);
-  const tsm::solver::BlockMatrix tangent = system.tangent();
+  const tsm::linalg::BlockMatrix tangent = system.tangent();
   if (3 * tangent.size != dofs.free_count()) {
     std::fprintf(stderr, "a node with some dofs fixed: this comparison expects whole free nodes\n");
     return 1;
   }
 
-  tsm::solver::BlockLDLT ours;
-  tsm::solver::BlockMatrix factor = tangent;
+  tsm::linalg::BlockLDLT ours;
+  tsm::linalg::BlockMatrix factor = tangent;
   double t0 = seconds();
   ours.analyze(factor);
   const double ours_analysis = seconds() - t0;

@@ -10,8 +10,8 @@
 
 namespace tsm::test {
 
-inline Eigen::MatrixXd dense_tangent(const assembly::DofMap& dofs, const solver::BlockMatrix& a,
-                                     const std::vector<solver::RankOne>& rank_one = {}) {
+inline Eigen::MatrixXd dense_tangent(const assembly::DofMap& dofs, const linalg::BlockMatrix& a,
+                                     const std::vector<linalg::RankOne>& rank_one = {}) {
   const int n = dofs.free_count();
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
   for (int c = 0; c < a.size; ++c)
@@ -23,7 +23,7 @@ inline Eigen::MatrixXd dense_tangent(const assembly::DofMap& dofs, const solver:
           K(r, q) += a.value[p](i, j);
           if (a.row[p] != c) K(q, r) += a.value[p](i, j);
         }
-  for (const solver::RankOne& t : rank_one)
+  for (const linalg::RankOne& t : rank_one)
     for (int i = 0; i < 9; ++i)
       for (int j = 0; j < 9; ++j)
         if (t.equation[i] >= 0 && t.equation[j] >= 0) K(t.equation[i], t.equation[j]) += t.u[i] * t.v[j];

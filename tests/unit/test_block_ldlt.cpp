@@ -13,13 +13,13 @@
 
 #include <omp.h>
 
-#include "tsmframe/solver/block_ldlt.hpp"
+#include "tsmframe/linalg/block_ldlt.hpp"
 
 namespace {
 
-using tsm::solver::Block;
-using tsm::solver::BlockLDLT;
-using tsm::solver::BlockMatrix;
+using tsm::linalg::Block;
+using tsm::linalg::BlockLDLT;
+using tsm::linalg::BlockMatrix;
 
 // A block pattern like a frame's: a chain of n blocks plus a few long-range couplings (which
 // fill in), lower triangle by columns with the diagonal first; values from a dense symmetric
@@ -84,7 +84,7 @@ Case random_case(int n, double shift, unsigned seed, int chains = 1, int bridges
   }
   // Fill in the pattern, then put the values where they belong (fill entries stay zero).
   const BlockMatrix original = m;
-  tsm::solver::add_fill(m);
+  tsm::linalg::add_fill(m);
   for (int c = 0; c < n; ++c)
     for (int p = original.column[c]; p < original.column[c + 1]; ++p) {
       const auto first = m.row.begin() + m.column[c], last = m.row.begin() + m.column[c + 1];
@@ -139,7 +139,7 @@ TEST(BlockLDLT, AddFillKeepsTheEntriesAndAddsWhatEliminationNeeds) {
   chain.row = {0, 1, 2, 1, 2};
   chain.value.assign(5, Block::Identity());
   EXPECT_THROW(ldlt.analyze(chain), std::logic_error);
-  tsm::solver::add_fill(chain);
+  tsm::linalg::add_fill(chain);
   EXPECT_EQ(chain.row.size(), 6u);
   EXPECT_EQ(chain.fill, (std::vector<unsigned char>{0, 0, 0, 0, 1, 0}));  // only (2, 1) is new
   EXPECT_NO_THROW(ldlt.analyze(chain));
@@ -273,7 +273,7 @@ TEST(BlockLDLT, ReportsASingularPivot) {
   m.column = {0, 2, 3};
   m.row = {0, 1, 1};
   m.value = {Block::Identity(), Block::Identity(), Block::Identity()};  // the Schur complement I − I = 0
-  tsm::solver::add_fill(m);
+  tsm::linalg::add_fill(m);
   m.value = {Block::Identity(), Block::Identity(), Block::Identity()};
   BlockLDLT ldlt;
   ldlt.analyze(m);

@@ -8,11 +8,11 @@
 
 #include <omp.h>
 
-#include "tsmframe/solver/dense_block_ldlt.hpp"
+#include "tsmframe/linalg/dense_block_ldlt.hpp"
 
 namespace {
 
-using tsm::solver::DenseBlockLDLT;
+using tsm::linalg::DenseBlockLDLT;
 
 Eigen::MatrixXd random_symmetric(int blocks, double shift, unsigned seed) {
   std::mt19937 random(seed);

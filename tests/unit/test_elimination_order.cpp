@@ -15,7 +15,7 @@
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/assembly/elimination_order.hpp"
 #include "tsmframe/io/model_reader.hpp"
-#include "tsmframe/solver/block_ldlt.hpp"
+#include "tsmframe/linalg/block_ldlt.hpp"
 
 namespace {
 
@@ -55,7 +55,7 @@ void expect_permutation(const std::vector<int>& order, int n) {
 
 // Blocks in the given order: the lower pattern of the graph, with its fill (add_fill); `entries`
 // gets the count before the fill.
-tsm::solver::BlockMatrix pattern_in(const NodeGraph& g, const std::vector<int>& order, size_t* entries = nullptr) {
+tsm::linalg::BlockMatrix pattern_in(const NodeGraph& g, const std::vector<int>& order, size_t* entries = nullptr) {
   const int n = static_cast<int>(order.size());
   std::vector<int> position(n);
   for (int k = 0; k < n; ++k) position[order[k]] = k;
@@ -65,7 +65,7 @@ tsm::solver::BlockMatrix pattern_in(const NodeGraph& g, const std::vector<int>& 
       const int a = position[node], b = position[g.neighbours[p]];
       if (b >= a) rows[a].push_back(b);
     }
-  tsm::solver::BlockMatrix m;
+  tsm::linalg::BlockMatrix m;
   m.size = n;
   m.column.push_back(0);
   for (auto& r : rows) {
@@ -74,14 +74,14 @@ tsm::solver::BlockMatrix pattern_in(const NodeGraph& g, const std::vector<int>& 
     m.column.push_back(static_cast<int>(m.row.size()));
   }
   if (entries) *entries = m.row.size();
-  tsm::solver::add_fill(m);
+  tsm::linalg::add_fill(m);
   return m;
 }
 
 // How many entries elimination in the given order adds.
 size_t fill_of(const NodeGraph& g, const std::vector<int>& order) {
   size_t entries = 0;
-  const tsm::solver::BlockMatrix m = pattern_in(g, order, &entries);
+  const tsm::linalg::BlockMatrix m = pattern_in(g, order, &entries);
   return m.row.size() - entries;
 }
 
@@ -115,7 +115,7 @@ TEST(EliminationOrder, AChainGoesFromBothEndsToItsMiddleWithoutFill) {
   EXPECT_EQ(order.back(), n / 2);  // the middle last
   EXPECT_EQ(fill_of(g, order), 0u);
   // Its elimination tree has two branches of ~n/2: two parallel tasks.
-  tsm::solver::BlockLDLT ldlt;
+  tsm::linalg::BlockLDLT ldlt;
   ldlt.analyze(pattern_in(g, order));
   EXPECT_EQ(ldlt.task_count(), 2);
   EXPECT_EQ(ldlt.rows_above_tasks(), 1);
@@ -218,7 +218,7 @@ TEST(EliminationOrder, ALatticesLastSeparatorIsFactorisedAsOneDenseBlock) {
   // one dense matrix, in parallel — with one element per member as with several.
   for (const int divisions : {1, 3}) {
     const NodeGraph g = lattice(40, divisions);
-    tsm::solver::BlockLDLT ldlt;
+    tsm::linalg::BlockLDLT ldlt;
     ldlt.analyze(pattern_in(g, tsm::assembly::elimination_order(g)));
     EXPECT_GE(ldlt.rows_in_dense_paths(), 32) << divisions << " elements per member";
   }
@@ -267,7 +267,7 @@ TEST(EliminationOrder, ContactsAreOrderedWithTheElementTheyRestOnOrAreNearest) {
           break;
         }
     }
-    tsm::solver::BlockMatrix pattern;
+    tsm::linalg::BlockMatrix pattern;
     pattern.size = n;
     pattern.column.push_back(0);
     for (int b = 0; b < n; ++b) {
@@ -279,7 +279,7 @@ TEST(EliminationOrder, ContactsAreOrderedWithTheElementTheyRestOnOrAreNearest) {
       pattern.column.push_back(static_cast<int>(pattern.row.size()));
     }
     const size_t entries = pattern.row.size();
-    tsm::solver::add_fill(pattern);
+    tsm::linalg::add_fill(pattern);
     EXPECT_LT(pattern.row.size(), 8u * static_cast<size_t>(n)) << "height " << height << ": entries " << entries << " before the fill";
   }
 }

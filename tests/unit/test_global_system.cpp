@@ -37,8 +37,8 @@ void expect_same_evaluation(const tsm::assembly::GlobalSystem& patched, const ts
     EXPECT_EQ(bits(p.contacts[k].alpha), bits(f.contacts[k].alpha));
     EXPECT_EQ(bits(p.contacts[k].Y), bits(f.contacts[k].Y));
   }
-  const tsm::solver::BlockMatrix& a = patched.tangent();
-  const tsm::solver::BlockMatrix& b = full.tangent();
+  const tsm::linalg::BlockMatrix& a = patched.tangent();
+  const tsm::linalg::BlockMatrix& b = full.tangent();
   ASSERT_EQ(a.row, b.row) << "both have seen the same contacts: the same pattern";
   for (size_t e = 0; e < a.value.size(); ++e) {
     if (a.is_fill(e)) continue;  // the factorisation's to fill

@@ -15,9 +15,9 @@
 namespace {
 
 using namespace tsm::test;
-using tsm::solver::Block;
-using tsm::solver::BlockMatrix;
-using tsm::solver::RankOne;
+using tsm::linalg::Block;
+using tsm::linalg::BlockMatrix;
+using tsm::linalg::RankOne;
 
 struct Setup {
   tsm::Model model;

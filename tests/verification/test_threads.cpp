@@ -12,7 +12,7 @@
 #include "support/models.hpp"
 #include "tsmframe/assembly/global_system.hpp"
 #include "tsmframe/assembly/dof_map.hpp"
-#include "tsmframe/solver/block_ldlt.hpp"
+#include "tsmframe/linalg/block_ldlt.hpp"
 #include "tsmframe/study/study.hpp"
 #include "tsmframe/element/beam_element.hpp"
 #include "tsmframe/util/parallel_for.hpp"
@@ -113,7 +113,7 @@ TEST(Threads, AGridFrameWhoseLastSeparatorIsDenseGivesBitIdenticalResults) {
   const tsm::Model model = grid_frame(40, 1);
   const tsm::assembly::DofMap dofs(model);
   const tsm::assembly::GlobalSystem system(model, dofs);
-  tsm::solver::BlockLDLT ldlt;
+  tsm::linalg::BlockLDLT ldlt;
   ldlt.analyze(system.tangent());
   ASSERT_GE(ldlt.rows_in_dense_paths(), 32) << "else the dense block is not exercised";
 

@@ -6,7 +6,7 @@
 #include <iterator>
 #include <utility>
 
-#include "tsmframe/util/elimination_tree.hpp"
+#include "tsmframe/linalg/elimination_tree.hpp"
 
 namespace tsm::assembly {
 namespace {
@@ -55,7 +55,7 @@ int top_path_start(const std::vector<int>& ordered, const std::vector<int>& join
     const int ra = rank_of[a], rb = rank_of[b];
     if (ra != rb) lower[next[std::max(ra, rb)]++] = std::min(ra, rb);
   }
-  const std::vector<int> parent = util::elimination_tree(start, lower, m);
+  const std::vector<int> parent = linalg::elimination_tree(start, lower, m);
   std::vector<int> children(m, 0);
   for (int r = 0; r < m; ++r)
     if (parent[r] >= 0) ++children[parent[r]];

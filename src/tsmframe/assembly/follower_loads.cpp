@@ -27,13 +27,13 @@ void FollowerLoads::reference_load(const Eigen::VectorXd& displacements, Eigen::
   }
 }
 
-void FollowerLoads::skew_terms(double load_factor, std::vector<solver::RankOne>& out) const {
+void FollowerLoads::skew_terms(double load_factor, std::vector<linalg::RankOne>& out) const {
   out.clear();
   for (const auto& [node, per_unit] : skew_) {
     const double c = load_factor * per_unit;
     const int u = dofs_.equation(dofs_per_node * node + ux), v = dofs_.equation(dofs_per_node * node + uy);
     if (c == 0.0 || u < 0 || v < 0) continue;  // a held dof carries no equation
-    solver::RankOne term;
+    linalg::RankOne term;
     term.equation.fill(-1);
     term.equation[0] = u;
     term.equation[1] = v;

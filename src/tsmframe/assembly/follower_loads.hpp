@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "tsmframe/assembly/dof_map.hpp"
+#include "tsmframe/linalg/rank_one.hpp"
 #include "tsmframe/model/model.hpp"
-#include "tsmframe/solver/linear_solver.hpp"
 
 namespace tsm::assembly {
 
@@ -44,7 +44,7 @@ class FollowerLoads {
 
   /// The skew rest c R at the nodes where loaded stretches end, as rank-one terms over the free
   /// equations (K_uv −= c, K_vu += c), into `out` (cleared first).
-  void skew_terms(double load_factor, std::vector<solver::RankOne>& out) const;
+  void skew_terms(double load_factor, std::vector<linalg::RankOne>& out) const;
 
  private:
   struct Load {

@@ -155,7 +155,7 @@ void GlobalSystem::build_pattern() {
     tangent_.row.erase(std::unique(tangent_.row.begin() + first, tangent_.row.end()), tangent_.row.end());
     tangent_.column[c + 1] = static_cast<int>(tangent_.row.size());
   }
-  solver::add_fill(tangent_);  // the factor overwrites the tangent in place
+  linalg::add_fill(tangent_);  // the factor overwrites the tangent in place
   for (ElementRecord& s : records_) {
     const int bi = dofs_.block(s.start), bj = dofs_.block(s.end);
     s.ii = s.jj = s.ij = -1;
@@ -268,7 +268,7 @@ double GlobalSystem::evaluate_element(int q, const Eigen::VectorXd& displacement
   const int k = element_order_[q];
   const auto g = element_dofs(slot.start, slot.end);
   double* force = out.internal_force.data();
-  solver::Block* value = tangent_.value.data();
+  linalg::Block* value = tangent_.value.data();
   // What touches node i (its forces, K_ii, K_ij) and node j; in a full evaluation everything.
   const bool at_i = !only_contact_nodes || contact_node_[slot.start];
   const bool at_j = !only_contact_nodes || contact_node_[slot.end];
@@ -341,7 +341,7 @@ void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen
       if (p != q && nodes[p] == nodes[q]) continue;
       add_block(nodes[p], nodes[q], r.symmetric_tangent.block<3, 3>(3 * p, 3 * q));
     }
-  solver::RankOne term;
+  linalg::RankOne term;
   for (int k = 0; k < 9; ++k) term.equation[k] = dofs_.equation(g[k]);
   term.u = r.sliding_u;
   term.v = r.sliding_v;
@@ -371,7 +371,7 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
   if (with_tangent) {
     const Eigen::Index unwritten = static_cast<Eigen::Index>(unwritten_entries_.size());
     const int* entry = unwritten_entries_.data();
-    solver::Block* value = tangent_.value.data();
+    linalg::Block* value = tangent_.value.data();
     util::parallel_for_static(Eigen::Index{0}, unwritten, unwritten > 65536, [&](Eigen::Index q) { value[entry[q]].setZero(); });
   }
 
@@ -605,7 +605,7 @@ void GlobalSystem::mask_constrained_dofs() {
   for (const auto& [p, c] : masked_entries_) {
     const int r = tangent_.row[p];
     const unsigned row_mask = block_mask_[r], column_mask = block_mask_[c];
-    solver::Block& b = tangent_.value[p];
+    linalg::Block& b = tangent_.value[p];
     for (int d = 0; d < dofs_per_node; ++d) {
       if (row_mask >> d & 1u) b.row(d).setZero();
       if (column_mask >> d & 1u) b.col(d).setZero();

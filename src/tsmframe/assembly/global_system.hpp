@@ -15,13 +15,13 @@
 #include "tsmframe/assembly/follower_loads.hpp"
 #include "tsmframe/contact/contact_tracker.hpp"
 #include "tsmframe/element/beam_element.hpp"
+#include "tsmframe/linalg/block_matrix.hpp"
+#include "tsmframe/linalg/rank_one.hpp"
 #include "tsmframe/model/model.hpp"
-#include "tsmframe/solver/block_ldlt.hpp"
-#include "tsmframe/solver/linear_solver.hpp"
 
 namespace tsm::assembly {
 
-using solver::BlockMatrix;
+using linalg::BlockMatrix;
 
 /// What one evaluation of the structure yields.
 struct Evaluation {
@@ -121,14 +121,14 @@ class GlobalSystem {
                                const std::vector<contact::ActiveContact>& contacts) const;
   /// The contact elements' sliding terms from the same evaluation: K_ff = tangent() + Σ u vᵀ
   /// (their symmetric parts are in tangent()).
-  const std::vector<solver::RankOne>& contact_rank_one() const { return contact_rank_one_; }
+  const std::vector<linalg::RankOne>& contact_rank_one() const { return contact_rank_one_; }
   /// Each active contact's (in `contacts`' order) point load direction and stiffness at `displacements`.
   std::vector<ContactDirection> contact_directions(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                                                    const std::vector<contact::ActiveContact>& contacts) const;
   /// The follower loads' stiffness where it is not symmetric (the nodes where a loaded stretch
   /// ends: a free end, a change of pressure), as rank-one terms: K_ff = tangent() + Σ u vᵀ,
   /// exactly, beside the contacts' sliding terms. Empty where the load is conservative.
-  const std::vector<solver::RankOne>& follower_rank_one() const { return follower_rank_one_; }
+  const std::vector<linalg::RankOne>& follower_rank_one() const { return follower_rank_one_; }
   /// Changes whenever the block pattern of tangent() is rebuilt (a contact couples new nodes):
   /// the linear solver must analyse it again.
   int pattern_version() const { return pattern_version_; }
@@ -163,7 +163,7 @@ class GlobalSystem {
   void evaluate_contact(const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
                         const std::vector<double>& previous_rotations, bool with_tangent, Evaluation& out);
   FollowerLoads follower_loads_;                    ///< the members' pressure (assembly/follower_loads)
-  std::vector<solver::RankOne> follower_rank_one_;  ///< follower_rank_one()
+  std::vector<linalg::RankOne> follower_rank_one_;  ///< follower_rank_one()
   double load_factor_ = 0.0;                        ///< set_load_factor
 
   const Model& model_;
@@ -230,7 +230,7 @@ class GlobalSystem {
   std::vector<int> unwritten_entries_;     ///< tangent entries no element writes but contacts may (contact-only pairs): cleared
   std::vector<int> unwritten_nodes_;       ///< nodes no element joins: their internal forces cleared
   std::vector<char> replaced_;             ///< per element: carries a contact in this evaluation
-  std::vector<solver::RankOne> contact_rank_one_;
+  std::vector<linalg::RankOne> contact_rank_one_;
   std::vector<std::pair<int, int>> contact_pairs_;  ///< node pairs joined only by contact elements
   int pattern_version_ = 0;
   std::vector<std::pair<int, int>> masked_entries_;  ///< (entry, block column) touching a constrained dof

@@ -82,7 +82,7 @@ bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vecto
     for (int p = matrix.column[c]; p < matrix.column[c + 1]; ++p) {
       if (matrix.is_fill(p)) continue;  // no entry of the tangent (its value is stale)
       const int r = matrix.row[p];
-      const Block& b = matrix.value[p];
+      const linalg::Block& b = matrix.value[p];
       for (int a = 0; a < dofs_per_node; ++a) {
         const int row = equation(r, a);
         if (row < 0) continue;

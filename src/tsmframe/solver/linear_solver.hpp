@@ -16,15 +16,13 @@
 #include <vector>
 
 #include "tsmframe/assembly/dof_map.hpp"
-#include "tsmframe/solver/block_ldlt.hpp"
+#include "tsmframe/linalg/block_ldlt.hpp"
+#include "tsmframe/linalg/rank_one.hpp"
 
 namespace tsm::solver {
 
-/// A rank-one term u vᵀ over up to 9 global dofs (a contact element's sliding term).
-struct RankOne {
-  std::array<int, 9> equation{};  ///< free equation of each entry, −1 if constrained
-  Eigen::Matrix<double, 9, 1> u, v;
-};
+using linalg::BlockMatrix;
+using linalg::RankOne;
 
 class LinearSolver {
  public:
@@ -54,7 +52,7 @@ class LinearSolver {
   bool factorize_general(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one);
   void solve_symmetric_in_place(Eigen::VectorXd& x) const;
 
-  BlockLDLT ldlt_;
+  linalg::BlockLDLT ldlt_;
   const assembly::DofMap* dofs_ = nullptr;
   bool general_ = false;  ///< the last factorisation is the SparseLU one
   Eigen::SparseMatrix<double> general_matrix_;

@@ -19,29 +19,11 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "tsmframe/solver/dense_block_ldlt.hpp"
+#include "tsmframe/linalg/block_ldlt_schedule.hpp"
+#include "tsmframe/linalg/block_matrix.hpp"
+#include "tsmframe/linalg/dense_block_ldlt.hpp"
 
-namespace tsm::solver {
-
-using Block = Eigen::Matrix3d;
-
-/// Symmetric block-sparse matrix: the lower triangle, block column by block column.
-struct BlockMatrix {
-  int size = 0;                 ///< number of block rows/columns
-  std::vector<int> column;      ///< column c holds entries column[c] .. column[c+1]
-  std::vector<int> row;         ///< block row of each entry (≥ c, ascending: diagonal first)
-  std::vector<Block> value;     ///< 3×3 block of each entry: A(row, c)
-  /// Per entry: 1 if add_fill added it (no entry of A). Its value is never read - the
-  /// factorisation starts it at zero - so it need not be cleared between factorisations; other
-  /// readers of the values skip it (is_fill). Empty: no fill.
-  std::vector<unsigned char> fill;
-  bool is_fill(int entry) const { return !fill.empty() && fill[entry] != 0; }
-};
-
-/// Extends the pattern of `matrix` (every column must hold its diagonal) by the fill of its
-/// LDLᵀ factor, so that it can be factorised in place, and marks the added entries (fill); the
-/// values become zero.
-void add_fill(BlockMatrix& matrix);
+namespace tsm::linalg {
 
 class BlockLDLT {
  public:
@@ -68,18 +50,18 @@ class BlockLDLT {
   }
 
   /// Subtrees factorised (and solved) as parallel tasks, and the rows above them.
-  int task_count() const { return static_cast<int>(task_start_.size()) - 1; }
-  int rows_above_tasks() const { return static_cast<int>(top_rows_.size()); }
+  int task_count() const { return schedule_.task_count(); }
+  int rows_above_tasks() const { return static_cast<int>(schedule_.top_rows.size()); }
   /// Rows above the tasks formed in passes, as paths of the tree (see factorize).
   int rows_in_paths() const {
     int rows = 0;
-    for (const Stage& s : stages_) rows += parallel_top_ && s.path ? s.end - s.begin : 0;
+    for (const BlockLDLTSchedule::Stage& s : schedule_.stages) rows += schedule_.parallel_top && s.path ? s.end - s.begin : 0;
     return rows;
   }
   /// Rows of those paths whose block among themselves is factorised as a dense matrix.
   int rows_in_dense_paths() const {
     int rows = 0;
-    for (const Stage& s : stages_) rows += s.dense ? s.end - s.begin : 0;
+    for (const BlockLDLTSchedule::Stage& s : schedule_.stages) rows += s.dense ? s.end - s.begin : 0;
     return rows;
   }
 
@@ -103,27 +85,9 @@ class BlockLDLT {
   // columns, so they are factorised concurrently; the rows above them follow level by level, a
   // level's rows concurrently where levels hold several. Every row is computed with the same
   // arithmetic in the same order whatever the number of threads: results are bit-identical.
-  std::vector<int> task_start_;  ///< task t: rows task_rows_[task_start_[t] .. task_start_[t+1]), ascending
-  std::vector<int> task_rows_;
-  std::vector<int> top_rows_;    ///< rows in no task, level by level (ascending within a level)
-  std::vector<int> level_start_; ///< level l: top_rows_[level_start_[l] .. level_start_[l+1])
-  bool parallel_top_ = false;    ///< enough rows above the tasks to run their stages in parallel
-  bool parallel_tasks_ = false;  ///< several tasks, in a matrix big enough to share out (util::smallest_shared_model)
-  bool parallel_top_levels_ = false;  ///< the solves: the levels hold enough rows side by side
-  bool team_ = false;  ///< a matrix big enough for the rows above the tasks to run on every thread (util::smallest_shared_model)
-  /// Stages of top_rows_ [begin, end): a level of several rows, or a path of single-row levels.
-  struct Stage {
-    int begin = 0, end = 0;
-    bool path = false;
-    /// A path whose rows' entries from its first column on lie in its own columns and fill at
-    /// least half of its lower triangle: that part is factorised as a dense matrix.
-    bool dense = false;
-  };
-  std::vector<Stage> stages_;
-  std::vector<int> split_;        ///< per entry of top_rows_ in a path: its first entry (row index t) in a path column
+  BlockLDLTSchedule schedule_;
   std::vector<int> thread_slot_;  ///< one slot map per thread, for the path rows' prefixes
-  std::vector<int> deferred_start_;  ///< per entry of top_rows_ in a path: its prefix's place in deferred_z_
-  std::vector<Block> deferred_z_;    ///< running sums z of the path rows' prefix entries
+    std::vector<Block> deferred_z_;    ///< running sums z of the path rows' prefix entries
   Eigen::MatrixXd dense_;            ///< a dense path's block, gathered, factorised and put back
   DenseBlockLDLT dense_ldlt_;
 
@@ -135,7 +99,7 @@ class BlockLDLT {
   bool factorize_row(BlockMatrix& a, int k, double* forward);
   /// The rest of a dense path's rows (after the passes over their prefixes): gathered into dense_,
   /// factorised by all threads of the calling team together, put back. False if a pivot fails.
-  bool factorize_dense_path(BlockMatrix& a, const Stage& stage, double* forward);
+  bool factorize_dense_path(BlockMatrix& a, const BlockLDLTSchedule::Stage& stage, double* forward);
 };
 
-}  // namespace tsm::solver
+}  // namespace tsm::linalg

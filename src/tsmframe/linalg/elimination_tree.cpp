@@ -1,6 +1,6 @@
-#include "tsmframe/util/elimination_tree.hpp"
+#include "tsmframe/linalg/elimination_tree.hpp"
 
-namespace tsm::util {
+namespace tsm::linalg {
 
 std::vector<int> elimination_tree(const std::vector<int>& start, const std::vector<int>& lower, int n) {
   std::vector<int> parent(n, -1), ancestor(n, -1);
@@ -18,4 +18,4 @@ std::vector<int> elimination_tree(const std::vector<int>& start, const std::vect
   return parent;
 }
 
-}  // namespace tsm::util
+}  // namespace tsm::linalg

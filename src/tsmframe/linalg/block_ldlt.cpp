@@ -1,6 +1,5 @@
-#include "tsmframe/solver/block_ldlt.hpp"
+#include "tsmframe/linalg/block_ldlt.hpp"
 
-#include "tsmframe/util/elimination_tree.hpp"
 #include "tsmframe/util/first_touch.hpp"
 #include "tsmframe/util/parallel_for.hpp"
 
@@ -11,12 +10,10 @@
 
 #include <omp.h>
 
-namespace tsm::solver {
+namespace tsm::linalg {
 namespace {
 
-constexpr size_t parallel_rows_above = 256;  // fewer rows above the tasks: run them serially
 constexpr int path_rows_per_thread = 8;      // a thread's run of consecutive path rows (false sharing)
-constexpr int dense_path_rows = 32;         // a shorter path is formed row by row, never dense
 
 // The factorisation's 3×3 block products are arithmetic-bound (a lattice frame's top separator):
 // on x86-64 they are also compiled for AVX2 + FMA, picked at load time where the CPU has them
@@ -71,97 +68,11 @@ class RankThreeUpdate {
   double last_[3];
 };
 
-/// Rows of the lower triangle: row k lists the columns i < k with an entry (k, i), ascending,
-/// and where that entry is stored.
-struct Rows {
-  std::vector<int> start, column, position;
-};
-
-Rows rows_of(const BlockMatrix& a) {
-  const int n = a.size;
-  Rows r;
-  util::assign_touched(r.start, n + 1, 0);
-  for (int c = 0; c < n; ++c)
-    for (int p = a.column[c]; p < a.column[c + 1]; ++p)
-      if (a.row[p] > c) ++r.start[a.row[p] + 1];
-  for (int k = 0; k < n; ++k) r.start[k + 1] += r.start[k];
-  util::resize_touched(r.column, r.start[n]);
-  util::resize_touched(r.position, r.start[n]);
-  std::vector<int> next(r.start.begin(), r.start.end() - 1);
-  for (int c = 0; c < n; ++c)  // ascending c: every row lists its columns ascending
-    for (int p = a.column[c]; p < a.column[c + 1]; ++p)
-      if (a.row[p] > c) {
-        r.column[next[a.row[p]]] = c;
-        r.position[next[a.row[p]]++] = p;
-      }
-  return r;
-}
-
-/// Blocks i < k on the paths from each entry (k, i) up the elimination tree: the pattern of row
-/// k of L, written to stack[top .. n); returns top (cs_ereach).
-int reach(const Rows& rows, int k, const std::vector<int>& parent, std::vector<int>& flag, std::vector<int>& stack) {
-  const int n = static_cast<int>(parent.size());
-  int top = n;
-  flag[k] = k;
-  for (int t = rows.start[k]; t < rows.start[k + 1]; ++t) {
-    int i = rows.column[t];
-    int len = 0;
-    for (; flag[i] != k; i = parent[i]) {
-      stack[len++] = i;  // the path goes to the front of stack (its tail is not yet used)
-      flag[i] = k;
-    }
-    while (len > 0) stack[--top] = stack[--len];
-  }
-  return top;
-}
-
 }  // namespace
-
-void add_fill(BlockMatrix& a) {
-  const int n = a.size;
-  const Rows rows = rows_of(a);
-  const std::vector<int> parent = util::elimination_tree(rows.start, rows.column, n);
-  // Row k of L, for every k: (k, i) pairs, k ascending; then counted into columns.
-  std::vector<int> flag(n, -1), stack(n, 0), column(n + 1, 0), entries_row, entries_column;
-  for (int k = 0; k < n; ++k) {
-    const int top = reach(rows, k, parent, flag, stack);
-    for (int t = top; t < n; ++t) {
-      entries_row.push_back(k);
-      entries_column.push_back(stack[t]);
-      ++column[stack[t] + 1];
-    }
-  }
-  for (int c = 0; c < n; ++c) column[c + 1] += column[c] + 1;  // + the diagonal
-  std::vector<int> row, next(n);
-  util::resize_touched(row, column[n]);
-  for (int c = 0; c < n; ++c) {
-    row[column[c]] = c;  // diagonal first
-    next[c] = column[c] + 1;
-  }
-  for (size_t e = 0; e < entries_row.size(); ++e) row[next[entries_column[e]]++] = entries_row[e];  // rows ascending
-  // The fill: the entries of the new pattern that the old one lacks (both ascending per column).
-  std::vector<unsigned char> fill;
-  util::assign_touched(fill, row.size(), static_cast<unsigned char>(1));
-  bool any = false;
-  for (int c = 0; c < n; ++c) {
-    int q = column[c];
-    for (int p = a.column[c]; p < a.column[c + 1]; ++p) {
-      for (; row[q] < a.row[p]; ++q) any = true;
-      fill[q++] = 0;
-    }
-    any = any || q < column[c + 1];
-  }
-  a.column = std::move(column);
-  a.row = std::move(row);
-  util::resize_touched(a.value, a.row.size());  // the tangent's largest array: its pages mapped in at once
-  for (Block& b : a.value) b.setZero();
-  if (any) a.fill = std::move(fill);
-  else a.fill.clear();
-}
 
 void BlockLDLT::analyze(const BlockMatrix& a) {
   const int n = size_ = a.size;
-  const Rows rows = rows_of(a);
+  const BlockRows rows = lower_rows(a);
   // The pattern must hold its fill. Then it is closed under elimination: each column's rows
   // below its first one (the column's parent in the elimination tree) are rows of the parent's
   // column too — checked by one merge per column, and the tree read off the pattern.
@@ -186,158 +97,10 @@ void BlockLDLT::analyze(const BlockMatrix& a) {
     for (size_t t = 0; t < row_position_.size(); ++t) row_fill_[t] = a.fill[row_position_[t]];
   }
   util::assign_touched(slot_, n, -1);
-
-  // Tasks: the largest subtrees of at most `limit` blocks (and at least 64). The limit is the
-  // largest that still gives 8 tasks — enough to keep two or more cores busy, as large as
-  // possible so that few rows are left above them; failing that, the largest that gives 2 (the
-  // two branches of a single long member, elimination_order); else n / 16. It depends on the
-  // pattern only (the solves' arithmetic follows the partition), never on the thread count.
-  // Parents come after children, so one ascending pass sums subtree sizes and one descending
-  // pass hands every block to its task.
-  std::vector<int> size(n, 1), task(n, -1);
-  for (int k = 0; k < n; ++k)
-    if (parent[k] >= 0) size[parent[k]] += size[k];
-  auto assign_tasks = [&](int limit) {
-    int tasks = 0;
-    for (int k = n - 1; k >= 0; --k) {
-      const int p = parent[k];
-      if (p >= 0 && task[p] >= 0) task[k] = task[p];
-      else if (size[k] <= limit && size[k] >= 64) task[k] = tasks++;
-      else task[k] = -1;
-    }
-    return tasks;
-  };
-  // The largest limit from `lo` up that still gives `wanted` tasks (assign_tasks(lo) does).
-  auto largest_limit = [&](int lo, int wanted) {
-    int hi = n;
-    while (lo < hi) {
-      const int mid = lo + (hi - lo + 1) / 2;
-      if (assign_tasks(mid) >= wanted) lo = mid;
-      else hi = mid - 1;
-    }
-    return lo;
-  };
-  constexpr int wanted_tasks = 8;
-  int limit = std::max(1, n / 16);
-  if (assign_tasks(limit) >= wanted_tasks) limit = largest_limit(limit, wanted_tasks);
-  else if (const int half = std::max(64, n / 2); assign_tasks(half) >= 2) limit = largest_limit(half, 2);  // a long member's two branches
-  const int tasks = assign_tasks(limit);
-  task_start_.assign(tasks + 1, 0);
-  for (int k = 0; k < n; ++k)
-    if (task[k] >= 0) ++task_start_[task[k] + 1];
-  for (int t = 0; t < tasks; ++t) task_start_[t + 1] += task_start_[t];
-  task_rows_.resize(task_start_[tasks]);
-  std::vector<int> next(task_start_.begin(), task_start_.end() - 1);
-  for (int k = 0; k < n; ++k)
-    if (task[k] >= 0) task_rows_[next[task[k]]++] = k;
-
-  // The rows above the tasks, by level: one more than the highest level among a row's children
-  // above the tasks (1 if none). Rows of one level are not ancestors of one another, so their
-  // patterns — and the columns they read and write — are disjoint: they run concurrently.
-  // The tree's top chain: the last rows, each the parent of the one before (a frame's last
-  // separator, numbered consecutively by elimination_order). Its rows take one level each after
-  // every other row's, so that they form the final path stage whatever the levels of the
-  // branches beside them (a member hanging off one of its joints would otherwise share a level
-  // with it and cut the chain into pieces too short to factorise as one dense block).
-  int chain = n;
-  if (n > 0 && task[n - 1] < 0) {
-    chain = n - 1;
-    while (chain > 0 && parent[chain - 1] == chain && task[chain - 1] < 0) --chain;
-  }
-  std::vector<int> level(n, 0);
-  int levels = 0;
-  for (int k = 0; k < chain; ++k) {  // ascending: children first
-    if (task[k] >= 0) continue;
-    level[k] = std::max(level[k], 1);
-    levels = std::max(levels, level[k]);
-    if (parent[k] >= 0) level[parent[k]] = std::max(level[parent[k]], level[k] + 1);
-  }
-  for (int k = chain; k < n; ++k) level[k] = ++levels;
-  level_start_.assign(levels + 1, 0);
-  for (int k = 0; k < n; ++k)
-    if (task[k] < 0) ++level_start_[level[k]];
-  for (int l = 0; l < levels; ++l) level_start_[l + 1] += level_start_[l];
-  top_rows_.resize(level_start_[levels]);
-  std::vector<int> place(level_start_.begin(), level_start_.end() - 1);
-  for (int k = 0; k < n; ++k)
-    if (task[k] < 0) top_rows_[place[level[k] - 1]++] = k;
-  // Level by level in parallel only where levels hold several rows: a path (one row per level)
-  // would pay a barrier per row for nothing.
-  int shared = 0;  // rows in levels of two or more
-  for (int l = 0; l < levels; ++l)
-    if (level_start_[l + 1] - level_start_[l] > 1) shared += level_start_[l + 1] - level_start_[l];
-  // In parallel only where the rows above the tasks are many (else a barrier per stage costs
-  // more than it saves), or where the top chain is long enough for a dense block: a lattice of
-  // one element per member has ~230 rows above its tasks, 74 % of the work, most of it in the
-  // last separator (factorisation 7.7 → 5.6 ms on two threads; bench/README "Eleventh session").
-  parallel_top_ = top_rows_.size() >= parallel_rows_above || n - chain >= dense_path_rows;
-  parallel_tasks_ = tasks > 1 && n >= util::smallest_shared_model;
-  // Stages of the rows above the tasks: each level of several rows, and each run of single-row
-  // levels — a path of the tree, where every row's pattern below the path is final before the
-  // path starts (its other descendants sit in lower levels). A path row's split: its first
-  // entry in a column of the path.
-  // A path's top rows with consecutive numbers (the tree's top supernode, or one like it: a
-  // frame lattice's last separator) have all their other descendants below the lowest of them,
-  // so from that row on their entries lie in their own columns only. Where such a run is long
-  // and fills at least half of its lower triangle, it becomes a path of its own whose rows,
-  // after the passes over their prefixes, are factorised as one dense matrix (passes only).
-  stages_.clear();
-  split_.assign(top_rows_.size(), 0);
-  deferred_start_.assign(top_rows_.size(), 0);
-  size_t deferred = 0;
-  auto add_path = [&](int begin, int end, bool dense) {
-    const int lowest = top_rows_[begin];
-    size_t entries = 0;
-    for (int q = begin; q < end; ++q) {
-      const int k = top_rows_[q];
-      split_[q] = static_cast<int>(std::lower_bound(row_column_.begin() + row_start_[k], row_column_.begin() + row_start_[k + 1], lowest) -
-                                   row_column_.begin());
-      deferred_start_[q] = static_cast<int>(deferred);
-      deferred += split_[q] - row_start_[k];
-      entries += row_start_[k + 1] - split_[q];
-    }
-    const size_t rows = end - begin;
-    dense = dense && 4 * entries >= rows * (rows - 1);
-    stages_.push_back({begin, end, true, dense});
-  };
-  for (int l = 0; l < levels;) {
-    if (level_start_[l + 1] - level_start_[l] > 1) {
-      stages_.push_back({level_start_[l], level_start_[l + 1], false});
-      ++l;
-      continue;
-    }
-    int m = l;
-    while (m < levels && level_start_[m + 1] - level_start_[m] == 1) ++m;
-    const int begin = level_start_[l], end = level_start_[m];
-    int run = end - 1;  // the run of consecutive rows at the path's top, from its lowest
-    while (run > begin && top_rows_[run - 1] == top_rows_[run] - 1) --run;
-    // Of that run, the longest top part whose lower triangle is at least half filled (the one
-    // factorised dense): the run's lower rows may be a member's nodes, one entry each, hanging
-    // from the separator's first joint. The part from row q on holds the entries of its columns
-    // up to the path's last row.
-    int dense_from = end;
-    for (int q = end - 1, entries = 0; q >= run; --q) {
-      const int k = top_rows_[q], last = top_rows_[end - 1], rows = end - q;
-      for (int p = a.column[k] + 1; p < a.column[k + 1] && a.row[p] <= last; ++p) ++entries;
-      if (4 * static_cast<long>(entries) >= static_cast<long>(rows) * (rows - 1)) dense_from = q;
-    }
-    if (parallel_top_ && end - dense_from >= dense_path_rows) {
-      if (dense_from > begin) add_path(begin, dense_from, false);
-      add_path(dense_from, end, true);
-    } else {
-      add_path(begin, end, false);
-    }
-    l = m;
-  }
-  if (parallel_top_) deferred_z_.resize(deferred);  // the path rows' running sums, pass (1) to (2)
+  schedule_ = schedule_block_ldlt(a, rows, parent);
+  if (schedule_.parallel_top) deferred_z_.resize(schedule_.deferred);  // the path rows' running sums, pass (1) to (2)
   else std::vector<Block>().swap(deferred_z_);
   dense_.resize(0, 0);
-  // The solves go level by level (a barrier per level): only where levels hold several rows.
-  // A small matrix keeps the stages' arithmetic (paths, a dense top: bit-identical either way)
-  // but runs them on one thread: a ring of 80 elements between two plates spent 2.5× its time
-  // starting and waking the second thread for them (74 % of its samples in libgomp).
-  team_ = n >= util::smallest_shared_model;
-  parallel_top_levels_ = parallel_top_ && 2 * shared >= static_cast<int>(top_rows_.size()) && team_;
 }
 
 TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, int t_end, double* forward, int* slot, bool finish,
@@ -422,16 +185,16 @@ bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
   double* forward = forward_rhs ? forward_rhs->data() : nullptr;
   // Rows of one subtree touch only that subtree's columns (their patterns are descendants):
   // the tasks run concurrently, each in ascending order.
-  const int tasks = static_cast<int>(task_start_.size()) - 1;
-  const bool tasks_ok = util::parallel_all_dynamic(0, tasks, parallel_tasks_, [&](int t) {
-    for (int r = task_start_[t]; r < task_start_[t + 1]; ++r)
-      if (!factorize_row(a, task_rows_[r], forward)) return false;
+  const int tasks = static_cast<int>(schedule_.task_start.size()) - 1;
+  const bool tasks_ok = util::parallel_all_dynamic(0, tasks, schedule_.parallel_tasks, [&](int t) {
+    for (int r = schedule_.task_start[t]; r < schedule_.task_start[t + 1]; ++r)
+      if (!factorize_row(a, schedule_.task_rows[r], forward)) return false;
     return true;
   });
   if (!tasks_ok) return false;
   bool ok = true;
-  if (!parallel_top_) {  // no OpenMP construct per level: a path of rows pays nothing
-    for (const int k : top_rows_)
+  if (!schedule_.parallel_top) {  // no OpenMP construct per level: a path of rows pays nothing
+    for (const int k : schedule_.top_rows)
       if (!factorize_row(a, k, forward)) return false;
     return true;
   }
@@ -443,53 +206,53 @@ bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
   // same order as row by row, so the result is the same bit for bit.
   const int threads = omp_get_max_threads();
   if (thread_slot_.size() < static_cast<size_t>(threads) * size_) thread_slot_.resize(static_cast<size_t>(threads) * size_);
-#pragma omp parallel if (team_)
-  for (const Stage& stage : stages_) {
+#pragma omp parallel if (schedule_.team)
+  for (const BlockLDLTSchedule::Stage& stage : schedule_.stages) {
     if (!stage.path) {
 #pragma omp for schedule(dynamic, 1) reduction(&& : ok)
-      for (int q = stage.begin; q < stage.end; ++q) ok = factorize_row(a, top_rows_[q], forward) && ok;
+      for (int q = stage.begin; q < stage.end; ++q) ok = factorize_row(a, schedule_.top_rows[q], forward) && ok;
       continue;
     }
     int* slot = thread_slot_.data() + static_cast<size_t>(omp_get_thread_num()) * size_;
-    const int lowest = top_rows_[stage.begin];
+    const int lowest = schedule_.top_rows[stage.begin];
     // Rows in runs of path_rows_per_thread: consecutive rows' entries in a column are neighbours in
     // memory (72-byte blocks share cache lines), so rows handed out one by one to alternating
     // threads wrote the same lines from both cores - slower on two threads than on one.
 #pragma omp for schedule(dynamic, path_rows_per_thread)
     for (int q = stage.begin; q < stage.end; ++q) {
-      const int k = top_rows_[q];
-      form_row(a, k, row_start_[k], split_[q], forward, slot, false, lowest, deferred_z_.data() + deferred_start_[q]);
+      const int k = schedule_.top_rows[q];
+      form_row(a, k, row_start_[k], schedule_.split[q], forward, slot, false, lowest, deferred_z_.data() + schedule_.deferred_start[q]);
     }
 #pragma omp for schedule(dynamic, path_rows_per_thread)
     for (int q = stage.begin; q < stage.end; ++q)
-      apply_deferred(a, top_rows_[q], split_[q], lowest, deferred_z_.data() + deferred_start_[q], slot);
+      apply_deferred(a, schedule_.top_rows[q], schedule_.split[q], lowest, deferred_z_.data() + schedule_.deferred_start[q], slot);
     if (stage.dense) {
       if (!factorize_dense_path(a, stage, forward)) ok = false;  // the same on every thread
       continue;
     }
 #pragma omp single
     for (int q = stage.begin; q < stage.end && ok; ++q) {
-      const int k = top_rows_[q];
-      ok = form_row(a, k, split_[q], row_start_[k + 1], forward, slot_.data(), true, std::numeric_limits<int>::max(), nullptr);
+      const int k = schedule_.top_rows[q];
+      ok = form_row(a, k, schedule_.split[q], row_start_[k + 1], forward, slot_.data(), true, std::numeric_limits<int>::max(), nullptr);
     }
   }
   return ok;
 }
 
-bool BlockLDLT::factorize_dense_path(BlockMatrix& a, const Stage& stage, double* forward) {
+bool BlockLDLT::factorize_dense_path(BlockMatrix& a, const BlockLDLTSchedule::Stage& stage, double* forward) {
   // After passes (1) and (2) a path row's entries in the path's columns hold A(k, r) less the
   // prefix's updates, and its diagonal block the running D_k (upper triangle): together the
   // Schur complement of everything below the path, which the dense factorisation completes.
   // The path's rows are numbered consecutively (analyze): row r's place in it is r − lowest, and
   // a row's entries from its split on are in the path's own columns.
-  const int rows = stage.end - stage.begin, lowest = top_rows_[stage.begin];
+  const int rows = stage.end - stage.begin, lowest = schedule_.top_rows[stage.begin];
 #pragma omp single
   {
     dense_.setZero(3 * rows, 3 * rows);
     for (int q = stage.begin; q < stage.end; ++q) {
-      const int k = top_rows_[q], i = q - stage.begin;
+      const int k = schedule_.top_rows[q], i = q - stage.begin;
       dense_.block<3, 3>(3 * i, 3 * i) = a.value[a.column[k]].transpose();  // its lower triangle = the running upper one
-      for (int t = split_[q]; t < row_start_[k + 1]; ++t)
+      for (int t = schedule_.split[q]; t < row_start_[k + 1]; ++t)
         dense_.block<3, 3>(3 * i, 3 * (row_column_[t] - lowest)) = a.value[row_position_[t]];
     }
   }
@@ -498,14 +261,14 @@ bool BlockLDLT::factorize_dense_path(BlockMatrix& a, const Stage& stage, double*
   {
   negative_pivots_ += dense_ldlt_.negative_pivots();
   for (int q = stage.begin; q < stage.end; ++q) {
-    const int k = top_rows_[q], i = q - stage.begin;
+    const int k = schedule_.top_rows[q], i = q - stage.begin;
     a.value[a.column[k]] = dense_.block<3, 3>(3 * i, 3 * i);
-    for (int t = split_[q]; t < row_start_[k + 1]; ++t)
+    for (int t = schedule_.split[q]; t < row_start_[k + 1]; ++t)
       a.value[row_position_[t]] = dense_.block<3, 3>(3 * i, 3 * (row_column_[t] - lowest));
     if (forward) {  // y_k −= Σ L(k, r) y_r over the path's columns (the prefix's went in pass (1))
       Eigen::Map<Eigen::Vector3d> yk(forward + 3 * k);
       Eigen::Vector3d sum = yk;
-      for (int t = split_[q]; t < row_start_[k + 1]; ++t)
+      for (int t = schedule_.split[q]; t < row_start_[k + 1]; ++t)
         sum.noalias() -= a.value[row_position_[t]] * Eigen::Map<const Eigen::Vector3d>(forward + 3 * row_column_[t]);
       yk = sum;
     }
@@ -521,30 +284,30 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
   // forward pass after the tasks (each row gathering from final columns), in the backward pass
   // before them. The partition depends only on the pattern: bit-identical for any thread count.
   const BlockMatrix& a = *factor_;
-  const int tasks = static_cast<int>(task_start_.size()) - 1;
+  const int tasks = static_cast<int>(schedule_.task_start.size()) - 1;
   // L y = b
-  util::parallel_for_dynamic(0, tasks, parallel_tasks_, [&](int t) {
-    const int root = task_rows_[task_start_[t + 1] - 1];
-    for (int q = task_start_[t]; q < task_start_[t + 1]; ++q) {
-      const int i = task_rows_[q];
+  util::parallel_for_dynamic(0, tasks, schedule_.parallel_tasks, [&](int t) {
+    const int root = schedule_.task_rows[schedule_.task_start[t + 1] - 1];
+    for (int q = schedule_.task_start[t]; q < schedule_.task_start[t + 1]; ++q) {
+      const int i = schedule_.task_rows[q];
       const Eigen::Vector3d bi = b.segment<3>(3 * i);
       for (int p = a.column[i] + 1; p < a.column[i + 1] && a.row[p] <= root; ++p)
         b.segment<3>(3 * a.row[p]).noalias() -= a.value[p] * bi;
     }
   });
-  const int levels = static_cast<int>(level_start_.size()) - 1;
+  const int levels = static_cast<int>(schedule_.level_start.size()) - 1;
   auto forward = [&](int k) {
     Eigen::Vector3d bk = b.segment<3>(3 * k);
     for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) bk.noalias() -= a.value[row_position_[t]] * b.segment<3>(3 * row_column_[t]);
     b.segment<3>(3 * k) = bk;
   };
-  if (!parallel_top_levels_) {
-    for (const int k : top_rows_) forward(k);
+  if (!schedule_.parallel_top_levels) {
+    for (const int k : schedule_.top_rows) forward(k);
   } else {
 #pragma omp parallel
     for (int l = 0; l < levels; ++l) {
 #pragma omp for schedule(dynamic, 1)
-      for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) forward(top_rows_[q]);
+      for (int q = schedule_.level_start[l]; q < schedule_.level_start[l + 1]; ++q) forward(schedule_.top_rows[q]);
     }
   }
   finish_solve(b);
@@ -552,8 +315,8 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
 
 void BlockLDLT::finish_solve(Eigen::VectorXd& b) const {
   const BlockMatrix& a = *factor_;
-  const int tasks = static_cast<int>(task_start_.size()) - 1;
-  const int levels = static_cast<int>(level_start_.size()) - 1;
+  const int tasks = static_cast<int>(schedule_.task_start.size()) - 1;
+  const int levels = static_cast<int>(schedule_.level_start.size()) - 1;
   // D z = y and Lᵀ x = z in one pass: x_i = D_i⁻¹ y_i − Σ L(p, i)ᵀ x_p, a dot product down each
   // column (D_i⁻¹ heads it), the rows above the tasks first.
   auto backward = [&](int i) {
@@ -561,18 +324,18 @@ void BlockLDLT::finish_solve(Eigen::VectorXd& b) const {
     for (int p = a.column[i] + 1; p < a.column[i + 1]; ++p) xi.noalias() -= a.value[p].transpose() * b.segment<3>(3 * a.row[p]);
     b.segment<3>(3 * i) = xi;
   };
-  if (!parallel_top_levels_) {
-    for (auto k = top_rows_.rbegin(); k != top_rows_.rend(); ++k) backward(*k);
+  if (!schedule_.parallel_top_levels) {
+    for (auto k = schedule_.top_rows.rbegin(); k != schedule_.top_rows.rend(); ++k) backward(*k);
   } else {
 #pragma omp parallel
     for (int l = levels - 1; l >= 0; --l) {
 #pragma omp for schedule(dynamic, 1)
-      for (int q = level_start_[l]; q < level_start_[l + 1]; ++q) backward(top_rows_[q]);
+      for (int q = schedule_.level_start[l]; q < schedule_.level_start[l + 1]; ++q) backward(schedule_.top_rows[q]);
     }
   }
-  util::parallel_for_dynamic(0, tasks, parallel_tasks_, [&](int t) {
-    for (int q = task_start_[t + 1] - 1; q >= task_start_[t]; --q) backward(task_rows_[q]);
+  util::parallel_for_dynamic(0, tasks, schedule_.parallel_tasks, [&](int t) {
+    for (int q = schedule_.task_start[t + 1] - 1; q >= schedule_.task_start[t]; --q) backward(schedule_.task_rows[q]);
   });
 }
 
-}  // namespace tsm::solver
+}  // namespace tsm::linalg

@@ -1,10 +1,10 @@
-#include "tsmframe/solver/dense_block_ldlt.hpp"
+#include "tsmframe/linalg/dense_block_ldlt.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
-namespace tsm::solver {
+namespace tsm::linalg {
 namespace {
 
 constexpr int panel_blocks = 16;  // block columns per panel: 48 scalar columns per product
@@ -65,4 +65,4 @@ bool DenseBlockLDLT::factorize(Eigen::MatrixXd& a) {
   return true;
 }
 
-}  // namespace tsm::solver
+}  // namespace tsm::linalg

@@ -4,10 +4,10 @@
 
 #include <vector>
 
-namespace tsm::util {
+namespace tsm::linalg {
 
 /// parent[k] of each row k of an n × n symmetric pattern given by its rows' entries left of the
 /// diagonal: row k's columns i < k are lower[start[k] .. start[k + 1]) (any order); −1 at a root.
 std::vector<int> elimination_tree(const std::vector<int>& start, const std::vector<int>& lower, int n);
 
-}  // namespace tsm::util
+}  // namespace tsm::linalg

@@ -16,7 +16,7 @@
 #include <cmath>
 #include <vector>
 
-namespace tsm::solver {
+namespace tsm::linalg {
 
 class DenseBlockLDLT {
  public:
@@ -56,4 +56,4 @@ inline bool invert_pivot(const Eigen::Matrix3d& d, Eigen::Matrix3d& inverse, int
   return inverse.allFinite();
 }
 
-}  // namespace tsm::solver
+}  // namespace tsm::linalg
