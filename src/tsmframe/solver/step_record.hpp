@@ -3,9 +3,11 @@
 // how the run ended.
 
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "tsmframe/solver/failure.hpp"
 #include "tsmframe/solver/status.hpp"
 
 namespace tsm::solver {
@@ -78,7 +80,8 @@ struct CriticalPoint {
 
 struct RunResult {
   Status status = Status::converged;
-  std::string message;  ///< a sentence when the run did not reach its end
+  std::string message;  ///< a sentence when the run did not reach its end (diagnosis.hpp, from `failure`)
+  RunFailure failure;   ///< why it did not, as facts
   std::vector<StepRecord> steps;
   std::vector<LimitPoint> limit_points;  ///< in path order
   std::vector<CriticalPoint> critical_points;  ///< bifurcations found under load control, in path order
@@ -86,5 +89,8 @@ struct RunResult {
   /// under displacement control).
   std::vector<std::string> notes;
 };
+
+/// Called after every step, converged or failed (progress lines, logging).
+using StepObserver = std::function<void(const StepRecord&)>;
 
 }  // namespace tsm::solver

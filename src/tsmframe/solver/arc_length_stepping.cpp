@@ -1,0 +1,200 @@
+#include "tsmframe/solver/arc_length_stepping.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "tsmframe/solver/diagnosis.hpp"
+#include "tsmframe/solver/stability.hpp"
+#include "tsmframe/solver/step_start.hpp"
+
+namespace tsm::solver {
+namespace {
+
+// Step size: after a step of n iterations the next arc length is scaled by √(aim / n), at most
+// doubled or halved, within [min_increment, max_increment]; a failed step is retried at half the
+// arc length (cutback) until min_increment.
+constexpr double aim_iterations = 6.0;
+
+/// The quantity `until` watches at a state (FORMAT.md `until`): λ or one dof.
+double watched(const Control& control, double load_factor, const Eigen::VectorXd& displacements) {
+  if (control.until == Control::Until::load_factor) return load_factor;
+  return displacements[dofs_per_node * control.until_node + control.until_dof];
+}
+
+class ArcLengthStepping {
+ public:
+  ArcLengthStepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, const StepObserver& observer)
+      : model_(model), settings_(model.analysis), control_(settings_.control), dofs_(dofs), newton_(newton),
+        recorder_(model, newton, observer, result_), arc_(control_.initial_increment),
+        watching_(control_.until != Control::Until::steps) {
+    constraint_.kind = PathConstraint::Kind::arc_length;
+  }
+
+  RunResult run(State& state);
+
+ private:
+  /// A converged arc-length step: recorded, the next arc sized; returns whether it reached the
+  /// `until` target (and landed on it exactly).
+  bool converged(StepRecord record, const NewtonOutcome& outcome, State& state);
+  /// Redoes the step that passed the `until` target from its start `landed` under load or
+  /// displacement control, to land on the target exactly; keeps the arc-length step if that fails.
+  void land(State landed, State& state);
+  /// No arc reaches the path from the step's start (restored in `state`): one load-controlled
+  /// step of the last Δλ across the jump. Returns whether it converged.
+  bool jump_across(State& state);
+  void give_up(StepRecord record, const NewtonOutcome& outcome);
+  void stop_at_step_limit(const State& state);
+
+  const Model& model_;
+  const AnalysisSettings& settings_;
+  const Control& control_;
+  const assembly::DofMap& dofs_;
+  NewtonSolver& newton_;
+  RunResult result_;
+  Recorder recorder_;
+  PathConstraint constraint_;
+  double arc_;
+  int halvings_ = 0, converged_steps_ = 0;
+  const bool watching_;
+  StepStart saved_;  // the start of the step being tried (reused: no allocation per step)
+};
+
+RunResult ArcLengthStepping::run(State& state) {
+  while (converged_steps_ < control_.max_steps) {
+    saved_.take(state, recorder_.newest_displacements());
+    constraint_.arc_length = arc_;
+    const bool tells_stability = inertia_tells_stability(state.contacts);
+    const NewtonOutcome outcome = newton_.step(constraint_, state);
+    recorder_.started_from_newest(outcome, tells_stability);
+    StepRecord record = recorder_.start(outcome, halvings_);
+    record.arc_length = arc_;
+    if (outcome.status == Status::converged) {
+      if (!converged(std::move(record), outcome, state)) continue;
+      result_.status = Status::converged;
+      return std::move(result_);
+    }
+    saved_.restore(state);
+    if (settings_.cutback && halvings_ < settings_.max_cutbacks && arc_ / 2.0 >= control_.min_increment * (1.0 - 1e-12)) {
+      ++halvings_;
+      arc_ /= 2.0;
+      newton_.reset(state);
+      continue;
+    }
+    if (jump_across(state)) continue;
+    give_up(std::move(record), outcome);
+    return std::move(result_);
+  }
+  stop_at_step_limit(state);
+  return std::move(result_);
+}
+
+bool ArcLengthStepping::converged(StepRecord record, const NewtonOutcome& outcome, State& state) {
+  record.increment = state.load_factor - saved_.load_factor();
+  ++converged_steps_;
+  // The step's increment steers the next predictor.
+  const Eigen::VectorXd& start = saved_.displacements();
+  constraint_.previous_increment.resize(dofs_.free_count());
+  for (int eq = 0; eq < dofs_.free_count(); ++eq)
+    constraint_.previous_increment[eq] = state.displacements[dofs_.dof(eq)] - start[dofs_.dof(eq)];
+  constraint_.previous_load_increment = record.increment;
+  halvings_ = 0;
+  const double factor = std::clamp(std::sqrt(aim_iterations / std::max(1, outcome.iterations)), 0.5, 2.0);
+  arc_ = std::clamp(arc_ * factor, control_.min_increment, control_.max_increment);
+  const double before = watched(control_, saved_.load_factor(), start);
+  const double after = watched(control_, state.load_factor, state.displacements);
+  const bool reached = watching_ && (before - control_.until_value) * (after - control_.until_value) <= 0.0 && after != before;
+  State landed;  // the step's start, taken before recording lets its displacements go
+  if (reached) saved_.restore(landed);
+  recorder_.converged(std::move(record), outcome, state);
+  if (reached) land(std::move(landed), state);
+  return reached;
+}
+
+void ArcLengthStepping::land(State landed, State& state) {
+  const double start_load_factor = landed.load_factor;
+  newton_.reset(landed);
+  PathConstraint land;
+  if (control_.until == Control::Until::load_factor) {
+    land.kind = PathConstraint::Kind::load_increment;
+    land.load_increment = control_.until_value - start_load_factor;
+  } else {
+    land.kind = PathConstraint::Kind::displacement_target;
+    land.equation = dofs_.equation(dofs_per_node * control_.until_node + control_.until_dof);
+    land.target = control_.until_value;
+  }
+  const NewtonOutcome landing = newton_.step(land, landed);
+  if (landing.status != Status::converged) {
+    newton_.reset(state);  // keep the arc-length step that passed the target
+    return;
+  }
+  StepRecord exact = recorder_.start(landing, 0);
+  exact.increment = landed.load_factor - start_load_factor;
+  exact.arc_length = 0.0;  // landed under load/displacement control
+  state = std::move(landed);
+  recorder_.replace_last(std::move(exact), landing, state);
+}
+
+bool ArcLengthStepping::jump_across(State& state) {
+  // No arc reaches the path here: it jumps (a contact slipping off a beam's end springs the
+  // beam back at one load factor).
+  if (constraint_.previous_load_increment == 0.0) return false;
+  newton_.reset(state);
+  PathConstraint jump;
+  jump.load_increment = constraint_.previous_load_increment;
+  const NewtonOutcome across = newton_.step(jump, state);
+  recorder_.started_from_newest(across, inertia_tells_stability(saved_.contacts()));
+  if (across.status != Status::converged) {
+    saved_.restore(state);
+    newton_.reset(state);
+    return false;
+  }
+  StepRecord crossed = recorder_.start(across, halvings_);
+  crossed.increment = state.load_factor - saved_.load_factor();
+  constraint_.previous_increment.resize(0);  // the jump is no direction to follow
+  halvings_ = 0;
+  arc_ = control_.initial_increment;
+  ++converged_steps_;
+  recorder_.converged(std::move(crossed), across, state);
+  return true;
+}
+
+void ArcLengthStepping::give_up(StepRecord record, const NewtonOutcome& outcome) {
+  record.load_factor = saved_.load_factor();
+  result_.status = settings_.cutback ? Status::cutback_limit : outcome.status;
+  RunFailure& failure = result_.failure;
+  failure.kind = RunFailure::Kind::step_failed;
+  failure.control = RunFailure::Control::arc_length;
+  failure.step = record.step;
+  failure.from = saved_.load_factor();
+  failure.to = arc_;
+  failure.cutbacks = halvings_;
+  failure.step_message = outcome.message;
+  result_.message = run_failure_text(failure, model_);
+  recorder_.failed(std::move(record), step_failure_text(failure));
+}
+
+void ArcLengthStepping::stop_at_step_limit(const State& state) {
+  if (!watching_) {
+    result_.status = Status::converged;
+    return;
+  }
+  result_.status = Status::step_limit;
+  RunFailure& failure = result_.failure;
+  failure.kind = RunFailure::Kind::step_limit;
+  failure.control = RunFailure::Control::arc_length;
+  failure.max_steps = control_.max_steps;
+  failure.until_value = control_.until_value;
+  failure.until_now = watched(control_, state.load_factor, state.displacements);
+  result_.message = run_failure_text(failure, model_);
+}
+
+}  // namespace
+
+RunResult run_arc_length_stepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
+                                  const StepObserver& observer) {
+  ArcLengthStepping stepping(model, dofs, newton, observer);
+  return stepping.run(state);
+}
+
+}  // namespace tsm::solver

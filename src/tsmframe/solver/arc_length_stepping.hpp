@@ -1,0 +1,20 @@
+#pragma once
+// Arc-length control (Crisfield): steps of a given arc length along the path, sized by the
+// iterations each takes, cut back where one fails, landing exactly on the `until` target; where
+// no arc reaches the path (it jumps), one load-controlled step across.
+
+#include "tsmframe/assembly/dof_map.hpp"
+#include "tsmframe/model/model.hpp"
+#include "tsmframe/solver/newton.hpp"
+#include "tsmframe/solver/recorder.hpp"
+#include "tsmframe/solver/state.hpp"
+#include "tsmframe/solver/step_record.hpp"
+
+namespace tsm::solver {
+
+/// Runs the model's arc-length-controlled path from `state` (evaluated: newton.reset) and leaves
+/// `state` at the newest converged step.
+RunResult run_arc_length_stepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
+                                  const StepObserver& observer);
+
+}  // namespace tsm::solver

@@ -1,0 +1,21 @@
+#pragma once
+// Every sentence a failed run prints, built from the facts of failure.hpp: why a step failed,
+// why the run stopped, and the hints that name a likely cause (elements too short, a cable
+// drawn straight, a limit point).
+
+#include <string>
+
+#include "tsmframe/model/model.hpp"
+#include "tsmframe/solver/failure.hpp"
+
+namespace tsm::solver {
+
+/// A ratio as a reader takes it in: 233, not 2.3e+02; 0.25 to two digits.
+std::string format_ratio(double ratio);
+
+/// What the record of the run's last (failed) step says.
+std::string step_failure_text(const RunFailure& failure);
+/// The run's message: where it stopped, why, and what may help.
+std::string run_failure_text(const RunFailure& failure, const Model& model);
+
+}  // namespace tsm::solver

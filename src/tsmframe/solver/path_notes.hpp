@@ -1,0 +1,20 @@
+#pragma once
+// What a result says about its path besides its steps: the limit points, and notes on what a
+// converged path should not hide (a jump across a snap-back or a snap-through, unstable
+// equilibria, contacts that slid off a free end, strains past the small-strain law's reach,
+// steps accepted on round-off because nothing was carried).
+
+#include <vector>
+
+#include "tsmframe/model/model.hpp"
+#include "tsmframe/solver/step_record.hpp"
+
+namespace tsm::solver {
+
+/// Limit points: converged steps whose λ is a strict local extremum of the path.
+std::vector<LimitPoint> limit_points(const std::vector<StepRecord>& steps);
+
+/// Sets result.limit_points and result.notes from its steps (and its critical points).
+void close_path(const Model& model, RunResult& result, ControlType control);
+
+}  // namespace tsm::solver

@@ -1,0 +1,122 @@
+#include "tsmframe/solver/recorder.hpp"
+
+#include <cmath>
+
+namespace tsm::solver {
+namespace {
+
+/// Whether a converged step keeps its full state in the results.
+bool keeps_state(const OutputSelection& output, int step) {
+  switch (output.kind) {
+    case OutputSelection::Kind::all: return true;
+    case OutputSelection::Kind::last: return false;
+    case OutputSelection::Kind::every: return step % output.every == 0;
+  }
+  return true;
+}
+
+/// Sets the step's largest axial strain N / EA from its element forces (N first of each three).
+void take_axial_strain(const Model& model, StepRecord& record) {
+  const Eigen::VectorXd& forces = record.element_forces;
+  if (forces.size() != 3 * static_cast<Eigen::Index>(model.elements.size())) return;
+  double largest = 0.0;
+  int element = -1;
+  for (size_t e = 0; e < model.elements.size(); ++e) {
+    const double strain = forces[3 * e] / model.elements[e].section.EA;
+    if (element < 0 || std::abs(strain) > std::abs(largest)) largest = strain, element = static_cast<int>(e);
+  }
+  record.axial_strain = largest;
+  record.strained_element = element;
+}
+
+/// The farthest a node's (u, v) moved from `before` (null: from zero) to `now`.
+double largest_move(const Eigen::VectorXd& now, const Eigen::VectorXd* before) {
+  double largest = 0.0;
+  for (Eigen::Index k = 0; k + 1 < now.size(); k += dofs_per_node) {
+    const double du = now[k] - (before ? (*before)[k] : 0.0), dv = now[k + 1] - (before ? (*before)[k + 1] : 0.0);
+    largest = std::max(largest, du * du + dv * dv);
+  }
+  return std::sqrt(largest);
+}
+
+}  // namespace
+
+Recorder::Recorder(const Model& model, const NewtonSolver& newton, const StepObserver& observer, RunResult& result,
+                   bool defer_forces)
+    : model_(model), newton_(newton), observer_(observer), result_(result), defer_forces_(defer_forces && !observer),
+      moved_dofs_(model.moved_dofs()) {}
+
+StepRecord Recorder::start(const NewtonOutcome& outcome, int cutbacks) const {
+  StepRecord record;
+  record.step = next_step();
+  record.iterations = outcome.iterations;
+  record.residual_norms = outcome.residual_norms;
+  record.cutbacks = cutbacks;
+  record.contact_iterates = outcome.contact_iterates;
+  return record;
+}
+
+void Recorder::converged(StepRecord record, const NewtonOutcome& outcome, const State& state) {
+  const AnalysisSettings& settings = model_.analysis;
+  record.load_factor = state.load_factor;
+  record.converged = true;
+  record.criterion = outcome.criterion;
+  record.carried_nothing = outcome.carried_nothing;
+  record.slid_off = outcome.slid_off;
+  record.has_state = true;
+  record.monitored.resize(dofs_per_node * static_cast<int>(settings.monitor.size()));
+  for (size_t m = 0; m < settings.monitor.size(); ++m)
+    record.monitored.segment<3>(dofs_per_node * m) = state.displacements.segment<3>(dofs_per_node * settings.monitor[m]);
+  record.largest_move = largest_move(state.displacements, last_with_state_ >= 0 ? &result_.steps[last_with_state_].displacements : nullptr);
+  // The previous step's state goes first (unless the output keeps it): the peak memory holds one state, not two.
+  if (last_with_state_ >= 0 && !keeps_state(settings.output, result_.steps[last_with_state_].step)) {
+    StepRecord& previous = result_.steps[last_with_state_];
+    previous.has_state = false;
+    previous.displacements = previous.element_forces = previous.reactions = Eigen::VectorXd();
+  }
+  record.displacements = state.displacements;
+  forces_pending_ = defer_forces_ && !keeps_state(settings.output, record.step);
+  if (!forces_pending_) {
+    record.element_forces = newton_.element_forces(state);
+    take_axial_strain(model_, record);
+  }
+  record.reactions = newton_.reactions(state.load_factor);
+  record.moved_reactions.resize(static_cast<Eigen::Index>(moved_dofs_.size()));
+  for (size_t k = 0; k < moved_dofs_.size(); ++k) record.moved_reactions[k] = record.reactions[moved_dofs_[k]];
+  record.contacts = newton_.contact_points(state);
+  last_with_state_ = static_cast<int>(result_.steps.size());
+  result_.steps.push_back(std::move(record));
+  if (observer_) observer_(result_.steps.back());
+}
+
+void Recorder::started_from_newest(const NewtonOutcome& outcome, bool tells) {
+  if (last_with_state_ < 0 || !tells || outcome.start_negative_pivots < 0) return;
+  int& negatives = result_.steps[last_with_state_].negative_eigenvalues;
+  if (negatives < 0) negatives = outcome.start_negative_pivots;
+}
+
+void Recorder::replace_last(StepRecord record, const NewtonOutcome& outcome, const State& state) {
+  record.step = result_.steps.back().step;
+  record.cutbacks = result_.steps.back().cutbacks;
+  result_.steps.pop_back();
+  last_with_state_ = -1;
+  for (int k = static_cast<int>(result_.steps.size()) - 1; k >= 0 && last_with_state_ < 0; --k)
+    if (result_.steps[k].has_state) last_with_state_ = k;
+  converged(std::move(record), outcome, state);
+}
+
+void Recorder::finish(const State& state) {
+  if (!forces_pending_ || last_with_state_ < 0) return;
+  result_.steps[last_with_state_].element_forces = newton_.element_forces(state);
+  take_axial_strain(model_, result_.steps[last_with_state_]);
+  forces_pending_ = false;
+}
+
+void Recorder::failed(StepRecord record, const std::string& message) {
+  record.converged = false;
+  record.message = message;
+  result_.steps.push_back(std::move(record));
+  if (observer_) observer_(result_.steps.back());
+}
+
+}  // namespace tsm::solver
