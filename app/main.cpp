@@ -42,7 +42,7 @@ std::string progress_line(const tsm::Model& model, const tsm::solver::StepRecord
      << step.iterations << "  residual "
      << (step.residual_norms.empty() ? std::string("-") : tsm::io::format_number(step.residual_norms.back()));
   if (step.arc_length > 0.0) os << "  arc length " << tsm::io::format_number(step.arc_length);
-  if (step.converged) os << " (" << step.criterion << ")";
+  if (step.converged) os << " (" << tsm::solver::criterion_name(step.criterion) << ")";
   else os << "  FAILED: " << step.message;
   if (step.cutbacks > 0) os << "  after " << step.cutbacks << " cutbacks";
   if (log_iterations) {

@@ -23,7 +23,7 @@
 #include "tsmframe/assembly/global_system.hpp"
 #include "tsmframe/contact/contact_tracker.hpp"
 #include "tsmframe/solver/linear_solver.hpp"
-#include "tsmframe/solver/newton.hpp"
+#include "tsmframe/solver/tsm_problem.hpp"
 
 namespace {
 
@@ -53,12 +53,12 @@ int main(int argc, char** argv) {
   std::unique_ptr<tsm::assembly::DofMap> dofs;
   std::unique_ptr<tsm::assembly::GlobalSystem> system;
   std::unique_ptr<tsm::contact::ContactTracker> contacts;
-  std::unique_ptr<tsm::solver::NewtonSolver> newton;
+  std::unique_ptr<tsm::solver::TsmProblem> problem;
   timed("set-up: dof map, ordering", [&] { dofs = std::make_unique<tsm::assembly::DofMap>(model); });
   timed("set-up: assembly, pattern", [&] { system = std::make_unique<tsm::assembly::GlobalSystem>(model, *dofs); });
   timed("set-up: solver's analysis", [&] {
     contacts = std::make_unique<tsm::contact::ContactTracker>(model);
-    newton = std::make_unique<tsm::solver::NewtonSolver>(*system, tsm::solver::NewtonSettings{}, contacts.get());
+    problem = std::make_unique<tsm::solver::TsmProblem>(*system, contacts.get());
   });
   // A bent state: every node turned and moved as on a circle's arc of its distance from x = 0.
   Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());

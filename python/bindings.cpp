@@ -96,7 +96,7 @@ py::dict run_json(const std::string& text, int threads) {
     converged.push_back(s.converged ? 1 : 0);
     negative_eigenvalues.push_back(s.converged ? s.negative_eigenvalues : -1);
     residuals.append(array<double>({static_cast<py::ssize_t>(s.residual_norms.size())}, s.residual_norms));
-    criteria.append(s.criterion);
+    criteria.append(tsm::solver::criterion_name(s.criterion));
     if (s.converged)
       for (py::ssize_t k = 0; k < c; ++k) {
         const tsm::solver::ContactPoint& p = s.contacts[k];

@@ -30,7 +30,7 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
   w.key("residual_norms").begin_array();
   for (double r : step.residual_norms) w.value(r);
   w.end_array();
-  if (step.converged) w.key("criterion").value(step.criterion);
+  if (step.converged) w.key("criterion").value(solver::criterion_name(step.criterion));
   w.key("increment").value(step.increment);
   if (step.arc_length > 0.0) w.key("arc_length").value(step.arc_length);
   w.key("cutbacks").value(step.cutbacks);

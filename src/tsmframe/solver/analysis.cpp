@@ -13,6 +13,7 @@
 #include "tsmframe/solver/newton.hpp"
 #include "tsmframe/solver/path_notes.hpp"
 #include "tsmframe/solver/stability.hpp"
+#include "tsmframe/solver/tsm_problem.hpp"
 #include "tsmframe/util/first_touch.hpp"
 
 namespace tsm::solver {
@@ -23,7 +24,8 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   assembly::DofMap dofs(model);
   assembly::GlobalSystem system(model, dofs);
   const contact::ContactTracker contacts(model);
-  NewtonSolver newton(system, {settings.tolerance, settings.max_iterations}, &contacts);
+  TsmProblem problem(system, &contacts);
+  NewtonSolver newton(problem, {settings.tolerance, settings.max_iterations});
 #if defined(__GLIBC__)
   // The set-up's temporaries (node graph, ordering, fill, tasks) are freed by now but scattered
   // through the heap, where the run's vectors do not fill them: hand their pages back (at 10⁵
@@ -35,12 +37,12 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   util::assign_touched(zero_rotations, model.elements.size(), 0.0);
   State state{util::zeros_touched(model.dof_count()), 0.0, std::move(zero_rotations), contacts.initial_states()};
   newton.reset(state);
-  RunResult result = control.type == ControlType::arc_length ? run_arc_length_stepping(model, dofs, newton, state, observer)
-                                                             : run_load_stepping(model, dofs, newton, state, observer);
+  RunResult result = control.type == ControlType::arc_length ? run_arc_length_stepping(model, dofs, newton, problem, state, observer)
+                                                             : run_load_stepping(model, dofs, newton, problem, state, observer);
   // The newest converged step's inertia: each other step's came with the attempt that started
   // from it. `state` is that step's (every run ends there); the last evaluation was made there
   // unless the run ended on a failed attempt.
-  close_stability(result, state, result.steps.back().converged, control.type == ControlType::load, newton);
+  close_stability(result, state, result.steps.back().converged, control.type == ControlType::load, newton, problem);
   close_path(model, result, control.type);
   return result;
 }

@@ -24,9 +24,10 @@ double watched(const Control& control, double load_factor, const Eigen::VectorXd
 
 class ArcLengthStepping {
  public:
-  ArcLengthStepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, const StepObserver& observer)
+  ArcLengthStepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, TsmProblem& problem,
+                    const StepObserver& observer)
       : model_(model), settings_(model.analysis), control_(settings_.control), dofs_(dofs), newton_(newton),
-        recorder_(model, newton, observer, result_), arc_(control_.initial_increment),
+        recorder_(model, problem, observer, result_), arc_(control_.initial_increment),
         watching_(control_.until != Control::Until::steps) {
     constraint_.kind = PathConstraint::Kind::arc_length;
   }
@@ -169,9 +170,9 @@ void ArcLengthStepping::give_up(StepRecord record, const NewtonOutcome& outcome)
   failure.from = saved_.load_factor();
   failure.to = arc_;
   failure.cutbacks = halvings_;
-  failure.step_message = outcome.message;
+  failure.step_failure = outcome.failure;
   result_.message = run_failure_text(failure, model_);
-  recorder_.failed(std::move(record), step_failure_text(failure));
+  recorder_.failed(std::move(record), failed_step_text(failure, model_));
 }
 
 void ArcLengthStepping::stop_at_step_limit(const State& state) {
@@ -191,9 +192,9 @@ void ArcLengthStepping::stop_at_step_limit(const State& state) {
 
 }  // namespace
 
-RunResult run_arc_length_stepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
-                                  const StepObserver& observer) {
-  ArcLengthStepping stepping(model, dofs, newton, observer);
+RunResult run_arc_length_stepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton,
+                                  TsmProblem& problem, State& state, const StepObserver& observer) {
+  ArcLengthStepping stepping(model, dofs, newton, problem, observer);
   return stepping.run(state);
 }
 

@@ -64,6 +64,110 @@ std::string cable_hint(const Model& model) {
   return os.str();
 }
 
+/// The id of a contact's node.
+int contact_node_id(const Model& model, int contact) { return model.nodes[model.contacts[contact].node].id; }
+
+std::string hopping_text(const StepFailure& f, const Model& model) {
+  std::ostringstream os;
+  os << "contact points keep hopping between elements";
+  // A point that rests on a beam node where two elements meet at an angle (a symmetric push on
+  // a node) is pushed along one chord's normal, then the other's (README, Contact).
+  if (f.hopping_contact >= 0)
+    os << " (node " << contact_node_id(model, f.hopping_contact) << " back and forth across beam node "
+       << model.nodes[f.hop_node].id << ": if it rests on that node, move it off, e.g. with an odd number of divisions)";
+  return os.str();
+}
+
+/// Where most of the rounding that left the loads unresolvable is: one contact's force, or many
+/// contacts' together, and what makes that contact so stiff. Empty where it is not in contacts.
+std::string rounding_contact_text(const assembly::RoundingFloor& floor, const Model& model) {
+  const bool one = 6.0 * floor.contact_force * floor.contact_force >= 0.5 * floor.force * floor.force;
+  const bool together = floor.contacts > 1 && floor.contacts_force * floor.contacts_force >= 0.5 * floor.force * floor.force;
+  if (floor.contact_node < 0 || !(one || together)) return "";
+  std::ostringstream contact;
+  if (one)
+    contact << "; most of that rounding is in the force of the contact at node " << model.nodes[floor.contact_node].id
+            << " (±" << floor.contact_force << ")";
+  else
+    contact << "; most of that rounding is in the forces of the " << floor.contacts << " contacts in touch (together ±"
+            << floor.contacts_force << "; the largest ±" << floor.contact_force << ", at node "
+            << model.nodes[floor.contact_node].id << ")";
+  contact << ", as stiff as the element it touches is at its point (1/c = " << 1.0 / floor.compliance
+          << "; a member far stiffer than what presses on it makes it so)";
+  if (floor.at_cap)
+    contact << ": that is the contact's cap, \"max_stiffness_ratio\" times the stiffest element holding its "
+               "node (a smaller ratio softens it)";
+  else if (floor.at_edge)
+    contact << ": the point is at a beam node, where the contact's \"edge\" sets that compliance (a larger "
+               "edge, 0.1 say, softens it)";
+  else if (floor.uncapped)
+    contact << ": a node no element holds (a rigid pusher) has no stiffness cap; a touched member 100× "
+               "stiffer than what loads it worked in our tests";
+  return contact.str();
+}
+
+std::string max_iterations_text(const StepFailure& f) {
+  std::ostringstream os;
+  os << "no convergence in " << f.iteration << " iterations (last relative residual " << f.relative_residual << ")";
+  if (f.unsettled > 0) {  // the equilibrium was found, but never with a set of contacts that all press
+    os << ": " << f.unsettled << " converged iterates had a contact pull or a node through a beam, so the set of "
+       << "contacts in touch did not settle";
+    // Many contacts closing together settle a few per converged iterate: a beam pressed onto
+    // another along its length (165 contacts) needed 300 iterations for its first step.
+    if (f.contact_nodes > 8)
+      os << " (with " << f.contact_nodes << " contact nodes it may settle given more: analysis.max_iterations, now "
+         << f.iteration << ", or smaller steps)";
+  }
+  return os.str();
+}
+
+/// What went wrong at the iterate, without where ("… at iteration n" is added by the caller).
+std::string iterate_failure_text(const StepFailure& f, const Model& model) {
+  using Reason = StepFailure::Reason;
+  std::ostringstream os;
+  switch (f.reason) {
+    case Reason::singular_tangent:
+      // Hinges can leave a mechanism inside a part (pinned bars in a row) that the supports'
+      // check, which looks at parts as rigid bodies, does not see.
+      return f.hinged ? "the tangent stiffness is singular (a limit or bifurcation point, or the member releases leave "
+                        "a mechanism, e.g. three hinges in a line)"
+                      : "the tangent stiffness is singular (a limit or bifurcation point)";
+    case Reason::arc_length_undefined: return "the load moves no translation (arc length undefined)";
+    case Reason::arc_length_no_root: return "the arc-length constraint has no real root";
+    case Reason::controlled_dof_immobile:
+      // Where the load reaches the dof only through a contact still open (a beam pressed onto
+      // another, the lower one's dof controlled), nothing moves it until that contact closes.
+      return f.contacts ? "the controlled dof does not move under the load (if the load reaches it only through a "
+                          "contact still open, it does not until that closes: control a dof the load moves from the "
+                          "start, or use arc-length control)"
+                        : "the controlled dof does not move under the load";
+    case Reason::correction_not_finite: return "the Newton correction is not finite";
+    case Reason::contacts_switching: return "contacts keep switching on and off";
+    case Reason::contacts_hopping: return hopping_text(f, model);
+    case Reason::residual_not_finite: return "the unbalanced force is not finite";
+    case Reason::loads_unresolvable:
+      os << "the unbalanced force stays at the rounding level of the internal forces (relative residual "
+         << f.relative_residual << "): the loads are too small against what rounding leaves in this model's forces to be "
+         << "resolved (a larger load, in proportion, is)";
+      return os.str();
+    case Reason::contact_passed_through: return "a contact node passed through a beam after its contact was released";
+    case Reason::end_turned_too_far:
+      os << "an element end turned " << f.end_rotation
+         << " rad against its chord, beyond what an element describes (refine the mesh or take smaller steps)";
+      return os.str();
+    case Reason::contact_blocked:
+      os << "contact node " << contact_node_id(model, f.blocked_contact) << " reached element "
+         << model.elements[f.element].id << ", which contact node "
+         << (f.holding_contact >= 0 ? contact_node_id(model, f.holding_contact) : -1)
+         << " is on: one contact per element (give that member more divisions)";
+      return os.str();
+    case Reason::blew_up: return "the unbalanced force blew up";
+    case Reason::none:
+    case Reason::max_iterations: break;
+  }
+  return "";
+}
+
 /// "; the load seems to have reached a maximum …": a limit point found where a step failed.
 std::string limit_point_text(const RunFailure& failure) {
   if (!(failure.limit_point_stiffness > 0.0)) return "";
@@ -77,7 +181,7 @@ std::string stepped_failure_text(const RunFailure& failure, const Model& model) 
   std::ostringstream os;
   os << "step " << failure.step << " ("
      << (failure.control == RunFailure::Control::controlled_displacement ? "controlled displacement" : "load factor") << " "
-     << failure.from << " -> " << failure.to << ") failed: " << failure.step_message;
+     << failure.from << " -> " << failure.to << ") failed: " << step_failure_text(failure.step_failure, model);
   if (failure.cutbacks > 0) os << ", after " << failure.cutbacks << " cutbacks in a row";
   std::string text = os.str();
   // Cutback could not halve it again: the step was already the smallest max_cutbacks allows
@@ -100,7 +204,7 @@ std::string arc_length_failure_text(const RunFailure& failure, const Model& mode
   const double arc = failure.to;
   std::ostringstream os;
   os << "step " << failure.step << " (arc length " << arc << " from load factor " << failure.from
-     << ") failed: " << failure.step_message;
+     << ") failed: " << step_failure_text(failure.step_failure, model);
   if (failure.cutbacks > 0) os << ", after " << failure.cutbacks << " cutbacks in a row";
   // Δs is a length (translations): a step still as long as half the structure after its
   // cutbacks was given far too long an arc to start with (the usual cause of "no real root").
@@ -120,7 +224,27 @@ std::string format_ratio(double ratio) {
   return os.str();
 }
 
-std::string step_failure_text(const RunFailure& failure) { return failure.step_message + limit_point_text(failure); }
+std::string step_failure_text(const StepFailure& f, const Model& model) {
+  std::string text;
+  if (f.reason == StepFailure::Reason::max_iterations) {
+    text = max_iterations_text(f);
+  } else {
+    std::ostringstream os;
+    os << iterate_failure_text(f, model) << " at iteration " << f.iteration;
+    text = os.str();
+    if (f.reason == StepFailure::Reason::loads_unresolvable) text += rounding_contact_text(f.floor, model);
+  }
+  if (f.lost_resting_contact < 0) return text;
+  // The cause first: what Newton then met follows from it.
+  return "the structure is held only by the contacts resting on it and the one at node " +
+         std::to_string(contact_node_id(model, f.lost_resting_contact)) +
+         (f.resting_contact_slid_off ? " has slid off the beam's end" : " let go") + ": nothing else supports it (then " +
+         text + ")";
+}
+
+std::string failed_step_text(const RunFailure& failure, const Model& model) {
+  return step_failure_text(failure.step_failure, model) + limit_point_text(failure);
+}
 
 std::string run_failure_text(const RunFailure& failure, const Model& model) {
   switch (failure.kind) {

@@ -13,8 +13,10 @@ namespace tsm::solver {
 /// A ratio as a reader takes it in: 233, not 2.3e+02; 0.25 to two digits.
 std::string format_ratio(double ratio);
 
+/// Why a Newton step failed: "… at iteration n", the structure's own facts first.
+std::string step_failure_text(const StepFailure& failure, const Model& model);
 /// What the record of the run's last (failed) step says.
-std::string step_failure_text(const RunFailure& failure);
+std::string failed_step_text(const RunFailure& failure, const Model& model);
 /// The run's message: where it stopped, why, and what may help.
 std::string run_failure_text(const RunFailure& failure, const Model& model);
 

@@ -4,7 +4,54 @@
 
 #include <string>
 
+#include "tsmframe/assembly/global_system.hpp"
+#include "tsmframe/solver/status.hpp"
+
 namespace tsm::solver {
+
+/// Why a Newton step failed, with the facts a sentence about it needs (node, element and contact
+/// indices, not ids: diagnosis.hpp names them).
+struct StepFailure {
+  enum class Reason {
+    none,                     ///< the step converged
+    singular_tangent,         ///< the tangent could not be factorised
+    arc_length_undefined,     ///< arc-length control: the load moves no translation
+    arc_length_no_root,       ///< arc-length control: the constraint has no real root
+    controlled_dof_immobile,  ///< displacement control: the controlled dof does not move under the load
+    correction_not_finite,
+    contacts_switching,       ///< contacts kept switching on and off within the step
+    contacts_hopping,         ///< contact points kept hopping back and forth between elements
+    residual_not_finite,
+    loads_unresolvable,       ///< the residual stays at the rounding level of the internal forces
+    contact_passed_through,   ///< a contact node passed through a beam after its contact was released
+    end_turned_too_far,       ///< an element end turned past a right angle against its chord
+    contact_blocked,          ///< a contact node reached an element another contact is on
+    blew_up,                  ///< the unbalanced force or the displacements ran away
+    max_iterations,
+  } reason = Reason::none;
+  int iteration = 0;  ///< the iterate it failed at (max_iterations: the budget)
+  bool hinged = false;    ///< singular_tangent: some member end is released (a mechanism among hinges)
+  bool contacts = false;  ///< controlled_dof_immobile: the model has contacts (one still open may be why)
+  /// contacts_hopping: the contact that hops (index) and the beam node it hops across; −1 unknown.
+  int hopping_contact = -1, hop_node = -1;
+  double relative_residual = 0.0;  ///< loads_unresolvable, max_iterations: the last relative residual
+  assembly::RoundingFloor floor;   ///< loads_unresolvable: the rounding floor and the contact that rounds most
+  double end_rotation = 0.0;       ///< end_turned_too_far: the largest end rotation against a chord
+  /// contact_blocked: the contact (index) that reached `element`, and the contact on it (−1: none found).
+  int blocked_contact = -1, element = -1, holding_contact = -1;
+  /// max_iterations: converged iterates whose contacts did not settle, and the model's contact nodes.
+  int unsettled = 0, contact_nodes = 0;
+  /// The structure is held only by contacts resting on it, and this one (index) let go or slid
+  /// off the beam's end: said first, as the cause of what Newton then met. −1: not so.
+  int lost_resting_contact = -1;
+  bool resting_contact_slid_off = false;
+};
+
+/// The status a failed step reports.
+Status step_status(const StepFailure& failure);
+/// Whether a smaller step cannot help: the step failed at its first iterate for a reason its
+/// size does not change (the controlled dof does not move under the load at the step's start).
+bool independent_of_step_size(const StepFailure& failure);
 
 /// A run that stopped: the step that failed and what cutback and the path found about it.
 struct RunFailure {
@@ -20,7 +67,7 @@ struct RunFailure {
   /// target. Arc-length control: `from` λ at its start, `to` the arc length tried.
   double from = 0.0, to = 0.0;
   int cutbacks = 0;             ///< halvings in a row before the attempt that failed last
-  std::string step_message;     ///< why that attempt failed (the Newton step's failure)
+  StepFailure step_failure;     ///< why that attempt failed
   /// The step was already the smallest max_cutbacks halvings of a nominal step allow, after an
   /// earlier failure (cutback could not halve it again).
   bool smallest_step = false;

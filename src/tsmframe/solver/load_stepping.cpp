@@ -8,6 +8,7 @@
 #include "tsmframe/solver/diagnosis.hpp"
 #include "tsmframe/solver/stability.hpp"
 #include "tsmframe/solver/step_start.hpp"
+#include "tsmframe/solver/tsm_problem.hpp"
 
 namespace tsm::solver {
 namespace {
@@ -22,9 +23,10 @@ constexpr double limit_point_stiffness = 0.1;  // a current stiffness below this
 /// grid cell.
 class LoadStepping {
  public:
-  LoadStepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, const StepObserver& observer)
-      : model_(model), settings_(model.analysis), control_(settings_.control), newton_(newton),
-        recorder_(model, newton, observer, result_, true), by_displacement_(control_.type == ControlType::displacement),
+  LoadStepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, TsmProblem& problem,
+               const StepObserver& observer)
+      : model_(model), settings_(model.analysis), control_(settings_.control), newton_(newton), problem_(problem),
+        recorder_(model, problem, observer, result_, true), by_displacement_(control_.type == ControlType::displacement),
         nominal_(1.0 / control_.steps), increment_(nominal_) {
     if (by_displacement_) {
       constraint_.kind = PathConstraint::Kind::displacement_target;
@@ -65,6 +67,7 @@ class LoadStepping {
   const AnalysisSettings& settings_;
   const Control& control_;
   NewtonSolver& newton_;
+  TsmProblem& problem_;
   RunResult result_;
   Recorder recorder_;
   const bool by_displacement_;
@@ -135,7 +138,7 @@ void LoadStepping::check_bifurcation(State& state) {
   State from;  // the newest step's state; the attempt in progress is kept and evaluated again
   saved_.restore(from);
   const State attempt = state;
-  locate_bifurcation(*newest, *previous, from, newton_, result_);
+  locate_bifurcation(*newest, *previous, from, newton_, problem_, result_);
   state = attempt;
   newton_.reset(state);
 }
@@ -155,7 +158,7 @@ bool LoadStepping::cut_back(const Attempt& attempt, const NewtonOutcome& outcome
   // The smallest increment cutback may try: max_cutbacks halvings of the nominal step. Without
   // it, steps that keep converging ever closer to a barrier would never end.
   const double smallest = std::ldexp(nominal_, -settings_.max_cutbacks);
-  if (!settings_.cutback || outcome.size_independent || halvings_ >= settings_.max_cutbacks ||
+  if (!settings_.cutback || independent_of_step_size(outcome.failure) || halvings_ >= settings_.max_cutbacks ||
       attempt.dt / 2.0 < smallest * (1.0 - 1e-12))
     return false;
   ++halvings_;
@@ -168,7 +171,7 @@ bool LoadStepping::cut_back(const Attempt& attempt, const NewtonOutcome& outcome
 
 void LoadStepping::give_up(const Attempt& attempt, StepRecord record, const NewtonOutcome& outcome, const State& state) {
   record.load_factor = by_displacement_ ? saved_.load_factor() : value(attempt.t_end);
-  result_.status = settings_.cutback && !outcome.size_independent ? Status::cutback_limit : outcome.status;
+  result_.status = settings_.cutback && !independent_of_step_size(outcome.failure) ? Status::cutback_limit : outcome.status;
   // A largest load: cut back and still failing, the current stiffness down to a tenth of its
   // first step's, and the tangent — positive definite at the step's start — indefinite at its
   // iterates. Load control cannot pass it. Not where a contact point stands at the end of its
@@ -192,24 +195,24 @@ void LoadStepping::give_up(const Attempt& attempt, StepRecord record, const Newt
   failure.from = path_quantity(t_);
   failure.to = path_quantity(attempt.t_end);
   failure.cutbacks = halvings_;
-  failure.step_message = outcome.message;
+  failure.step_failure = outcome.failure;
   failure.max_cutbacks = settings_.max_cutbacks;
   failure.smallest_step = settings_.cutback && halvings_ == 0 &&
                           attempt.dt / 2.0 < std::ldexp(nominal_, -settings_.max_cutbacks) * (1.0 - 1e-12);
   if (limit_point) failure.limit_point_stiffness = newest_stiffness_ / first_stiffness_;
   failure.cutbacks_exhausted = settings_.cutback && halvings_ >= settings_.max_cutbacks && !limit_point &&
-                               !outcome.loads_unresolvable;
+                               outcome.failure.reason != StepFailure::Reason::loads_unresolvable;
   failure.first_step = state.load_factor == 0.0;  // the path's first step
   result_.message = run_failure_text(failure, model_);
   recorder_.finish(state);  // state is the newest converged step's again
-  recorder_.failed(std::move(record), step_failure_text(failure));
+  recorder_.failed(std::move(record), failed_step_text(failure, model_));
 }
 
 }  // namespace
 
-RunResult run_load_stepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
-                            const StepObserver& observer) {
-  LoadStepping stepping(model, dofs, newton, observer);
+RunResult run_load_stepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, TsmProblem& problem,
+                            State& state, const StepObserver& observer) {
+  LoadStepping stepping(model, dofs, newton, problem, observer);
   return stepping.run(state);
 }
 

@@ -9,12 +9,13 @@
 #include "tsmframe/solver/recorder.hpp"
 #include "tsmframe/solver/state.hpp"
 #include "tsmframe/solver/step_record.hpp"
+#include "tsmframe/solver/tsm_problem.hpp"
 
 namespace tsm::solver {
 
 /// Runs the model's load- or displacement-controlled path from `state` (evaluated: newton.reset)
-/// and leaves `state` at the newest converged step.
-RunResult run_load_stepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, State& state,
-                            const StepObserver& observer);
+/// and leaves `state` at the newest converged step. `newton` solves `problem`.
+RunResult run_load_stepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, TsmProblem& problem,
+                            State& state, const StepObserver& observer);
 
 }  // namespace tsm::solver

@@ -96,7 +96,7 @@ void write_steps(std::ostream& os, const std::vector<int>& steps) {
 std::vector<std::string> nothing_carried_notes(const std::vector<StepRecord>& steps) {
   std::vector<int> quiet;
   for (const StepRecord& s : steps)
-    if (s.converged && s.carried_nothing) quiet.push_back(s.step);
+    if (s.converged && s.criterion == Criterion::nothing_carried) quiet.push_back(s.step);
   if (quiet.empty()) return {};
   std::ostringstream os;
   write_steps(os, quiet);

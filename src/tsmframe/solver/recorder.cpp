@@ -41,9 +41,9 @@ double largest_move(const Eigen::VectorXd& now, const Eigen::VectorXd* before) {
 
 }  // namespace
 
-Recorder::Recorder(const Model& model, const NewtonSolver& newton, const StepObserver& observer, RunResult& result,
+Recorder::Recorder(const Model& model, const TsmProblem& problem, const StepObserver& observer, RunResult& result,
                    bool defer_forces)
-    : model_(model), newton_(newton), observer_(observer), result_(result), defer_forces_(defer_forces && !observer),
+    : model_(model), problem_(problem), observer_(observer), result_(result), defer_forces_(defer_forces && !observer),
       moved_dofs_(model.moved_dofs()) {}
 
 StepRecord Recorder::start(const NewtonOutcome& outcome, int cutbacks) const {
@@ -61,7 +61,6 @@ void Recorder::converged(StepRecord record, const NewtonOutcome& outcome, const 
   record.load_factor = state.load_factor;
   record.converged = true;
   record.criterion = outcome.criterion;
-  record.carried_nothing = outcome.carried_nothing;
   record.slid_off = outcome.slid_off;
   record.has_state = true;
   record.monitored.resize(dofs_per_node * static_cast<int>(settings.monitor.size()));
@@ -77,13 +76,13 @@ void Recorder::converged(StepRecord record, const NewtonOutcome& outcome, const 
   record.displacements = state.displacements;
   forces_pending_ = defer_forces_ && !keeps_state(settings.output, record.step);
   if (!forces_pending_) {
-    record.element_forces = newton_.element_forces(state);
+    record.element_forces = problem_.element_forces(state);
     take_axial_strain(model_, record);
   }
-  record.reactions = newton_.reactions(state.load_factor);
+  record.reactions = problem_.reactions(state.load_factor);
   record.moved_reactions.resize(static_cast<Eigen::Index>(moved_dofs_.size()));
   for (size_t k = 0; k < moved_dofs_.size(); ++k) record.moved_reactions[k] = record.reactions[moved_dofs_[k]];
-  record.contacts = newton_.contact_points(state);
+  record.contacts = problem_.contact_points(state);
   last_with_state_ = static_cast<int>(result_.steps.size());
   result_.steps.push_back(std::move(record));
   if (observer_) observer_(result_.steps.back());
@@ -107,7 +106,7 @@ void Recorder::replace_last(StepRecord record, const NewtonOutcome& outcome, con
 
 void Recorder::finish(const State& state) {
   if (!forces_pending_ || last_with_state_ < 0) return;
-  result_.steps[last_with_state_].element_forces = newton_.element_forces(state);
+  result_.steps[last_with_state_].element_forces = problem_.element_forces(state);
   take_axial_strain(model_, result_.steps[last_with_state_]);
   forces_pending_ = false;
 }

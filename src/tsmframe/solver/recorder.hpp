@@ -9,6 +9,7 @@
 
 #include "tsmframe/model/model.hpp"
 #include "tsmframe/solver/newton.hpp"
+#include "tsmframe/solver/tsm_problem.hpp"
 #include "tsmframe/solver/state.hpp"
 #include "tsmframe/solver/step_record.hpp"
 
@@ -19,7 +20,7 @@ class Recorder {
   /// With `defer_forces`, a step that the output selection drops again once a later step
   /// converges gets its element forces (a pass over the elements) only if it stays the newest:
   /// finish() adds them. Without an observer only: an observer sees every step whole.
-  Recorder(const Model& model, const NewtonSolver& newton, const StepObserver& observer, RunResult& result,
+  Recorder(const Model& model, const TsmProblem& problem, const StepObserver& observer, RunResult& result,
            bool defer_forces = false);
 
   int next_step() const { return static_cast<int>(result_.steps.size()) + 1; }
@@ -42,7 +43,7 @@ class Recorder {
 
  private:
   const Model& model_;
-  const NewtonSolver& newton_;
+  const TsmProblem& problem_;
   const StepObserver& observer_;
   RunResult& result_;
   int last_with_state_ = -1;

@@ -30,7 +30,7 @@ bool turned_unstable(const StepRecord* newest, const StepRecord* previous, const
 }
 
 void locate_bifurcation(const StepRecord& newest, const StepRecord& previous, const State& from, NewtonSolver& newton,
-                        RunResult& result) {
+                        TsmProblem& problem, RunResult& result) {
   double stable = previous.load_factor, unstable = newest.load_factor;
   for (int round = 0; round < bisection_rounds; ++round) {
     if (std::abs(unstable - stable) <= bisection_tolerance * std::max(std::abs(stable), std::abs(unstable))) break;
@@ -40,19 +40,20 @@ void locate_bifurcation(const StepRecord& newest, const StepRecord& previous, co
     PathConstraint constraint;
     constraint.load_increment = middle - trial.load_factor;
     if (newton.step(constraint, trial).status != Status::converged) break;
-    const int negatives = newton.negative_eigenvalues(trial, true);
+    const int negatives = problem.negative_eigenvalues(trial, true);
     if (negatives < 0) break;
     (negatives > 0 ? unstable : stable) = middle;
   }
   result.critical_points.push_back({newest.step, 0.5 * (stable + unstable), stable, unstable});
 }
 
-void close_stability(RunResult& result, State& state, bool evaluated, bool load_control, NewtonSolver& newton) {
+void close_stability(RunResult& result, State& state, bool evaluated, bool load_control, NewtonSolver& newton,
+                     TsmProblem& problem) {
   const auto [newest, previous] = newest_converged_two(result.steps);
   if (newest && newest->negative_eigenvalues < 0 && inertia_tells_stability(state.contacts))
-    newest->negative_eigenvalues = newton.negative_eigenvalues(state, evaluated);
+    newest->negative_eigenvalues = problem.negative_eigenvalues(state, evaluated);
   if (load_control && turned_unstable(newest, previous, result))  // the last step's, as the others'
-    locate_bifurcation(*newest, *previous, state, newton, result);
+    locate_bifurcation(*newest, *previous, state, newton, problem, result);
 }
 
 }  // namespace tsm::solver

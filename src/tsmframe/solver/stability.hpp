@@ -8,6 +8,7 @@
 #include "tsmframe/solver/newton.hpp"
 #include "tsmframe/solver/state.hpp"
 #include "tsmframe/solver/step_record.hpp"
+#include "tsmframe/solver/tsm_problem.hpp"
 
 namespace tsm::solver {
 
@@ -16,7 +17,7 @@ std::pair<StepRecord*, StepRecord*> newest_converged_two(std::vector<StepRecord>
 
 /// Whether the tangent's inertia tells the stability of `state`: only where no contact is active
 /// (a contact element's sliding term is not symmetric, and the inertia is its symmetric part's).
-/// A non-conservative follower load is the other such case; NewtonSolver reports no inertia then.
+/// A non-conservative follower load is the other such case; TsmProblem reports no inertia then.
 bool inertia_tells_stability(const std::vector<contact::ContactState>& contacts);
 
 /// Whether the newest converged step is unstable and the one before it stable: under load
@@ -28,11 +29,12 @@ bool turned_unstable(const StepRecord* newest, const StepRecord* previous, const
 /// state `from`; recorded in result.critical_points. Leaves the solver evaluated at a trial
 /// state: the caller evaluates its own again.
 void locate_bifurcation(const StepRecord& newest, const StepRecord& previous, const State& from, NewtonSolver& newton,
-                        RunResult& result);
+                        TsmProblem& problem, RunResult& result);
 
 /// At the end of a run that ended at `state` (the newest converged step's; `evaluated`: the
 /// solver's last evaluation was there): the newest step's inertia, which no later attempt took,
 /// and under load control a bifurcation between it and the step before.
-void close_stability(RunResult& result, State& state, bool evaluated, bool load_control, NewtonSolver& newton);
+void close_stability(RunResult& result, State& state, bool evaluated, bool load_control, NewtonSolver& newton,
+                     TsmProblem& problem);
 
 }  // namespace tsm::solver

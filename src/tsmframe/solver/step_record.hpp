@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "tsmframe/solver/criterion.hpp"
 #include "tsmframe/solver/failure.hpp"
 #include "tsmframe/solver/status.hpp"
 
@@ -28,8 +29,7 @@ struct StepRecord {
   bool converged = false;
   int iterations = 0;                  ///< Newton solves, the predictor included
   std::vector<double> residual_norms;  ///< relative ‖R‖ of each iterate, iterate 0 first
-  std::string criterion;               ///< "force" or "round-off" (converged steps)
-  bool carried_nothing = false;        ///< round-off because the structure carried next to nothing
+  Criterion criterion = Criterion::none;  ///< what ended a converged step (criterion_name: "force", "round-off")
   /// Contacts that let go in the step because their point left a beam's free end: (contact
   /// index, the element whose end it left).
   std::vector<std::pair<int, int>> slid_off;

@@ -1,0 +1,347 @@
+#include "tsmframe/solver/tsm_problem.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <numbers>
+#include <utility>
+
+#include "tsmframe/model/mechanism.hpp"
+#include "tsmframe/model/resting_contact.hpp"
+#include "tsmframe/solver/convergence.hpp"
+#include "tsmframe/solver/release_forecast.hpp"
+#include "tsmframe/util/first_touch.hpp"
+
+namespace tsm::solver {
+namespace {
+
+constexpr double largest_end_rotation = std::numbers::pi / 2;  // |θ| an element end may turn against its chord
+constexpr int max_passes = 4;  // contact changes settled per iterate before Newton goes on
+
+}  // namespace
+
+TsmProblem::TsmProblem(assembly::GlobalSystem& system, const contact::ContactTracker* contacts)
+    : system_(system), contacts_(contacts && contacts->contact_count() > 0 ? contacts : nullptr) {
+  const assembly::DofMap& dofs = system.dofs();
+  const Model& model = system.model();
+  equations_.free_dofs = dofs.free_dofs();
+  equations_.is_moment.resize(dofs.free_count());
+  for (int eq = 0; eq < dofs.free_count(); ++eq) equations_.is_moment[eq] = dofs.dof(eq) % dofs_per_node == rz ? 1 : 0;
+  for (int dof = 0; dof < model.dof_count(); ++dof) {
+    if (model.constrained[dof]) equations_.constrained_dofs.push_back(dof);
+    if (dof % dofs_per_node != rz) equations_.prescribed_squared += model.prescribed(dof) * model.prescribed(dof);
+  }
+  equations_.size = model.size;
+  equations_.prescribed_size = model.reference_prescribed.lpNorm<Eigen::Infinity>();
+  double shortest = model.elements.empty() ? 0.0 : std::numeric_limits<double>::infinity();
+  for (const Element& e : model.elements)
+    shortest = std::min(shortest, (model.nodes[e.end].position - model.nodes[e.start].position).norm());
+  equations_.resolvable_move = resolvable_move(shortest);
+  // Hinges can leave a mechanism inside a part (pinned bars in a row) that the supports' check,
+  // which looks at parts as rigid bodies, does not see.
+  hinged_ = std::any_of(model.elements.begin(), model.elements.end(),
+                        [](const Element& e) { return e.release_start || e.release_end; });
+  if (contacts_ && !find_mechanism(model) && find_mechanism(model, false))
+    for (int k = 0; k < static_cast<int>(model.contacts.size()); ++k)
+      if (resting_contact(model, model.contacts[k])) holding_contacts_.push_back(k);
+  solver_.analyze(system.dofs(), system.tangent());
+  analysed_pattern_ = system.pattern_version();
+}
+
+bool TsmProblem::evaluate(State& state, bool contacts_only) {
+  const Model& model = system_.model();
+  system_.set_load_factor(state.load_factor);
+  for (int dof : equations_.constrained_dofs) state.displacements[dof] = state.load_factor * model.prescribed(dof);
+  bool changed = false;
+  for (int pass = 0;; ++pass) {
+    const std::vector<contact::ActiveContact> active = active_contacts(state);
+    // The rotations are continued in place (one vector, not two): lent to the evaluation.
+    std::swap(state.chord_rotations, eval_.chord_rotations);
+    if (pass > 0 || contacts_only) system_.evaluate_contact_change(state.displacements, eval_.chord_rotations, eval_, active);
+    else system_.evaluate(state.displacements, eval_.chord_rotations, true, eval_, active);
+    std::swap(state.chord_rotations, eval_.chord_rotations);
+    if (!contacts_) return false;
+    if (pass == max_passes) break;
+    const contact::ContactChanges changes =
+        contacts_->update(state.displacements, state.chord_rotations, eval_.contacts, state.contacts, false);
+    if (!changes.any()) break;
+    changed = true;
+    switches_ += changes.activated + changes.released;
+    reversals_ += changes.reversed;
+  }
+  // α and force of the evaluation that stands (update() has set them unless the passes ran out).
+  contacts_->record(state.displacements, state.chord_rotations, eval_.contacts, state.contacts);
+  return changed;
+}
+
+std::vector<contact::ActiveContact> TsmProblem::active_contacts(const State& state) const {
+  return contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
+}
+
+assembly::RoundingFloor TsmProblem::rounding_floor(const State& state, bool with_contacts) const {
+  return system_.rounding_floor(state.displacements, state.chord_rotations,
+                                with_contacts ? active_contacts(state) : std::vector<contact::ActiveContact>());
+}
+
+void TsmProblem::analyse_pattern() {
+  if (system_.pattern_version() == analysed_pattern_) return;  // a contact has joined new nodes
+  solver_.analyze(system_.dofs(), system_.tangent());
+  analysed_pattern_ = system_.pattern_version();
+}
+
+Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms, Eigen::VectorXd* rhs) {
+  analyse_pattern();
+  // The SparseLU fallback (contacts only) needs the tangent the in-place LDLᵀ overwrote: it is
+  // evaluated again at the same state, which stays as it is (a scratch evaluation).
+  const auto refill = [&](BlockMatrix&) {
+    const std::vector<contact::ActiveContact> active = active_contacts(state);
+    assembly::Evaluation scratch;
+    system_.evaluate(state.displacements, state.chord_rotations, true, scratch, active);
+  };
+  // K_ff = tangent + the sliding terms in use (all, or none); with `rhs`, solved for it in place.
+  // A follower load's skew terms always join.
+  const std::vector<RankOne>& skew = system_.follower_rank_one();
+  const std::vector<RankOne>& contact = system_.contact_rank_one();
+  const bool follower = !skew.empty();
+  std::vector<RankOne> both;  // only in a model with both
+  if (follower && !contact.empty()) {
+    both = skew;
+    both.insert(both.end(), contact.begin(), contact.end());
+  }
+  const std::vector<RankOne>& sliding = !follower ? contact : contact.empty() ? skew : both;
+  BlockMatrix& K = system_.tangent_for_factorisation();
+  const auto attempt = [&](const std::vector<RankOne>& terms, Eigen::VectorXd* x) {
+    Factorisation f;
+    f.ok = x ? solver_.factorize_and_solve(K, terms, *x, refill) : solver_.factorize(K, terms, refill);
+    // With a follower load's skew terms the tangent is not symmetric: its symmetric part's
+    // inertia tells nothing of stability (a non-conservative load).
+    f.negative_pivots = follower ? -1 : solver_.negative_pivots();
+    return f;
+  };
+  if (with_optional_terms || contact.empty()) return attempt(sliding, rhs);
+  // Without the sliding terms the symmetric part alone may be singular where the whole is not:
+  // then once more with them.
+  if (rhs) kept_rhs_ = *rhs;  // the solve runs along the factorisation
+  if (const Factorisation f = attempt(skew, rhs); f.ok) return f;
+  refill(K);  // the failed factorisation has overwritten part of it
+  if (rhs) *rhs = kept_rhs_;
+  return attempt(sliding, rhs);
+}
+
+void TsmProblem::begin_step(const State& state) {
+  switches_ = reversals_ = 0;
+  max_switches_ = 4 + 4 * static_cast<int>(state.contacts.size());
+  // A contact point that keeps hopping back and forth between elements within one step is
+  // wandering over iterates far from the path (it may land on another branch, a beam looped
+  // around the node): fail the step so that cutback follows the path in smaller steps. Sliding
+  // on in one direction, one element per iterate, is not limited here.
+  max_reversals_ = 4 * static_cast<int>(state.contacts.size());
+}
+
+std::optional<StepFailure> TsmProblem::after_iterate(const State& state) const {
+  if (!switching_too_often() && reversals_ <= max_reversals_) return std::nullopt;
+  StepFailure failure;
+  if (switching_too_often()) {
+    failure.reason = StepFailure::Reason::contacts_switching;
+    return failure;
+  }
+  failure.reason = StepFailure::Reason::contacts_hopping;
+  // A point that rests on a beam node where two elements meet at an angle (a symmetric push on
+  // a node) is pushed along one chord's normal, then the other's (README, Contact).
+  const auto hops = std::find_if(state.contacts.begin(), state.contacts.end(),
+                                 [](const contact::ContactState& c) { return c.hop_node >= 0; });
+  if (hops != state.contacts.end()) {
+    failure.hopping_contact = static_cast<int>(hops - state.contacts.begin());
+    failure.hop_node = hops->hop_node;
+  }
+  return failure;
+}
+
+Settlement TsmProblem::at_convergence(State& state) {
+  Settlement settlement;
+  if (release_pulling_contacts(state)) {  // converged with a contact pulling: iterate on without it
+    settlement.evaluated_again = true;
+    settlement.kind = Settlement::Kind::iterate_on;
+    if (switching_too_often()) {
+      settlement.kind = Settlement::Kind::failed;
+      settlement.failure.reason = StepFailure::Reason::contacts_switching;
+    }
+    return settlement;
+  }
+  if (contacts_ && contacts_->passed_through(state.displacements, state.chord_rotations, state.contacts)) {
+    // A contact released in this step let its node through a beam: it takes part again (the
+    // active set needs it), and Newton iterates on; the switch count bounds the cycling.
+    switches_ += contacts_->allow_touching_again(state.displacements, state.chord_rotations, state.contacts);
+    if (switching_too_often()) {
+      settlement.kind = Settlement::Kind::failed;
+      settlement.failure.reason = StepFailure::Reason::contact_passed_through;
+      return settlement;
+    }
+    evaluate(state, true);
+    settlement.evaluated_again = true;
+    settlement.kind = Settlement::Kind::iterate_on;
+    return settlement;
+  }
+  if (eval_.largest_end_rotation > largest_end_rotation) {
+    // Eq. 3–5 describe an element by its chord: an end turned past a right angle against it
+    // is no state of the beam, but a branch the mesh cannot carry (Newton with a large step
+    // can land there, e.g. a beam looped around a contact node). The step fails and is cut back.
+    settlement.kind = Settlement::Kind::failed;
+    settlement.failure.reason = StepFailure::Reason::end_turned_too_far;
+    settlement.failure.end_rotation = eval_.largest_end_rotation;
+    return settlement;
+  }
+  if (const auto [k, element] = contacts_ ? contacts_->blocked(state.contacts) : std::pair{-1, -1}; k >= 0) {
+    // Its node lies through an element another contact is on: the state is not acceptable,
+    // and no iterate can change that (one contact element per element).
+    settlement.kind = Settlement::Kind::failed;
+    settlement.failure.reason = StepFailure::Reason::contact_blocked;
+    settlement.failure.blocked_contact = k;
+    settlement.failure.element = element;
+    settlement.failure.holding_contact = contact_on(state, element);
+  }
+  return settlement;
+}
+
+std::vector<std::pair<int, int>> TsmProblem::accept(State& state) {
+  std::vector<std::pair<int, int>> slid_off;
+  for (size_t k = 0; k < state.contacts.size(); ++k)
+    if (!state.contacts[k].active && state.contacts[k].slid_off_element >= 0)
+      slid_off.emplace_back(static_cast<int>(k), state.contacts[k].slid_off_element);
+  if (contacts_) contacts_->accept(state.displacements, state.chord_rotations, state.contacts);
+  return slid_off;
+}
+
+void TsmProblem::explain(const State& state, StepFailure& failure) const {
+  failure.hinged = hinged_;
+  failure.contacts = contacts_ != nullptr;
+  for (const int k : holding_contacts_) {
+    const contact::ContactState& c = state.contacts[k];
+    // Released, or held at a free end it has gone past (α beyond [0, 1] after the hand-over).
+    if (!c.active || c.alpha < 0.0 || c.alpha > 1.0) {  // the cause first: what Newton then met follows from it
+      failure.lost_resting_contact = k;
+      failure.resting_contact_slid_off = c.active;
+      return;
+    }
+  }
+}
+
+bool TsmProblem::release_pulling_contacts(State& state) {
+  if (!contacts_) return false;
+  bool overwrote_tangent = false;
+  const std::vector<int> also = look_ahead_releases(state, overwrote_tangent);
+  const contact::ContactChanges changes =
+      contacts_->update(state.displacements, state.chord_rotations, eval_.contacts, state.contacts, true);
+  if (!changes.any() && !overwrote_tangent) return false;
+  switches_ += changes.activated + changes.released;
+  if (!also.empty()) switches_ += contacts_->release_as_pulling(also, state.displacements, state.chord_rotations, state.contacts);
+  // The look-ahead's factorisation took the tangent's place: all of it is evaluated again.
+  evaluate(state, !overwrote_tangent);
+  return changes.any() || !also.empty();
+}
+
+std::vector<int> TsmProblem::look_ahead_releases(State& state, bool& overwrote_tangent) {
+  // Where dozens of contacts close along a beam, the step's predictor runs the free part through
+  // it and closes too many; at the converged iterate only the outermost over-held contacts pull
+  // (the held zone's edge carries a couple), and releasing them moves the edge by a node or two
+  // per converged iterate — a beam pressed onto another took 3 iterates for each. The release is
+  // looked ahead on the tangent here instead (forecast_releases; G = Uᵀ K⁻¹ U, one solve per
+  // contact that lets go), and those that would pull once the pulling ones have let go let go
+  // with them.
+  // Newton corrects what the linearised forecast gets wrong (a node released too soon comes back
+  // through passed_through).
+  overwrote_tangent = false;
+  std::vector<int> also;
+  constexpr size_t fewest = 4, most = 2000;  // contacts in touch: below, nothing to gain; above, the solves cost
+  const std::vector<contact::ActiveContact> active = active_contacts(state);
+  if (active.size() < fewest || active.size() > most || !system_.follower_rank_one().empty()) return also;
+  // Contact k's entries in `active` (two at a vertex, which stay out of the forecast).
+  std::vector<int> owner, side;
+  std::vector<char> may_join;
+  bool pulls = false;
+  for (size_t k = 0; k < state.contacts.size(); ++k) {
+    const contact::ContactState& c = state.contacts[k];
+    if (!c.active) continue;
+    owner.push_back(static_cast<int>(k));
+    side.push_back(c.side);
+    may_join.push_back(c.partner < 0);
+    if (c.partner >= 0) {
+      owner.push_back(static_cast<int>(k));
+      side.push_back(c.partner_side);
+      may_join.push_back(0);
+      if (-c.side * c.Y < 0.0 || -c.partner_side * c.partner_Y < 0.0) return also;  // a vertex opens: as before
+    }
+    pulls = pulls || c.force < 0.0;
+  }
+  if (!pulls || owner.size() != active.size()) return also;
+  const std::vector<assembly::ContactDirection> directions =
+      system_.contact_directions(state.displacements, state.chord_rotations, active);
+  analyse_pattern();
+  overwrote_tangent = true;
+  if (!solver_.factorize(system_.tangent_for_factorisation(), system_.contact_rank_one())) return also;
+  const int n = static_cast<int>(directions.size());
+  Eigen::VectorXd stiffness(n), Y(n);
+  for (int j = 0; j < n; ++j) {
+    stiffness[j] = directions[j].stiffness;
+    Y[j] = directions[j].Y;
+  }
+  bool finite = true;
+  const auto column = [&](int j) {  // Uᵀ K⁻¹ u_j: one solve
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(system_.dofs().free_count());
+    for (int e = 0; e < 9; ++e)
+      if (directions[j].equation[e] >= 0) x[directions[j].equation[e]] += directions[j].u[e];
+    solver_.solve_in_place(x);
+    Eigen::VectorXd g(n);
+    for (int i = 0; i < n; ++i) {
+      double sum = 0.0;
+      for (int e = 0; e < 9; ++e)
+        if (directions[i].equation[e] >= 0) sum += directions[i].u[e] * x[directions[i].equation[e]];
+      g[i] = sum;
+    }
+    finite = finite && g.allFinite();
+    return g;
+  };
+  const std::vector<char> released = forecast_releases(column, stiffness, Y, side, may_join);
+  if (!finite) return also;
+  for (int i = 0; i < n; ++i)
+    if (released[i] && !(-side[i] * Y[i] < 0.0)) also.push_back(owner[i]);  // beyond those that pull now
+  return also;
+}
+
+int TsmProblem::negative_eigenvalues(State& state, bool evaluated) {
+  if (!evaluated) evaluate(state);
+  if (!system_.follower_rank_one().empty()) return -1;  // not symmetric: the inertia tells nothing
+  analyse_pattern();
+  if (!solver_.factorize(system_.tangent_for_factorisation())) return -1;
+  return solver_.negative_pivots();
+}
+
+std::vector<ContactPoint> TsmProblem::contact_points(const State& state) const {
+  std::vector<ContactPoint> points;
+  for (const contact::ContactState& c : state.contacts) {
+    ContactPoint p;
+    if (c.active) p = {c.element, c.alpha, c.force, c.Y, c.partner, c.partner_Y};
+    points.push_back(p);
+  }
+  return points;
+}
+
+Eigen::VectorXd TsmProblem::element_forces(const State& state) const {
+  return system_.element_forces(state.displacements, state.chord_rotations, active_contacts(state));
+}
+
+Eigen::VectorXd TsmProblem::reactions(double load_factor) const {
+  const Model& model = system_.model();
+  Eigen::VectorXd reactions = util::zeros_touched(model.dof_count());
+  const Eigen::VectorXd& P = reference_load();
+  for (int dof : equations_.constrained_dofs) reactions[dof] = eval_.internal_force[dof] - load_factor * P[dof];
+  return reactions;
+}
+
+int TsmProblem::contact_on(const State& state, int element) const {
+  for (size_t k = 0; k < state.contacts.size(); ++k)
+    if (state.contacts[k].active && (state.contacts[k].element == element || state.contacts[k].partner == element))
+      return static_cast<int>(k);
+  return -1;
+}
+
+}  // namespace tsm::solver

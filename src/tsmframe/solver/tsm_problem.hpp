@@ -1,0 +1,93 @@
+#pragma once
+// The Tangent Stiffness Method structure as Newton's problem: the global system (elements and
+// contact elements) evaluated at a state, its tangent factorised by the linear solver (the
+// contacts' sliding terms and the follower loads' skew terms beside it), and the contact life
+// cycle run where Newton's hooks call it — detection, hand-over and release after every iterate,
+// the release of pulling contacts (with its look-ahead) at a converged iterate, and the
+// switching budget that ends a step whose contacts never settle.
+
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "tsmframe/assembly/global_system.hpp"
+#include "tsmframe/contact/contact_tracker.hpp"
+#include "tsmframe/solver/linear_solver.hpp"
+#include "tsmframe/solver/problem.hpp"
+
+namespace tsm::solver {
+
+class TsmProblem final : public Problem {
+ public:
+  /// `contacts` (may be null: no contacts) runs the contact life cycle after every evaluation.
+  TsmProblem(assembly::GlobalSystem& system, const contact::ContactTracker* contacts = nullptr);
+
+  const Equations& equations() const override { return equations_; }
+  bool has_contacts() const override { return contacts_ != nullptr; }
+  bool evaluate(State& state) override { return evaluate(state, false); }
+  const Eigen::VectorXd& internal_force() const override { return eval_.internal_force; }
+  const Eigen::VectorXd& reference_load() const override {
+    return eval_.reference_load.size() > 0 ? eval_.reference_load : system_.model().reference_load;
+  }
+  const Eigen::VectorXd& prescribed_coupling() const override { return eval_.prescribed_coupling; }
+  assembly::RoundingFloor rounding_floor(const State& state, bool with_contacts) const override;
+  bool has_optional_terms() const override { return !system_.contact_rank_one().empty(); }
+  Factorisation factorize(const State& state, bool with_optional_terms, Eigen::VectorXd* rhs) override;
+  void solve_in_place(Eigen::VectorXd& x) const override { solver_.solve_in_place(x); }
+  void begin_step(const State& state) override;
+  std::optional<StepFailure> after_iterate(const State& state) const override;
+  Settlement at_convergence(State& state) override;
+  std::vector<std::pair<int, int>> accept(State& state) override;
+  void explain(const State& state, StepFailure& failure) const override;
+  std::vector<ContactPoint> contact_points(const State& state) const override;
+
+  const Model& model() const { return system_.model(); }
+  /// Negative eigenvalues of the tangent at `state` (its inertia, by one LDLᵀ factorisation): 0
+  /// where that equilibrium is stable, n > 0 where it is not; −1 if the tangent does not
+  /// factorise or is not symmetric. `evaluated`: the last evaluation was at `state` (a step
+  /// converged there and nothing was factorised since), else it is evaluated again. Uses up the
+  /// tangent: a step after it must start with an evaluation.
+  int negative_eigenvalues(State& state, bool evaluated);
+  /// Element forces (N, M_i, M_j) at `state` (a converged state: its chord rotations are its
+  /// evaluation's).
+  Eigen::VectorXd element_forces(const State& state) const;
+  /// Support reactions of the last evaluation: F − λ F_ref on constrained dofs, 0 elsewhere.
+  Eigen::VectorXd reactions(double load_factor) const;
+
+ private:
+  /// Evaluates at `state` and settles its contacts (detect, release, hand over; re-evaluating
+  /// after each change). Returns whether the contact set changed. `contacts_only`: the state is
+  /// the last evaluation's, only its contacts changed (what they touch is evaluated again).
+  bool evaluate(State& state, bool contacts_only);
+  /// The contact elements standing in for beam elements at `state` (none without contacts).
+  std::vector<contact::ActiveContact> active_contacts(const State& state) const;
+  /// Analyses the tangent's pattern again where a contact has joined new nodes.
+  void analyse_pattern();
+  /// At a converged iterate: releases contacts that pull and re-evaluates. Returns whether any was.
+  bool release_pulling_contacts(State& state);
+  /// At a converged iterate where contacts pull: the contacts that pull once those have let go,
+  /// and so on (a linearised active-set iteration on the tangent here, see tsm_problem.cpp); empty
+  /// where it does not apply. Sets `overwrote_tangent` when it factorised the tangent in place.
+  std::vector<int> look_ahead_releases(State& state, bool& overwrote_tangent);
+  /// The contacts switched on and off, or hopping back, more often in this step than a step may.
+  bool switching_too_often() const { return switches_ > max_switches_; }
+  /// The active contact (index) on `element`, −1 if none.
+  int contact_on(const State& state, int element) const;
+
+  assembly::GlobalSystem& system_;
+  const contact::ContactTracker* contacts_ = nullptr;
+  Equations equations_;
+  bool hinged_ = false;  ///< some member end is released (a singular tangent may be a mechanism among hinges)
+  /// Contacts (model order) resting on the structure as drawn that it needs: without them
+  /// (model/mechanism) it is a mechanism. Empty otherwise.
+  std::vector<int> holding_contacts_;
+  int switches_ = 0;   ///< contact activations + releases in the current step
+  int reversals_ = 0;  ///< contact hand-overs back the way the point came, in the current step
+  int max_switches_ = 0, max_reversals_ = 0;  ///< the current step's budget
+  LinearSolver solver_;
+  assembly::Evaluation eval_;
+  Eigen::VectorXd kept_rhs_;  ///< a right-hand side kept for a second factorisation (with the sliding terms)
+  int analysed_pattern_ = -1;  ///< pattern version the linear solver has analysed
+};
+
+}  // namespace tsm::solver
