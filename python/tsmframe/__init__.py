@@ -22,7 +22,7 @@ import os as _os
 
 import numpy as _np
 
-from ._core import __version__, run_json as _run_json, study_json as _study_json
+from ._core import __version__, element_curves as _element_curves, run_json as _run_json, study_json as _study_json
 
 __all__ = ["Model", "Result", "run", "load", "__version__"]
 
@@ -201,9 +201,13 @@ class Result:
     contact_also (C, c)        at a vertex (a point resting on a beam node, both elements in contact):
                                the other element's id, else 0
     results_json, steps_csv    exactly what `tsmframe run` writes
+    curves(k)                  (m, segments + 1, 2): every element's deflected curve at state k (hinges and
+                               end springs included), computed by the solver's own shape functions
     """
 
     def __init__(self, data):
+        data = dict(data)
+        self._model = data.pop("model", None)  # the meshed model, for curves()
         self.__dict__.update(data)
 
     @property
@@ -236,6 +240,13 @@ class Result:
 
     def json(self):
         return _json.loads(self.results_json)
+
+    def curves(self, step=-1, segments=8):
+        """Every element's deflected curve at a state (index into state_steps; -1 = last): an array
+        (m, segments + 1, 2) of current (x, y) at s = k / segments along each element's chord —
+        the element's own shape under its end rotations, a hinged end free of moment, an end
+        spring in series (the same curves as the ParaView files and results.json's "curves")."""
+        return _element_curves(self._model, self.displacements[step], self.element_forces[step], segments)
 
     # plots (matplotlib, imported on use)
     def plot_shape(self, steps=(-1,), ax=None, **kw):
