@@ -22,7 +22,7 @@ element::EndConnections end_connections(const Model& model, const Element& e);
 /// current chord angle less the drawn one, plus the whole turns that bring the element's own end
 /// rotations within half a turn (the solver keeps them within a quarter). From the ends that are
 /// not hinged, each turned by its node's rotation less its spring's f·M; an element hinged at
-/// both ends has no own end rotation (it is straight), and its β is taken within (−π, π].
+/// both ends has no own end rotation (it is straight), and its β is taken within [−π, π].
 double chord_rotation(const Model& model, const Element& e, const Eigen::VectorXd& D, const Eigen::Vector3d& forces);
 
 /// Element e's deflected curve at displacements D and element forces (N, M_i, M_j) (a step's
