@@ -141,6 +141,15 @@ py::dict run_json(const std::string& text, int threads) {
   return out;
 }
 
+/// A model from its FORMAT.md JSON text, read and meshed: what a Result unpickled needs for its curves.
+std::shared_ptr<tsm::Model> read_model(const std::string& text) {
+  try {
+    return std::make_shared<tsm::Model>(tsm::io::read_model_text(text));
+  } catch (const tsm::io::InputError& e) {
+    throw py::value_error(e.what());
+  }
+}
+
 /// Every element's deflected curve (io/element_curves) at one state: (elements, segments + 1, 2).
 py::array_t<double> element_curves(const tsm::Model& model, py::array_t<double, py::array::c_style | py::array::forcecast> displacements,
                                    py::array_t<double, py::array::c_style | py::array::forcecast> element_forces, int segments) {
@@ -193,6 +202,7 @@ PYBIND11_MODULE(_core, module) {
   module.attr("__version__") = tsm::version;
   py::class_<tsm::Model, std::shared_ptr<tsm::Model>>(module, "MeshedModel",
                                                       "A model as read and meshed (opaque): what element_curves draws");
+  module.def("read_model", &read_model, py::arg("text"), "Read and mesh a model given as FORMAT.md JSON text (ValueError for bad input).");
   module.def("element_curves", &element_curves, py::arg("model"), py::arg("displacements"), py::arg("element_forces"),
              py::arg("segments") = tsm::io::curve_segments,
              "Every element's deflected curve at one state (a step's displacements (n, 3) and element_forces (m, 3)), "

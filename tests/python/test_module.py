@@ -277,6 +277,13 @@ def test_a_pin_jointed_truss_is_drawn_with_straight_bars(tmp_path):
     plt.close(fig)
 
 
+def test_a_pickled_result_still_draws_its_curves():
+    import pickle
+    r = tf.run(os.path.join(SOURCE, "examples", "semi-rigid-portal.json"))
+    again = pickle.loads(pickle.dumps(r))
+    assert np.array_equal(again.curves(), r.curves()) and np.array_equal(again.displacements, r.displacements)
+
+
 def test_a_bent_elements_curve_bends_by_its_closed_form():
     # A cantilever of 4 Euler–Bernoulli elements under a tip moment M bends into a circle; each
     # element turns its ends by ±M l0/2EI against its chord, so its curve's mid-point lies
