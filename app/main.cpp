@@ -33,6 +33,7 @@ struct RunOptions {
   bool log_iterations = false;
   bool vtk = false;
   bool plot = false;
+  bool curves = false;  // results.json's "curves" (on with --plot, whose drawings read them)
   int threads = 0;  // 0: all cores
 };
 
@@ -103,7 +104,7 @@ int run(const RunOptions& options) {
   };
   const tsm::solver::RunResult result = tsm::solver::run_analysis(model, observer);
   try {
-    tsm::io::write_results(options.out, model, result);
+    tsm::io::write_results(options.out, model, result, {.curves = options.curves || options.plot});
     if (options.vtk && vtk_error.empty()) tsm::io::write_pvd((vtk_dir / "results.pvd").string(), vtk_steps);
   } catch (const std::exception& e) {
     std::cerr << "tsmframe: " << e.what() << '\n';
@@ -202,7 +203,9 @@ int main(int argc, char** argv) {
   run_command->add_flag("-q,--quiet", options.quiet, "no progress lines");
   run_command->add_flag("--log-iterations", options.log_iterations, "print the residual of every iterate");
   run_command->add_flag("--vtk", options.vtk, "ParaView files: DIR/vtk/results.pvd and one .vtu per converged step");
-  run_command->add_flag("--plot", options.plot, "plots: deformed shapes and load-displacement curves in DIR/plots/");
+  run_command->add_flag("--plot", options.plot, "plots: deformed shapes and load-displacement curves in DIR/plots/ (implies --curves)");
+  run_command->add_flag("--curves", options.curves,
+                        "results.json: each element's deflected curve at every step with state (\"curves\")");
   run_command->add_option("-j,--threads", options.threads, "threads for the element loop and the factorisation (default: all cores; results are identical; models under 1,000 elements use one)")
       ->check(CLI::Range(1, 1024));
 

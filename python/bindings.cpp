@@ -6,9 +6,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "tsmframe/io/element_curves.hpp"
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/io/model_reader.hpp"
 #include "tsmframe/io/results_writer.hpp"
@@ -28,7 +30,8 @@ py::array_t<T> array(std::vector<py::ssize_t> shape, const std::vector<T>& data)
 }
 
 py::dict run_json(const std::string& text, int threads) {
-  tsm::Model model;
+  auto meshed = std::make_shared<tsm::Model>();  // kept by the Result for its curves
+  tsm::Model& model = *meshed;
   try {
     model = tsm::io::read_model_text(text);
   } catch (const tsm::io::InputError& e) {
@@ -45,6 +48,7 @@ py::dict run_json(const std::string& text, int threads) {
   const py::ssize_t n = model.node_count(), m = static_cast<py::ssize_t>(model.elements.size());
   const py::ssize_t c = static_cast<py::ssize_t>(model.contacts.size());
   py::dict out;
+  out["model"] = meshed;
   out["status"] = tsm::solver::status_name(result.status);
   out["message"] = result.message;
   out["notes"] = result.notes;
@@ -137,6 +141,37 @@ py::dict run_json(const std::string& text, int threads) {
   return out;
 }
 
+/// A model from its FORMAT.md JSON text, read and meshed: what a Result unpickled needs for its curves.
+std::shared_ptr<tsm::Model> read_model(const std::string& text) {
+  try {
+    return std::make_shared<tsm::Model>(tsm::io::read_model_text(text));
+  } catch (const tsm::io::InputError& e) {
+    throw py::value_error(e.what());
+  }
+}
+
+/// Every element's deflected curve (io/element_curves) at one state: (elements, segments + 1, 2).
+py::array_t<double> element_curves(const tsm::Model& model, py::array_t<double, py::array::c_style | py::array::forcecast> displacements,
+                                   py::array_t<double, py::array::c_style | py::array::forcecast> element_forces, int segments) {
+  const py::ssize_t n = model.node_count(), m = static_cast<py::ssize_t>(model.elements.size());
+  if (displacements.size() != 3 * n || element_forces.size() != 3 * m)
+    throw py::value_error("element_curves: displacements must hold (nodes, 3) values and element_forces (elements, 3)");
+  if (segments < 1) throw py::value_error("element_curves: segments must be at least 1");
+  const Eigen::Map<const Eigen::VectorXd> D(displacements.data(), 3 * n), forces(element_forces.data(), 3 * m);
+  const Eigen::VectorXd state = D;
+  py::array_t<double> out({m, static_cast<py::ssize_t>(segments + 1), py::ssize_t{2}});
+  std::vector<Eigen::Vector2d> points(segments + 1);
+  double* data = out.mutable_data();
+  for (py::ssize_t e = 0; e < m; ++e) {
+    tsm::io::element_curve(model, model.elements[e], state, forces.segment<3>(3 * e), points);
+    for (const Eigen::Vector2d& p : points) {
+      *data++ = p.x();
+      *data++ = p.y();
+    }
+  }
+  return out;
+}
+
 std::string study_json(const std::string& text, const std::string& directory, int jobs) {
   tsm::study::Study study;
   try {
@@ -165,6 +200,13 @@ std::string study_json(const std::string& text, const std::string& directory, in
 PYBIND11_MODULE(_core, module) {
   module.doc() = "tsmframe's solver (thin bindings; use the tsmframe package)";
   module.attr("__version__") = tsm::version;
+  py::class_<tsm::Model, std::shared_ptr<tsm::Model>>(module, "MeshedModel",
+                                                      "A model as read and meshed (opaque): what element_curves draws");
+  module.def("read_model", &read_model, py::arg("text"), "Read and mesh a model given as FORMAT.md JSON text (ValueError for bad input).");
+  module.def("element_curves", &element_curves, py::arg("model"), py::arg("displacements"), py::arg("element_forces"),
+             py::arg("segments") = tsm::io::curve_segments,
+             "Every element's deflected curve at one state (a step's displacements (n, 3) and element_forces (m, 3)), "
+             "hinges and end springs included: an array (m, segments + 1, 2) of current coordinates.");
   module.def("run_json", &run_json, py::arg("text"), py::arg("threads") = 0,
              "Run a model given as FORMAT.md JSON text; returns a dict of numpy arrays and the results.json text. "
              "Raises ValueError (JSON path: reason) for bad input.");

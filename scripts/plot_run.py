@@ -4,14 +4,14 @@
     /usr/bin/python3 scripts/plot_run.py DIR
 
 Reads DIR/results.json and DIR/steps.csv; writes DIR/plots/deformed.png|svg (the steps that
-carry full state, up to 12 of them, elements drawn as their true deflected curves) and
+carry full state, up to 12 of them, elements drawn as the deflected curves results.json carries
+— straight chords, and the legend says so, where it has none) and
 DIR/plots/load-displacement.png|svg (λ against ux, uy, rz of every monitored node, but those that
 only carry rounding noise) and, where prescribed displacements drive the model,
 DIR/plots/force-displacement.png|svg (the reactions there against those displacements).
 """
 import csv
 import json
-import math
 import os
 import sys
 import textwrap
@@ -22,7 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from report import draw_shape  # noqa: E402  (the element-curve drawing shared with the report)
+from shapes import draw_shape, has_curves, magnification, size_of, undeformed  # noqa: E402  (shared with report.py)
 
 
 def short_title(title, width=90, lines=3):
@@ -39,28 +39,10 @@ def visible_columns(results, rows, noise=1e-7):
     largest movement is rounding noise (a rotation compared as a rotation times the model's size),
     e.g. the 1e-9 rad a symmetric ring's crown turns: plotted, it filled the rotation axis."""
     columns = [c for c in (rows[0].keys() if rows else []) if c[:3] in ("ux_", "uy_", "rz_")]
-    xs = [n["x"] for n in results["nodes"]]
-    ys = [n["y"] for n in results["nodes"]]
-    size = math.hypot(max(xs) - min(xs), max(ys) - min(ys)) or 1.0
+    size = size_of(results) or 1.0
     reach = {c: max(abs(float(r[c])) for r in rows) * (size if c[:2] == "rz" else 1.0) for c in columns}
     floor = max(noise * max(reach.values(), default=0.0), 1e-12 * size)  # nothing moving at all: no curve
     return [c for c in columns if reach[c] > floor]
-
-
-def magnification(results, states):
-    """1, or a round factor (1, 2 or 5 × 10^k) that makes the largest translation of an element's
-    node about a tenth of the model's size, where it is less than 2 % of it: small deflections
-    drawn to scale are a flat line."""
-    xs = [n["x"] for n in results["nodes"]]
-    ys = [n["y"] for n in results["nodes"]]
-    size = math.hypot(max(xs) - min(xs), max(ys) - min(ys))
-    drawn = {str(n) for e in results["elements"] for n in e["nodes"]}  # a pusher's own travel is no deflection
-    largest = max((math.hypot(u[0], u[1]) for s in states for k, u in s["displacements"].items() if k in drawn), default=0.0)
-    if size <= 0.0 or largest <= 0.0 or largest >= 0.02 * size:
-        return 1.0
-    wanted = 0.1 * size / largest
-    power = 10.0 ** math.floor(math.log10(wanted))
-    return max(m * power for m in (1.0, 2.0, 5.0) if m * power <= wanted)
 
 
 def moved_curves(results, rows):
@@ -118,8 +100,7 @@ def main(directory):
         states = [states[round(k * (len(states) - 1) / 11)] for k in range(12)]
     fig, ax = plt.subplots(figsize=(8, 6))
     cmap = plt.get_cmap("viridis")
-    draw_shape(ax, results, {"displacements": {str(n["id"]): [0, 0, 0] for n in results["nodes"]}},
-               color="0.75", lw=1, label="undeformed")
+    draw_shape(ax, results, undeformed(results), color="0.75", lw=1, label="undeformed")
     scale = magnification(results, states)
     for k, s in enumerate(states):
         draw_shape(ax, results, s, scale=scale, color=cmap(k / max(1, len(states) - 1)), lw=1.3,
@@ -127,8 +108,10 @@ def main(directory):
     ax.set_aspect("equal")
     ax.set_xlabel("x")
     ax.set_ylabel("y")
+    notes = ([f"displacements × {scale:g}"] if scale != 1.0 else []) + \
+        ([] if has_curves(results) else ["straight chords: results.json has no curves"])
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0),  # beside a long, flat frame
-              title=f"displacements × {scale:g}" if scale != 1.0 else None, title_fontsize=7)
+              title="\n".join(notes) or None, title_fontsize=7)
     ax.set_title(short_title(results.get("title")) or "deformed shapes", fontsize=9)
     for ext in ("png", "svg"):
         fig.savefig(os.path.join(plots, f"deformed.{ext}"), dpi=130, bbox_inches="tight")

@@ -23,8 +23,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-OUT = sys.argv[1] if len(sys.argv) > 1 else "out"
-PLOTS = os.path.join(OUT, "plots")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from shapes import draw_shape, has_curves, magnification, undeformed  # noqa: E402  (shared with plot_run.py)
+
 COLOURS = {"euler-bernoulli": "tab:red", "timoshenko": "tab:blue"}
 NAMES = {"euler-bernoulli": "Euler–Bernoulli", "timoshenko": "Timoshenko"}
 
@@ -34,54 +35,25 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
-def save(fig, name):
-    os.makedirs(PLOTS, exist_ok=True)
+def save(fig, out, name):
+    """OUT/plots/name.png and .svg; the PNG's path."""
+    plots = os.path.join(out, "plots")
+    os.makedirs(plots, exist_ok=True)
     for ext in ("png", "svg"):
-        fig.savefig(os.path.join(PLOTS, f"{name}.{ext}"), dpi=130, bbox_inches="tight")
+        fig.savefig(os.path.join(plots, f"{name}.{ext}"), dpi=130, bbox_inches="tight")
     plt.close(fig)
-    return os.path.join(PLOTS, f"{name}.png")
+    return os.path.join(plots, f"{name}.png")
 
 
-def wrap(angle):
-    return math.atan2(math.sin(angle), math.cos(angle))
-
-
-def element_curve(xi, yi, xj, yj, Xi, Yi, Xj, Yj, rot_i, rot_j, points=12):
-    """The element's own deflected shape: chord plus the Hermite deflection of Eq. 3's element,
-    w(s) = l (θi s(1−s)² − θj s²(1−s)), θ = Θ − β (end rotations relative to the chord)."""
-    l = math.hypot(xj - xi, yj - yi)
-    phi0 = math.atan2(Yj - Yi, Xj - Xi)
-    phi = math.atan2(yj - yi, xj - xi)
-    beta = wrap(phi - phi0)
-    ti, tj = wrap(rot_i - beta), wrap(rot_j - beta)
-    c, s = math.cos(phi), math.sin(phi)
-    xs, ys = [], []
-    for k in range(points + 1):
-        t = k / points
-        w = l * (ti * t * (1 - t) ** 2 - tj * t * t * (1 - t))
-        xs.append(xi + t * (xj - xi) - s * w)
-        ys.append(yi + t * (yj - yi) + c * w)
-    return xs, ys
-
-
-def draw_shape(ax, results, step, scale=1.0, **style):
-    """Every element's deflected curve at `step`, its displacements and rotations × `scale`."""
-    nodes = {n["id"]: (n["x"], n["y"]) for n in results["nodes"]}
-    d = step["displacements"]
-    first = True
-    for e in results["elements"]:
-        a, b = e["nodes"]
-        (Xi, Yi), (Xj, Yj) = nodes[a], nodes[b]
-        ui, uj = [scale * v for v in d[str(a)]], [scale * v for v in d[str(b)]]
-        xs, ys = element_curve(Xi + ui[0], Yi + ui[1], Xj + uj[0], Yj + uj[1], Xi, Yi, Xj, Yj, ui[2], uj[2])
-        ax.plot(xs, ys, label=style.pop("label", None) if first else None, **style)
-        first = False
+def chords_only(results):
+    """A plot title's remark where results.json carries no curves (shapes.has_curves)."""
+    return "" if has_curves(results) else " (straight chords: results.json has no curves)"
 
 
 # ---- Fig. 3: iterations per mesh, one load step to a full circle ----
 
-def fig3():
-    path = os.path.join(OUT, "studies", "fig3", "study.csv")
+def fig3(out):
+    path = os.path.join(out, "studies", "fig3", "study.csv")
     if not os.path.exists(path):
         return None, []
     rows = read_csv(path)
@@ -118,11 +90,11 @@ def fig3():
         ax.legend(fontsize=8)
     fig.suptitle("Fig. 3 reproduced: a straight beam bent into a full circle (M = 2πEI/L) in ONE load step")
     fig.tight_layout(rect=(0, 0, 1, 0.95))
-    return save(fig, "fig3-iterations-vs-mesh"), summary
+    return save(fig, out, "fig3-iterations-vs-mesh"), summary
 
 
-def fig2():
-    path = os.path.join(OUT, "cantilever-circle", "results.json")
+def fig2(out):
+    path = os.path.join(out, "cantilever-circle", "results.json")
     if not os.path.exists(path):
         return None
     with open(path) as f:
@@ -142,14 +114,14 @@ def fig2():
     ax.set_ylabel("y")
     ax.legend(fontsize=8)
     ax.set_title(f"Fig. 2: cantilever, tip moment 2πEI/L, {len(r['elements'])} elements, "
-                 f"{step['iterations']} iterations")
-    return save(fig, "fig2-circle")
+                 f"{step['iterations']} iterations" + chords_only(r))
+    return save(fig, out, "fig2-circle")
 
 
 # ---- Fig. 6 and 7: the contact point at an element end ----
 
-def fig7():
-    base = os.path.join(OUT, "studies", "fig7")
+def fig7(out):
+    base = os.path.join(out, "studies", "fig7")
     path = os.path.join(base, "study.csv")
     if not os.path.exists(path):
         return None, []
@@ -181,11 +153,11 @@ def fig7():
     axes.flat[0].legend(fontsize=7)
     fig.suptitle("Fig. 7 reproduced: the contact point along the push; the dotted line is the end of element 9")
     fig.tight_layout(rect=(0, 0, 1, 0.95))
-    return save(fig, "fig7-alpha-vs-push"), table
+    return save(fig, out, "fig7-alpha-vs-push"), table
 
 
-def fig6():
-    path = os.path.join(OUT, "contact-push", "results.json")
+def fig6(out):
+    path = os.path.join(out, "contact-push", "results.json")
     if not os.path.exists(path):
         return None
     with open(path) as f:
@@ -203,21 +175,19 @@ def fig6():
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.legend(fontsize=7, ncol=2)
-    ax.set_title("Fig. 6: deformed shapes (true curved elements) as the contact node pushes the cantilever")
-    return save(fig, "fig6-deformed-shapes")
+    ax.set_title("Fig. 6: deformed shapes as the contact node pushes the cantilever" + chords_only(r))
+    return save(fig, out, "fig6-deformed-shapes")
 
 
 # ---- The examples: each one's deformed shapes and how its run ended ----
 
-def examples():
+def examples(out):
     """[(name, title, summary, notes, png)] for every examples/*.json run into OUT/<name>/."""
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-    from plot_run import magnification  # plot_run draws with this module's draw_shape
     source = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples")
     rows = []
     for file in sorted(os.listdir(source)):
         name, ext = os.path.splitext(file)
-        path = os.path.join(OUT, name, "results.json")
+        path = os.path.join(out, name, "results.json")
         if ext != ".json" or not os.path.exists(path):
             continue
         with open(path) as f:
@@ -230,7 +200,7 @@ def examples():
         if len(states) > 6:
             states = [states[round(k * (len(states) - 1) / 5)] for k in range(6)]
         fig, ax = plt.subplots(figsize=(4.2, 3.0))
-        draw_shape(ax, results, {"displacements": {str(n["id"]): [0, 0, 0] for n in results["nodes"]}}, color="0.75", lw=0.8)
+        draw_shape(ax, results, undeformed(results), color="0.75", lw=0.8)
         scale = magnification(results, states)
         cmap = plt.get_cmap("viridis")
         for k, state in enumerate(states):
@@ -238,8 +208,8 @@ def examples():
         ax.set_aspect("equal")
         ax.set_xticks([])
         ax.set_yticks([])
-        ax.set_title(name + (f" (displacements × {scale:g})" if scale != 1.0 else ""), fontsize=8)
-        rows.append((name, results.get("title", ""), summary, results.get("notes", []), save(fig, f"example-{name}")))
+        ax.set_title(name + (f" (displacements × {scale:g})" if scale != 1.0 else "") + chords_only(results), fontsize=8)
+        rows.append((name, results.get("title", ""), summary, results.get("notes", []), save(fig, out, f"example-{name}")))
     return rows
 
 
@@ -251,11 +221,11 @@ def embed(png):
     return f'<img src="data:image/png;base64,{data}" style="max-width:100%">'
 
 
-def main():
-    fig3_png, fig3_rows = fig3()
-    fig2_png = fig2()
-    fig7_png, fig7_rows = fig7()
-    fig6_png = fig6()
+def main(out):
+    fig3_png, fig3_rows = fig3(out)
+    fig2_png = fig2(out)
+    fig7_png, fig7_rows = fig7(out)
+    fig6_png = fig6(out)
     e = html.escape
     parts = ["""<!doctype html><html><head><meta charset="utf-8"><title>tsmframe: the paper's studies</title>
 <style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4}
@@ -317,7 +287,7 @@ With the paper's force law kept to the node, Euler–Bernoulli does fail near th
 positions (listed above) while Timoshenko passes everywhere — the paper's ordering — but the largest
 α it reaches before that (≈ 99 %) is higher than the paper's 87–92 %, since our step halving gets
 closer to the edge.</p>""")
-    example_rows = examples()
+    example_rows = examples(out)
     if example_rows:
         parts.append("""<h2>The examples</h2>
 <p>Every model in <code>examples/</code>, run by <code>scripts/run.sh</code> into <code>out/&lt;name&gt;/</code>
@@ -329,11 +299,11 @@ the undeformed (grey) to the last step (yellow), how the run ended, and its note
                          f'<div style="flex:0 0 360px">{embed(png)}</div><div><b>{e(name)}</b>: {e(title)}<br>'
                          f'<em>{e(summary)}</em>{"<ul>" + note_list + "</ul>" if notes else ""}</div></div>')
     parts.append("</body></html>")
-    os.makedirs(OUT, exist_ok=True)
-    with open(os.path.join(OUT, "report.html"), "w") as f:
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "report.html"), "w") as f:
         f.write("\n".join(parts))
-    print(f"report: {os.path.join(OUT, 'report.html')}; plots: {PLOTS}/")
+    print(f"report: {os.path.join(out, 'report.html')}; plots: {os.path.join(out, 'plots')}/")
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1] if len(sys.argv) > 1 else "out")

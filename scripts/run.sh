@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The main job: set up, run every model in examples/ into out/<name>/, the paper's two studies
+# The main job: set up, run every model in examples/ into out/<name>/ (results.json with the
+# elements' curves, which the report draws), the paper's two studies
 # (studies/) into out/studies/, then the plots and out/report.html.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,7 +12,7 @@ status=0
 for model in examples/*.json; do
   name=$(basename "$model" .json)
   set +e
-  build/tsmframe run "$model" --out "out/$name" 2>"out/$name.log"
+  build/tsmframe run "$model" --out "out/$name" --curves 2>"out/$name.log"  # curves: the report draws them
   code=$?
   set -e
   printf '%-28s exit %d  %s\n' "$name" "$code" "$(tail -n 1 "out/$name.log")" | tee -a out/summary.txt

@@ -22,7 +22,8 @@ import os as _os
 
 import numpy as _np
 
-from ._core import __version__, run_json as _run_json, study_json as _study_json
+from ._core import __version__, element_curves as _element_curves, read_model as _read_model, run_json as _run_json
+from ._core import study_json as _study_json
 
 __all__ = ["Model", "Result", "run", "load", "__version__"]
 
@@ -201,10 +202,20 @@ class Result:
     contact_also (C, c)        at a vertex (a point resting on a beam node, both elements in contact):
                                the other element's id, else 0
     results_json, steps_csv    exactly what `tsmframe run` writes
+    curves(k)                  (m, segments + 1, 2): every element's deflected curve at state k (hinges and
+                               end springs included), computed by the solver's own shape functions
     """
 
-    def __init__(self, data):
+    def __init__(self, data, model_text=None):
+        data = dict(data)
+        self._model = data.pop("model", None)  # the meshed model, for curves()
+        self._model_text = model_text          # … and what it is read from again after pickling
         self.__dict__.update(data)
+
+    def __getstate__(self):
+        state = dict(self.__dict__)
+        state["_model"] = None  # the extension's model does not pickle; curves() reads its text again
+        return state
 
     @property
     def ok(self):
@@ -237,6 +248,15 @@ class Result:
     def json(self):
         return _json.loads(self.results_json)
 
+    def curves(self, step=-1, segments=8):
+        """Every element's deflected curve at a state (index into state_steps; -1 = last): an array
+        (m, segments + 1, 2) of current (x, y) at s = k / segments along each element's chord —
+        the element's own shape under its end rotations, a hinged end free of moment, an end
+        spring in series (the same curves as the ParaView files and results.json's "curves")."""
+        if self._model is None:
+            self._model = _read_model(self._model_text)
+        return _element_curves(self._model, self.displacements[step], self.element_forces[step], segments)
+
     # plots (matplotlib, imported on use)
     def plot_shape(self, steps=(-1,), ax=None, **kw):
         from .plots import plot_shape
@@ -267,7 +287,7 @@ def run(model, threads=0):
         path = _os.fspath(model)
         text = _read_text(path)
         try:
-            return Result(_run_json(text, threads))
+            return Result(_run_json(text, threads), text)
         except ValueError as e:
             raise ValueError(f"{path}: {e}") from None
-    return Result(_run_json(text, threads))
+    return Result(_run_json(text, threads), text)

@@ -1,6 +1,4 @@
 """Plots of a tsmframe Result with matplotlib (Debian's python3-matplotlib)."""
-import math
-
 import matplotlib.pyplot as plt
 import numpy as np
 
@@ -11,37 +9,9 @@ def _axes(ax):
     return ax
 
 
-def _wrap(a):
-    return math.atan2(math.sin(a), math.cos(a))
-
-
-def element_curves(result, k, points=12):
-    """(x, y) arrays of every element's true deflected curve at state k (the element's own
-    Hermite shape under its end rotations relative to the chord)."""
-    index = {int(i): n for n, i in enumerate(result.node_ids)}
-    D = result.displacements[k]
-    curves = []
-    for a, b in result.element_nodes:
-        ia, ib = index[int(a)], index[int(b)]
-        Xi, Xj = result.node_xy[ia], result.node_xy[ib]
-        xi, xj = Xi + D[ia, :2], Xj + D[ib, :2]
-        phi0 = math.atan2(Xj[1] - Xi[1], Xj[0] - Xi[0])
-        phi = math.atan2(xj[1] - xi[1], xj[0] - xi[0])
-        guess, raw = 0.5 * (D[ia, 2] + D[ib, 2]), phi - phi0
-        beta = raw + 2 * math.pi * round((guess - raw) / (2 * math.pi))
-        ti, tj = D[ia, 2] - beta, D[ib, 2] - beta
-        s = np.linspace(0.0, 1.0, points + 1)
-        l0 = float(np.hypot(*(Xj - Xi)))
-        w = l0 * (ti * s * (1 - s) ** 2 - tj * s * s * (1 - s))
-        n = np.array([-math.sin(phi), math.cos(phi)])
-        x = xi[0] + s * (xj[0] - xi[0]) + w * n[0]
-        y = xi[1] + s * (xj[1] - xi[1]) + w * n[1]
-        curves.append((x, y))
-    return curves
-
-
 def plot_shape(result, steps=(-1,), ax=None, undeformed=True, **kw):
-    """The deformed shape at the given states (indices into result.state_steps), curved elements."""
+    """The deformed shape at the given states (indices into result.state_steps): every element
+    drawn as its deflected curve, as Result.curves gives it."""
     ax = _axes(ax)
     if undeformed:
         for a, b in result.element_nodes:
@@ -51,8 +21,8 @@ def plot_shape(result, steps=(-1,), ax=None, undeformed=True, **kw):
     for n, k in enumerate(steps):
         colour = kw.pop("color", None) or cmap(n / max(1, len(steps) - 1))
         label = f"step {result.state_steps[k]}"
-        for c, (x, y) in enumerate(element_curves(result, k)):
-            ax.plot(x, y, color=colour, label=label if c == 0 else None, **kw)
+        for c, points in enumerate(result.curves(k, segments=12)):
+            ax.plot(points[:, 0], points[:, 1], color=colour, label=label if c == 0 else None, **kw)
     ax.set_aspect("equal")
     ax.set_xlabel("x")
     ax.set_ylabel("y")

@@ -240,6 +240,67 @@ def test_model_built_in_code_rolls_into_a_circle():
     assert math.hypot(L + ux, uy) < 1e-6 * L  # the tip is back at the root
 
 
+def off_chord(curve):
+    """The largest distance of a curve's points (k, 2) from the line through its ends, and its chord's length."""
+    chord = curve[-1] - curve[0]
+    length = math.hypot(*chord)
+    offset = curve - curve[0]
+    return float(np.abs(chord[0] * offset[:, 1] - chord[1] * offset[:, 0]).max()) / length, length
+
+
+def test_a_pin_jointed_truss_is_drawn_with_straight_bars(tmp_path):
+    # examples/warren-truss.json: every bar is hinged at both ends and carries no moment, so its
+    # curve lies on its chord (within 1e-12 of its length) — the solver's own curve (Result.curves),
+    # the command line's results.json "curves" to the bit, and what plot_shape draws.
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    path = os.path.join(SOURCE, "examples", "warren-truss.json")
+    r = tf.run(path)
+    cli = subprocess.run([CLI, "run", path, "--out", str(tmp_path), "--curves", "-q"], capture_output=True, text=True)
+    assert cli.returncode == 0, cli.stderr
+    states = [s for s in json.loads((tmp_path / "results.json").read_text())["steps"] if "displacements" in s]
+    assert len(states) == len(r.state_steps)
+    for k, state in enumerate(states):
+        curves = r.curves(k)
+        assert curves.shape == (len(r.element_ids), 9, 2)
+        for element, curve in zip(r.element_ids, curves):
+            assert list(curve.ravel()) == state["curves"][str(element)]
+            off, length = off_chord(curve)
+            assert off < 1e-12 * length, f"element {element} bowed by {off}"
+    fig, ax = plt.subplots()
+    r.plot_shape(ax=ax, undeformed=False)
+    drawn = r.curves(-1, segments=12)
+    assert len(ax.lines) == len(drawn)
+    for line, curve in zip(ax.lines, drawn):
+        assert np.array_equal(np.column_stack(line.get_data()), curve)
+    plt.close(fig)
+
+
+def test_a_pickled_result_still_draws_its_curves():
+    import pickle
+    r = tf.run(os.path.join(SOURCE, "examples", "semi-rigid-portal.json"))
+    again = pickle.loads(pickle.dumps(r))
+    assert np.array_equal(again.curves(), r.curves()) and np.array_equal(again.displacements, r.displacements)
+
+
+def test_a_bent_elements_curve_bends_by_its_closed_form():
+    # A cantilever of 4 Euler–Bernoulli elements under a tip moment M bends into a circle; each
+    # element turns its ends by ±M l0/2EI against its chord, so its curve's mid-point lies
+    # M l0²/(8EI) off the chord, on its right (1e-6: the solver's tolerance).
+    L, EI, M = 4.0, 2.05e11 * 1e-4, 2.05e11 * 1e-4 * 0.5 / 4.0  # the tip turns half a radian
+    m = tf.Model("bent").material("steel", E=2.05e11).section("s", A=1e-2, I=1e-4)
+    m.node(1, 0, 0).node(2, L, 0).member(1, 2, "steel", "s", divisions=4).support(1, "fixed").load(2, mz=M)
+    r = tf.run(m)
+    assert r.ok, r.message
+    l0 = L / 4
+    for curve in r.curves():
+        chord = curve[-1] - curve[0]
+        middle = curve[4] - curve[0]
+        signed = (chord[0] * middle[1] - chord[1] * middle[0]) / math.hypot(*chord)
+        assert signed == pytest.approx(-M * l0 * l0 / (8 * EI), rel=1e-6)
+
+
 def test_plots_are_written_as_png(tmp_path):
     import matplotlib
     matplotlib.use("Agg")

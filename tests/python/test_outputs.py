@@ -2,7 +2,8 @@
 """ParaView and plot output of `tsmframe run` (issue 4): the .pvd/.vtu files parse as XML (and with
 Debian's python3-vtk9 when it is installed), carry the documented arrays, the curved element points
 of the one-step circle lie on the exact circle, contact forces appear at the contact point; --plot
-writes non-empty PNG files; the study report is written.
+writes non-empty PNG files; the study report is written. The elements' curves (--curves) are the
+VTK files' and the plots', a pin-jointed truss's bars are drawn straight and a bent element bent.
 
     /usr/bin/python3 tests/python/test_outputs.py TSMFRAME_BINARY SOURCE_DIR
 """
@@ -139,6 +140,125 @@ class Vtk(unittest.TestCase):
         self.assertLess(abs(force[0]), 1e-9 * abs(force[1]))  # symmetric
         self.assertAlmostEqual(math.hypot(*force[:2]), contact["force"], delta=1e-9 * contact["force"])
         self.assertEqual(sum(1 for y in cell_data["Y"][:20] if y[0] != 0.0), 2)  # both elements carry Y
+
+
+def off_chord(points):
+    """The largest distance of a polyline's points from the line through its first and last, and
+    that chord's length."""
+    (x0, y0), (x1, y1) = points[0][:2], points[-1][:2]
+    length = math.hypot(x1 - x0, y1 - y0)
+    return max(abs((x1 - x0) * (p[1] - y0) - (y1 - y0) * (p[0] - x0)) / length for p in points), length
+
+
+def curve_points(flat):
+    """results.json's [x0, y0, x1, y1, …] as [(x, y)]."""
+    return [(flat[k], flat[k + 1]) for k in range(0, len(flat), 2)]
+
+
+class Curves(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def test_a_pin_jointed_truss_is_drawn_with_straight_bars(self):
+        # examples/warren-truss.json: every bar hinged at both ends carries no moment, so it stays
+        # straight — in results.json's curves, in the ParaView files, and in what the plots draw
+        # (scripts/shapes.py, which report.py and plot_run.py share), each point on its bar's chord
+        # within 1e-12 of the bar's length. The S-shaped bars the node rotations would give (the
+        # hinge nodes' rotations are held at 0 while the chords turn) are far beyond that.
+        out = os.path.join(self.dir.name, "truss")
+        r = run("run", os.path.join(SOURCE, "examples", "warren-truss.json"), "--out", out, "--vtk", "--plot", "-q")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(out, "results.json")) as f:
+            results = json.load(f)
+        self.assertTrue(all(e.get("release") == "both" for e in results["elements"]))
+        states = [s for s in results["steps"] if "displacements" in s]
+        files = [d.get("file") for d in ET.parse(os.path.join(out, "vtk", "results.pvd")).getroot().iter("DataSet")]
+        self.assertEqual(len(files), len(states))
+        sys.path.insert(0, os.path.join(SOURCE, "scripts"))
+        import shapes
+        nodes = {n["id"]: (n["x"], n["y"]) for n in results["nodes"]}
+        for state, file in zip(states, files):
+            _, points, _, _ = read_vtu(os.path.join(out, "vtk", file))
+            for k, e in enumerate(results["elements"]):
+                curve = curve_points(state["curves"][str(e["id"])])
+                self.assertEqual(len(curve), 9)
+                self.assertEqual([list(p) for p in curve], [p[:2] for p in points[9 * k:9 * k + 9]])  # one implementation
+                off, length = off_chord(curve)
+                self.assertLess(off, 1e-12 * length, f"element {e['id']} at step {state['step']}")
+            for xs, ys in shapes.element_lines(results, state, scale=1000.0):
+                off, length = off_chord(list(zip(xs, ys)))
+                self.assertLess(off, 1e-12 * length)
+            # What the old drawing would have bowed by: θ_i = θ_j = −β, w = −β l ξ(1−ξ)(1−2ξ), 0.096 β l at most.
+            turned = 0.0
+            for e in results["elements"]:
+                (Xi, Yi), (Xj, Yj) = (nodes[n] for n in e["nodes"])
+                ui, uj = (state["displacements"][str(n)] for n in e["nodes"])
+                beta = math.atan2(Yj + uj[1] - Yi - ui[1], Xj + uj[0] - Xi - ui[0]) - math.atan2(Yj - Yi, Xj - Xi)
+                turned = max(turned, abs(beta))
+            self.assertGreater(0.096 * turned, 1e3 * 1e-12)
+        self.assertGreater(os.path.getsize(os.path.join(out, "plots", "deformed.png")), 1000)
+
+    def test_a_bent_element_is_drawn_bent_by_its_closed_form(self):
+        # The one-step circle (examples/cantilever-circle.json): every element is bent by the tip
+        # moment alone, θ_i = −θ_j = M l0 / 2EI against its chord (Timoshenko feels no shear in pure
+        # bending), so its curve's mid-point lies M l0²/(8EI) off the chord, to the right of it
+        # (1e-6: the solver's tolerance). The exact circle's sagitta differs by 3e-4 of that.
+        out = os.path.join(self.dir.name, "circle")
+        r = run("run", os.path.join(SOURCE, "examples", "cantilever-circle.json"), "--out", out, "--curves", "-q")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(SOURCE, "examples", "cantilever-circle.json")) as f:
+            model = json.load(f)
+        EI = model["materials"]["steel"]["E"] * model["sections"]["square-100mm"]["I"]
+        M, l0 = model["loads"][0]["mz"], 10.0 / 52
+        expected = M * l0 * l0 / (8 * EI)
+        with open(os.path.join(out, "results.json")) as f:
+            curves = json.load(f)["steps"][-1]["curves"]
+        self.assertEqual(len(curves), 52)
+        for flat in curves.values():
+            (x0, y0), (xm, ym), (x1, y1) = curve_points(flat)[0], curve_points(flat)[4], curve_points(flat)[8]
+            length = math.hypot(x1 - x0, y1 - y0)
+            signed = ((x1 - x0) * (ym - y0) - (y1 - y0) * (xm - x0)) / length  # along n, the chord turned +90°
+            self.assertAlmostEqual(signed, -expected, delta=1e-6 * expected)
+        R = 10.0 / (2 * math.pi)
+        self.assertAlmostEqual(R * (1 - math.cos(math.pi / 52)), expected, delta=4e-4 * expected)
+
+    def test_curves_are_opt_in_and_change_nothing_else(self):
+        # Without --curves results.json is as before; with it, each step with state gains "curves"
+        # (an array of 2 × 9 numbers per element id) and nothing else changes.
+        path = os.path.join(SOURCE, "examples", "semi-rigid-portal.json")
+        plain, curved = os.path.join(self.dir.name, "plain"), os.path.join(self.dir.name, "curved")
+        self.assertEqual(run("run", path, "--out", plain, "-q").returncode, 0)
+        self.assertEqual(run("run", path, "--out", curved, "--curves", "-q").returncode, 0)
+        with open(os.path.join(plain, "results.json")) as f:
+            without = json.load(f)
+        with open(os.path.join(curved, "results.json")) as f:
+            with_curves = json.load(f)
+        self.assertFalse(any("curves" in s for s in without["steps"]))
+        states = [s for s in with_curves["steps"] if "displacements" in s]
+        self.assertTrue(states)
+        for s in states:
+            self.assertEqual(sorted(s["curves"], key=int), [str(e["id"]) for e in with_curves["elements"]])
+            self.assertTrue(all(len(v) == 18 for v in s["curves"].values()))
+            del s["curves"]
+        self.assertEqual(without, with_curves)
+        with open(os.path.join(plain, "steps.csv")) as f, open(os.path.join(curved, "steps.csv")) as g:
+            self.assertEqual(f.read(), g.read())
+
+    def test_without_curves_the_plots_draw_chords_and_say_so(self):
+        sys.path.insert(0, os.path.join(SOURCE, "scripts"))
+        import shapes
+        results = {"nodes": [{"id": 1, "x": 0.0, "y": 0.0}, {"id": 2, "x": 2.0, "y": 0.0}],
+                   "elements": [{"id": 1, "nodes": [1, 2]}],
+                   "steps": [{"displacements": {"1": [0, 0, 0], "2": [0.0, -0.1, -0.2]}}]}
+        self.assertFalse(shapes.has_curves(results))
+        self.assertEqual(shapes.element_lines(results, results["steps"][0]), [([0.0, 2.0], [0.0, -0.1])])
+        results["steps"][0]["curves"] = {"1": [0.0, 0.0, 1.0, -0.2, 2.0, -0.1]}
+        self.assertTrue(shapes.has_curves(results))
+        # × 10 moves each curve point ten times as far from where it was drawn
+        self.assertEqual(shapes.element_lines(results, results["steps"][0], scale=10.0), [([0.0, 1.0, 2.0], [0.0, -2.0, -1.0])])
 
 
 def results_y(results, node_id):

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tsmframe/element/deflected_shape.hpp"
+
 namespace tsm::contact {
 
 element::Matrix3 contact_bending_stiffness(const element::SectionStiffness& section, double l0, double alpha) {
@@ -24,9 +26,10 @@ element::Matrix3 contact_bending_stiffness(const element::SectionStiffness& sect
 }
 
 std::array<double, 2> point_load_moments(const element::SectionStiffness& section, double l0, double alpha) {
-  const double psi = section.shear_flexibility, span = l0 * l0 + 12.0 * psi;
-  const double s = std::clamp(alpha, 0.0, 1.0), a = s * l0, b = (1.0 - s) * l0, p = a * b;
-  return {-(b * l0 + 6.0 * psi) * p / (l0 * span), (a * l0 + 6.0 * psi) * p / (l0 * span)};
+  // Maxwell–Betti: the fixed-end moment of a unit point load at s is minus the deflection at s
+  // per unit end rotation, h = −N(s) (element/deflected_shape).
+  const element::RotationShape N = element::rotation_shape(section, l0, std::clamp(alpha, 0.0, 1.0));
+  return {-N.i, -N.j};
 }
 
 PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0, double alpha, double edge,
@@ -34,13 +37,13 @@ PointLoadLaw point_load_law(const element::SectionStiffness& section, double l0,
   const double psi = section.shear_flexibility, span = l0 * l0 + 12.0 * psi;
   PointLoadLaw law;
   {
-    const double s = std::clamp(alpha, 0.0, 1.0), a = s * l0, b = (1.0 - s) * l0, p = a * b;
     const std::array<double, 2> h = point_load_moments(section, l0, alpha);
     law.h_i = h[0];
     law.h_j = h[1];
     if (alpha >= 0.0 && alpha <= 1.0) {
-      law.dh_i = -l0 * ((b * l0 + 6.0 * psi) * (1.0 - 2.0 * s) - p) / span;
-      law.dh_j = l0 * (p + (a * l0 + 6.0 * psi) * (1.0 - 2.0 * s)) / span;
+      const element::RotationShape dN = element::rotation_shape_slope(section, l0, alpha);
+      law.dh_i = -dN.i;
+      law.dh_j = -dN.j;
     }
   }
   const double s = std::clamp(alpha, 0.0, 1.0), p = s * (1.0 - s) * l0 * l0;

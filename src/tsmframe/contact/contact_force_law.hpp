@@ -9,7 +9,8 @@
 // (the point's compliance with both ends held). It is the same matrix as Eq. 6/7 — an exact
 // rearrangement, unit-tested against it — but it shows where the ill-conditioning near an
 // element end lives: only in c, which vanishes like b³ (Euler–Bernoulli) or b (Timoshenko).
-// h and the beam's free shape −h·θ are smooth and vanish at both ends.
+// h and the beam's free shape −h·θ are smooth and vanish at both ends; h = −N, the element's own
+// shape functions of its end rotations (element/deflected_shape), by Maxwell–Betti.
 
 #include <array>
 

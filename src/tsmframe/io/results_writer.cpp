@@ -1,8 +1,10 @@
 #include "tsmframe/io/results_writer.hpp"
 
+#include <array>
 #include <filesystem>
 
 #include "tsmframe/io/atomic_file.hpp"
+#include "tsmframe/io/element_curves.hpp"
 #include "tsmframe/io/json_writer.hpp"
 #include "tsmframe/model/hinges.hpp"
 #include "tsmframe/version.hpp"
@@ -21,7 +23,21 @@ void write_triples(JsonWriter& w, const Model& model, const Eigen::VectorXd& val
   w.end_object();
 }
 
-void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& step, const std::vector<bool>& supported) {
+/// "curves": element id → the element's deflected curve, [x0, y0, …] (README "The output files").
+void write_curves(JsonWriter& w, const Model& model, const solver::StepRecord& step) {
+  std::array<Eigen::Vector2d, curve_segments + 1> points;
+  w.key("curves").begin_object();
+  for (size_t e = 0; e < model.elements.size(); ++e) {
+    element_curve(model, model.elements[e], step.displacements, step.element_forces.segment<3>(3 * e), points);
+    w.newline().key(std::to_string(model.elements[e].id)).begin_array();
+    for (const Eigen::Vector2d& p : points) w.value(p.x()).value(p.y());
+    w.end_array();
+  }
+  w.end_object();
+}
+
+void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& step, const std::vector<bool>& supported,
+                const ResultsOptions& options) {
   w.newline().begin_object();
   w.key("step").value(step.step);
   w.key("load_factor").value(step.load_factor);
@@ -55,6 +71,7 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
     w.end_object();
     w.key("reactions");
     write_triples(w, model, step.reactions, &supported);
+    if (options.curves) write_curves(w, model, step);
   }
   if (step.converged) {
     // Every active contact, on every converged step (also those without full state).
@@ -77,7 +94,8 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
 
 }  // namespace
 
-void write_results_json(std::ostream& out, const Model& model, const solver::RunResult& result) {
+void write_results_json(std::ostream& out, const Model& model, const solver::RunResult& result,
+                        const ResultsOptions& options) {
   // Nodes with a support or a prescribed dof; a hinge's rotation, fixed by the reader, is neither.
   std::vector<bool> supported(model.node_count(), false);
   const std::vector<char> hinge = hinge_nodes(model);
@@ -120,7 +138,7 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
   }
   w.end_array();
   w.newline().key("steps").begin_array();
-  for (const solver::StepRecord& step : result.steps) write_step(w, model, step, supported);
+  for (const solver::StepRecord& step : result.steps) write_step(w, model, step, supported, options);
   w.end_array();
   // Converged steps where λ peaks or dips along the path (limit points, with arc-length control).
   w.newline().key("limit_points").begin_array();
@@ -177,13 +195,14 @@ void write_steps_csv(std::ostream& out, const Model& model, const solver::RunRes
   }
 }
 
-void write_results(const std::string& directory, const Model& model, const solver::RunResult& result) {
+void write_results(const std::string& directory, const Model& model, const solver::RunResult& result,
+                   const ResultsOptions& options) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error) throw std::runtime_error(directory + ": cannot create the output directory: " + error.message());
   const std::filesystem::path dir(directory);
   write_files_atomically({
-      {(dir / "results.json").string(), [&](std::ostream& out) { write_results_json(out, model, result); }},
+      {(dir / "results.json").string(), [&](std::ostream& out) { write_results_json(out, model, result, options); }},
       {(dir / "steps.csv").string(), [&](std::ostream& out) { write_steps_csv(out, model, result); }},
   });
 }

@@ -9,11 +9,20 @@
 
 namespace tsm::io {
 
-void write_results_json(std::ostream& out, const Model& model, const solver::RunResult& result);
+/// What results.json holds beside what it always does.
+struct ResultsOptions {
+  /// Each step with state gets "curves": per element id its deflected curve's curve_segments + 1
+  /// points (io/element_curves) as [x0, y0, x1, y1, …] in current coordinates (`--curves`).
+  bool curves = false;
+};
+
+void write_results_json(std::ostream& out, const Model& model, const solver::RunResult& result,
+                        const ResultsOptions& options = {});
 void write_steps_csv(std::ostream& out, const Model& model, const solver::RunResult& result);
 
 /// Writes DIR/results.json and DIR/steps.csv atomically, creating DIR if needed.
 /// Throws std::runtime_error with the path on failure.
-void write_results(const std::string& directory, const Model& model, const solver::RunResult& result);
+void write_results(const std::string& directory, const Model& model, const solver::RunResult& result,
+                   const ResultsOptions& options = {});
 
 }  // namespace tsm::io

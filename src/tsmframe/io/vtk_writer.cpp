@@ -1,11 +1,9 @@
 #include "tsmframe/io/vtk_writer.hpp"
 
 #include <cmath>
-#include <numbers>
 
-#include "tsmframe/contact/contact_force_law.hpp"
-#include "tsmframe/element/chord.hpp"
 #include "tsmframe/io/atomic_file.hpp"
+#include "tsmframe/io/element_curves.hpp"
 #include "tsmframe/io/json_writer.hpp"
 
 namespace tsm::io {
@@ -17,27 +15,18 @@ struct Curve {
   std::vector<double> rotation;
 };
 
-Curve element_curve(const Model& model, const Element& e, const Eigen::VectorXd& D) {
-  const Eigen::Vector2d Xi = model.nodes[e.start].position, Xj = model.nodes[e.end].position;
-  const Eigen::Vector3d di = D.segment<3>(dofs_per_node * e.start), dj = D.segment<3>(dofs_per_node * e.end);
-  const Eigen::Vector2d xi = Xi + di.head<2>(), xj = Xj + dj.head<2>();
-  const double l0 = (Xj - Xi).norm(), phi0 = std::atan2(Xj.y() - Xi.y(), Xj.x() - Xi.x());
-  const double phi = std::atan2(xj.y() - xi.y(), xj.x() - xi.x());
-  // β = φ − φ0 + 2πk, the k that puts the chord closest to the end rotations (θ are small).
-  const double guess = 0.5 * (di[2] + dj[2]), raw = phi - phi0;
-  const double beta = raw + 2.0 * std::numbers::pi * std::round((guess - raw) / (2.0 * std::numbers::pi));
-  const double theta_i = di[2] - beta, theta_j = dj[2] - beta;
-  const Eigen::Vector2d n(-std::sin(phi), std::cos(phi));
+Curve drawn_curve(const Model& model, size_t element, const solver::StepRecord& step) {
+  const Element& e = model.elements[element];
+  const Eigen::VectorXd& D = step.displacements;
   Curve c;
-  for (int k = 0; k <= curve_points; ++k) {
-    const double s = static_cast<double>(k) / curve_points;
-    // The element's own deflection under its end rotations (Y = 0 in the contact law).
-    const contact::PointLoadLaw law = contact::point_load_law(e.section, l0, s, 0.25);
-    const double w = -(law.h_i * theta_i + law.h_j * theta_j);
-    const Eigen::Vector2d x = xi + s * (xj - xi) + w * n;
-    c.points.push_back(x);
-    c.displacement.push_back(x - (Xi + s * (Xj - Xi)));
-    c.rotation.push_back((1.0 - s) * di[2] + s * dj[2]);
+  c.points.resize(curve_segments + 1);
+  element_curve(model, e, D, step.element_forces.segment<3>(3 * element), c.points);
+  const Eigen::Vector2d Xi = model.nodes[e.start].position, Xj = model.nodes[e.end].position;
+  const double rotation_i = D[dofs_per_node * e.start + rz], rotation_j = D[dofs_per_node * e.end + rz];
+  for (int k = 0; k <= curve_segments; ++k) {
+    const double s = static_cast<double>(k) / curve_segments;
+    c.displacement.push_back(c.points[k] - (Xi + s * (Xj - Xi)));
+    c.rotation.push_back((1.0 - s) * rotation_i + s * rotation_j);
   }
   return c;
 }
@@ -48,7 +37,7 @@ void write_vtu(const std::string& path, const Model& model, const solver::StepRe
   const Eigen::VectorXd& D = step.displacements;
   std::vector<Curve> curves;
   curves.reserve(model.elements.size());
-  for (const Element& e : model.elements) curves.push_back(element_curve(model, e, D));
+  for (size_t e = 0; e < model.elements.size(); ++e) curves.push_back(drawn_curve(model, e, step));
   struct ContactPoint {
     int node;
     Eigen::Vector2d position, force;
@@ -76,7 +65,7 @@ void write_vtu(const std::string& path, const Model& model, const solver::StepRe
     const int node = model.contacts[k].node;
     contacts.push_back({node, model.nodes[node].position + D.segment<2>(dofs_per_node * node), force, c.Y});
   }
-  const size_t per = curve_points + 1, n_points = curves.size() * per + contacts.size();
+  const size_t per = curve_segments + 1, n_points = curves.size() * per + contacts.size();
   const size_t n_cells = curves.size() + contacts.size();
   write_files_atomically({{path, [&](std::ostream& out) {
     auto num = [](double x) { return format_number(std::isfinite(x) ? x : 0.0); };

@@ -2,9 +2,9 @@
 // ParaView output: one .vtu (VTK XML unstructured grid, ASCII) per converged step and a .pvd
 // series that lists them with the load factor as time.
 //
-// Each element is drawn as its true deflected curve, `curve_points` segments long, from the
-// element's own shape functions (the deflection under its end rotations, relative to the
-// current chord — Hermite cubic for Euler–Bernoulli, with the shear term for Timoshenko).
+// Each element is drawn as its deflected curve in curve_segments segments (io/element_curves: the
+// element's own shape under its end rotations relative to the current chord, hinges and end
+// springs condensed — Hermite cubic for Euler–Bernoulli, with the shear term for Timoshenko).
 // Point data: "displacement" (of the material point: current − drawn position, z = 0) and
 // "rotation" (Θ interpolated along the element; exact at the nodes). Cell data per element:
 // "N", "M_i", "M_j", "Y" (0 without contact), "element_id". Contact points are extra vertex
@@ -17,8 +17,6 @@
 #include "tsmframe/solver/step_record.hpp"
 
 namespace tsm::io {
-
-inline constexpr int curve_points = 8;
 
 /// Writes the .vtu of one converged step that carries state (atomically).
 void write_vtu(const std::string& path, const Model& model, const solver::StepRecord& step);
