@@ -18,25 +18,6 @@ std::array<int, 6> element_dofs(int start, int end) {
   return {i, i + 1, i + 2, j, j + 1, j + 2};
 }
 
-/// A contact element's dofs: the beam element's two nodes, then the contact node.
-std::array<int, 9> contact_dofs(const Element& e, int node) {
-  std::array<int, 9> g;
-  for (int d = 0; d < dofs_per_node; ++d) {
-    g[d] = dofs_per_node * e.start + d;
-    g[3 + d] = dofs_per_node * e.end + d;
-    g[6 + d] = dofs_per_node * node + d;
-  }
-  return g;
-}
-
-/// The displacements of the given dofs.
-template <size_t N>
-Eigen::Matrix<double, N, 1> gather(const Eigen::VectorXd& displacements, const std::array<int, N>& dofs) {
-  Eigen::Matrix<double, N, 1> d;
-  for (size_t a = 0; a < N; ++a) d[a] = displacements[dofs[a]];
-  return d;
-}
-
 }  // namespace
 
 GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs)
@@ -408,7 +389,8 @@ void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const
     replaced_[a.element] = 0;
   }
   if (with_tangent) mask_constrained_dofs();
-  last_tangent_for_ = with_tangent ? &out : nullptr;
+  out.id = ++evaluations_;
+  tangent_of_ = with_tangent ? out.id : 0;
   last_contacts_ = contacts;
 }
 
@@ -417,7 +399,7 @@ void GlobalSystem::evaluate_contact_change(const Eigen::VectorXd& displacements,
                                            const std::vector<contact::ActiveContact>& contacts) {
   const int version = pattern_version_;
   ensure_contact_pattern(contacts);
-  if (last_tangent_for_ != &out || pattern_version_ != version) {
+  if (tangent_of_ == 0 || out.id != tangent_of_ || pattern_version_ != version) {
     evaluate(displacements, previous_rotations, true, out, contacts);
     return;
   }
@@ -513,25 +495,12 @@ Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacement
 std::vector<ContactDirection> GlobalSystem::contact_directions(const Eigen::VectorXd& displacements,
                                                               const std::vector<double>& rotations,
                                                               const std::vector<contact::ActiveContact>& contacts) const {
-  std::vector<ContactDirection> directions;
-  directions.reserve(contacts.size());
-  for (const contact::ActiveContact& a : contacts) {
-    const std::array<int, 9> g = contact_dofs(model_.elements[a.element], a.node);
-    const contact::ContactResponse r = contact::contact_response(a.data, gather(displacements, g), rotations[a.element], false);
-    ContactDirection d;
-    for (int k = 0; k < 9; ++k) d.equation[k] = dofs_.equation(g[k]);
-    d.u = r.point_u;
-    d.stiffness = r.point_stiffness;
-    d.Y = r.forces[3];
-    directions.push_back(d);
-  }
-  return directions;
+  return assembly::contact_directions(model_, dofs_, displacements, rotations, contacts);
 }
 
 RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                                            const std::vector<contact::ActiveContact>& contacts) const {
   // Squares summed: element errors taken as independent. Asked for only when Newton stagnates.
-  constexpr double eps = std::numeric_limits<double>::epsilon();
   std::vector<char> replaced(model_.elements.size(), 0);
   for (const contact::ActiveContact& a : contacts) replaced[a.element] = 1;
   // Per chunk of the loop's order, on both threads; then summed chunk by chunk in that order,
@@ -552,45 +521,16 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
     }
     chunk_sum[chunk] = {force, moment};
   });
-  double force = 0.0, moment = 0.0;
+  std::array<double, 2> squared = {0.0, 0.0};
   for (const auto& [f, m] : chunk_sum) {
-    force += f;
-    moment += m;
+    squared[0] += f;
+    squared[1] += m;
   }
-  RoundingFloor floor;
-  for (const contact::ActiveContact& a : contacts) {
-    // The beam part as for the plain element, plus Y's: the error of δy_c − w (about ε times the
-    // coordinates involved) divided by the compliance.
-    const contact::Vector9 d = gather(displacements, contact_dofs(model_.elements[a.element], a.node));
-    const contact::ContactResponse r = contact::contact_response(a.data, d, rotations[a.element], false);
-    const element::BeamResponse plain = element::beam_response(a.data.initial, a.data.k0, d.head<6>(), rotations[a.element], false);
-    const element::RoundOffFloor f = element::round_off_floor(a.data.initial, a.data.k0, d.head<6>(), plain);
-    const contact::PointLoadLaw law = contact::point_load_law(a.data.section, a.data.initial.length, r.alpha, a.data.edge, a.data.min_compliance);
-    const double coordinates = d.head<2>().cwiseAbs().sum() + d.segment<2>(3).cwiseAbs().sum() +
-                               d.segment<2>(6).cwiseAbs().sum() + (a.data.contact_start - a.data.initial.start).norm() +
-                               a.data.initial.length;
-    const double y_floor = eps * coordinates / law.compliance + eps * std::abs(r.forces[3]);
-    const double m_floor = f.moment + std::max(std::abs(law.h_i), std::abs(law.h_j)) * y_floor;
-    force += 4.0 * f.force * f.force + 6.0 * y_floor * y_floor;
-    moment += 2.0 * m_floor * m_floor;
-    floor.contacts_force += 6.0 * y_floor * y_floor;
-    ++floor.contacts;
-    if (y_floor > floor.contact_force) {
-      floor.contact_node = a.node;
-      floor.contact_force = y_floor;
-      floor.compliance = law.compliance;
-      // At the floor: the contact's stiffness cap where that binds, else its edge near a beam node.
-      const double edge_floor = contact::point_load_law(a.data.section, a.data.initial.length, 0.0, a.data.edge).compliance;
-      const bool at_floor = law.compliance <= std::max(edge_floor, a.data.min_compliance) * (1.0 + 1e-12);
-      floor.at_cap = at_floor && a.data.min_compliance > edge_floor;
-      floor.at_edge = at_floor && !floor.at_cap;
-      floor.uncapped = a.data.min_compliance == 0.0;
-    }
-  }
-  floor.force = std::sqrt(force);
-  floor.moment = std::sqrt(moment);
-  floor.contacts_force = std::sqrt(floor.contacts_force);
-  return floor;
+  std::vector<ContactRounding> shares;
+  for (const contact::ActiveContact& a : contacts)
+    shares.push_back(contact_rounding(a, gather(displacements, contact_dofs(model_.elements[a.element], a.node)),
+                                      rotations[a.element]));
+  return assembly::rounding_floor(squared, contacts, shares);
 }
 
 void GlobalSystem::mask_constrained_dofs() {

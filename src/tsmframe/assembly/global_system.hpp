@@ -9,10 +9,13 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
+#include "tsmframe/assembly/contact_assembly.hpp"
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/assembly/follower_loads.hpp"
+#include "tsmframe/assembly/rounding_floor.hpp"
 #include "tsmframe/contact/contact_tracker.hpp"
 #include "tsmframe/element/beam_element.hpp"
 #include "tsmframe/linalg/block_matrix.hpp"
@@ -39,35 +42,9 @@ struct Evaluation {
   /// pressure) on the current geometry, at λ = 1. Empty when the model has no follower load
   /// (the reference load is then Model::reference_load, fixed).
   Eigen::VectorXd reference_load;
-};
-
-/// Estimated rounding error of the assembled internal forces, per kind (2-norm over dofs):
-/// the floor under any residual at a state.
-struct RoundingFloor {
-  double force = 0.0;
-  double moment = 0.0;
-  /// The active contact whose force Y rounds the most (its contact node; −1 where none is
-  /// active): ±`contact_force`, its compliance `compliance` at the point, `at_edge` where that is
-  /// the compliance floor near a beam node (the contact's `edge`), `at_cap` where it is the floor
-  /// its stiffness cap sets (max_stiffness_ratio).
-  int contact_node = -1;
-  double contact_force = 0.0;
-  double compliance = 0.0;
-  bool at_edge = false;
-  bool at_cap = false;
-  bool uncapped = false;  ///< its node is held by no element (a rigid pusher): no stiffness cap
-  /// All active contacts' share of `force` (the root of their squared terms) and how many.
-  double contacts_force = 0.0;
-  int contacts = 0;
-};
-
-/// An active contact's point load seen from the free equations (contact_directions): Y acts as
-/// Y · u on its three nodes, and its stiffness part is stiffness · u uᵀ.
-struct ContactDirection {
-  std::array<int, 9> equation{};  ///< free equation of each entry of u, −1 where constrained
-  Eigen::Matrix<double, 9, 1> u;
-  double stiffness = 0.0;  ///< 1/c
-  double Y = 0.0;
+  /// Which evaluation of its GlobalSystem filled it (they are numbered from 1): a contact change
+  /// needs the tangent to be still this one's (GlobalSystem::evaluate_contact_change).
+  std::uint64_t id = 0;
 };
 
 class GlobalSystem {
@@ -107,7 +84,7 @@ class GlobalSystem {
   /// The same storage, for the linear solver to factorise in place: after that it holds the
   /// factor, not K_ff, until the next evaluation with tangent.
   BlockMatrix& tangent_for_factorisation() {
-    last_tangent_for_ = nullptr;  // no longer the evaluation's tangent: a contact change re-evaluates all
+    tangent_of_ = 0;  // no longer an evaluation's tangent: a contact change re-evaluates all
     return tangent_;
   }
   /// Element forces (N, M_i, M_j) per element, stacked, at a state (chord rotations of that
@@ -236,7 +213,8 @@ class GlobalSystem {
   std::vector<std::pair<int, int>> masked_entries_;  ///< (entry, block column) touching a constrained dof
   int masked_version_ = -1;                          ///< pattern version masked_entries_ was listed for
   // What a contact change needs of the last evaluation (evaluate_contact_change).
-  const Evaluation* last_tangent_for_ = nullptr;  ///< the evaluation the tangent belongs to (nullptr: none)
+  std::uint64_t evaluations_ = 0;  ///< evaluations so far: each one's Evaluation::id
+  std::uint64_t tangent_of_ = 0;   ///< the id of the evaluation the tangent belongs to (0: none)
   std::vector<contact::ActiveContact> last_contacts_;  ///< the contacts it was evaluated with
   std::vector<int> chunk_rank_;              ///< per chunk, its place in the loop's order
   std::vector<int> node_element_start_;      ///< node k: node_elements_[start[k] .. start[k+1])
