@@ -183,7 +183,7 @@ TEST_F(Study, BadRecordsExitTwoWithThePath) {
       {R"([{"name": "x", "quantity": "load_factor", "of": "mean"}])", "record[0].of: expected \"last\", \"max\""},
       {R"([{"name": "status", "quantity": "load_factor"}])", "record[0].name: \"status\" names another column already"},
       {R"([{"name": "n", "quantity": "load_factor"}])", "record[0].name: \"n\" names another column already"},
-      {R"([{"name": "x", "quantity": "reaction", "node": "tip", "dof": "uy"}])", "record[0].node: expected a node id or coordinates"},
+      {R"([{"name": "x", "quantity": "reaction", "node": "tip", "dof": "uy"}])", "record[0].node: expected a node id or [x, y]"},
   };
   for (const Bad& b : cases) {
     json s = {{"model", cantilever()}, {"sweep", json::parse(R"([{"name": "n", "path": "/members/0/divisions", "values": [2]}])")}};

@@ -19,18 +19,26 @@
 // Paths are JSON pointers (RFC 6901) into the model.
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "tsmframe/io/json_input.hpp"
 #include "tsmframe/solver/status.hpp"
+#include "tsmframe/study/assignment.hpp"
 
 namespace tsm::study {
+
+/// The columns of study.csv and study.json besides case, the parameters, the records and message.
+inline constexpr const char* run_columns[] = {"status", "converged", "steps", "iterations", "last_iterations", "load_factor", "seconds"};
+inline constexpr const char* contact_columns[] = {"contact_first_element", "contact_max_alpha_first", "contact_last_element",
+                                                  "contact_elements_passed"};  ///< models with contacts
 
 struct Parameter {
   std::string name;
   std::vector<std::string> labels;               ///< one per value, as written in the rows
-  std::vector<std::vector<std::pair<std::string, nlohmann::json>>> assignments;  ///< per value: pointer → value
+  std::vector<std::vector<Assignment>> assignments;  ///< per value: what it sets, in order
 };
 
 /// A response quantity each case reports: at its last converged step, or the largest or
@@ -40,10 +48,10 @@ struct Record {
   enum class Of { last, max, min, max_abs };
   std::string name;
   Quantity quantity = Quantity::load_factor;
-  nlohmann::json node;  ///< the node reference as written (id or coordinates; resolved per case); null if none
+  std::optional<io::NodeReference> node;  ///< id or coordinates, resolved in each case's model; none for load_factor
   int dof = -1;         ///< 0 ux, 1 uy, 2 rz (displacement, reaction)
   Of of = Of::last;
-  std::string path;     ///< "record[k]", for messages
+  std::string path;     ///< `record[k]`, for messages
 };
 
 struct Study {
