@@ -119,6 +119,9 @@ double positive(double value, const std::string& path) {
 }
 
 long integer(const json& value, const std::string& path) {
+  // An unsigned number past the largest long (2⁶³ and up) would wrap to a negative one.
+  if (value.is_number_unsigned() && value.get<unsigned long>() > static_cast<unsigned long>(std::numeric_limits<long>::max()))
+    fail(path, "expected a whole number within ±" + std::to_string(std::numeric_limits<long>::max()) + ", found " + value.dump());
   if (value.is_number_integer()) return value.get<long>();
   if (value.is_number_float()) {
     const double x = value.get<double>();
@@ -128,8 +131,13 @@ long integer(const json& value, const std::string& path) {
 }
 
 long bounded_integer(const json& value, const std::string& path, long lo, long hi) {
+  const auto out_of_bounds = [&](const std::string& found) {
+    fail(path, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", got " + found);
+  };
+  if (value.is_number_unsigned() && value.get<unsigned long>() > static_cast<unsigned long>(std::numeric_limits<long>::max()))
+    out_of_bounds(value.dump());
   const long n = integer(value, path);
-  if (n < lo || n > hi) fail(path, "must be between " + std::to_string(lo) + " and " + std::to_string(hi) + ", got " + std::to_string(n));
+  if (n < lo || n > hi) out_of_bounds(std::to_string(n));
   return n;
 }
 

@@ -91,6 +91,16 @@ TEST(JsonInput, ReadsWholeNumbersAlsoWrittenAsFloatsButNoFractions) {
   EXPECT_EQ(io::integer(json(9223372036854775807L), "n"), 9223372036854775807L);
 }
 
+TEST(JsonInput, RefusesAWholeNumberPastTheLargestLongInsteadOfWrappingItToANegativeOne) {
+  // 2⁶⁴ − 1 is stored unsigned; read as a long it would be −1 (a node id −1, "unknown node -1").
+  EXPECT_EQ(error_of([] { io::integer(json(18446744073709551615UL), "loads[0].node"); }),
+            "loads[0].node: expected a whole number within ±9223372036854775807, found 18446744073709551615");
+  EXPECT_EQ(error_of([] { io::integer(json(9223372036854775808UL), "n"); }),
+            "n: expected a whole number within ±9223372036854775807, found 9223372036854775808");
+  EXPECT_EQ(error_of([] { io::bounded_integer(json(18446744073709551615UL), "nodes[0].id", -5, 5); }),
+            "nodes[0].id: must be between -5 and 5, got 18446744073709551615");
+}
+
 TEST(JsonInput, BoundsWholeNumbers) {
   EXPECT_EQ(io::bounded_integer(json(10), "n", 1, 10), 10);
   EXPECT_EQ(io::bounded_integer(json(1), "n", 1, 10), 1);
