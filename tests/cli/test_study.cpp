@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +21,10 @@ using nlohmann::json;
 
 using tsm::test::Outcome;
 using tsm::test::run_cli;
+using tsm::test::run_cli_bounded;
+
+constexpr long test_memory_kb = 2'000'000;  // what a study run by these tests may take: 2 GB …
+constexpr int test_seconds = 60;            // … and a minute (each takes well under a second)
 
 class Study : public ::testing::Test {
  protected:
@@ -47,14 +52,18 @@ class Study : public ::testing::Test {
       "loads": [{"node": 2, "fy": 1.0}],
       "analysis": {"control": {"type": "load", "steps": 1}, "cutback": false}})");
   }
-  /// The study file `s` is refused: exit 2, one line `FILE: expected…`, nothing written.
+  /// The study file `s` is refused: exit 2, one line `FILE: expected…`, nothing written — within
+  /// bounded memory and time, so that a study that would allocate without end fails here.
   void expect_refused(const json& s, const std::string& expected) {
     const std::string file = write("bad.json", s);
-    const Outcome o = run_cli("study " + file + " --out " + (dir_ / "out").string());
+    const Outcome o = run_cli_bounded("study " + file + " --out " + (dir_ / "out").string(), test_memory_kb, test_seconds);
     EXPECT_EQ(o.exit_code, 2) << o.output;
-    EXPECT_NE(o.output.find(file + ": " + expected), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.rfind(file + ": " + expected, 0), 0u) << o.output;
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
     EXPECT_FALSE(fs::exists(dir_ / "out"));
   }
+  /// The study with the cantilever and `sweep`.
+  static json study(const char* sweep) { return {{"model", cantilever()}, {"sweep", json::parse(sweep)}}; }
   fs::path dir_;
 };
 
@@ -190,6 +199,59 @@ TEST_F(Study, BadRecordsExitTwoWithThePath) {
     s["record"] = json::parse(b.record);
     expect_refused(s, b.expected);
   }
+}
+
+// ---- Sweeps that must end with one line and exit 2, never an abort or a silent 0 ----
+
+TEST_F(Study, APointerPastAListsEndIsRefusedWithoutBuildingTheList) {
+  // Assigning at /nodes/4000000000 would resize the 2-node list to 4·10⁹ entries (64 GB).
+  expect_refused(study(R"([{"name": "x", "path": "/nodes/4000000000", "values": [1]}])"),
+                 "sweep[0].path: \"/nodes\" has 2 entries: 4000000000 is past its end (0 to 1 name them, 2 appends one)");
+  expect_refused(study(R"([{"name": "x", "path": "/nodes/100000000/x", "values": [1]}])"),
+                 "sweep[0].path: \"/nodes\" has 2 entries: 100000000 is past its end (0 to 1 name them)");
+  expect_refused(study(R"([{"name": "x", "path": ["/members/0/divisions", "/loads/99999999999999999999999"], "values": [2]}])"),
+                 "sweep[0].path[1]: \"/loads\" has 1 entry: 99999999999999999999999 is past its end (0 names it, 1 appends one)");
+  expect_refused(study(R"([{"name": "v", "variants": [{"label": "far", "set": {"/supports/7": {"node": 2, "type": "fixed"}}}]}])"),
+                 "sweep[0].variants[0].set[\"/supports/7\"]: \"/supports\" has 1 entry: 7 is past its end (0 names it, 1 appends one)");
+}
+
+TEST_F(Study, APointerIntoWhatTheModelDoesNotHaveIsRefused) {
+  expect_refused(study(R"([{"name": "s", "path": "/analysis/contorl/steps", "values": [2]}])"),
+                 "sweep[0].path: the model has no \"/analysis/contorl\" (a pointer names what the model has, or a new key of it)");
+  expect_refused(study(R"([{"name": "s", "path": "/nodes/x", "values": [2]}])"),
+                 "sweep[0].path: \"/nodes\" is a list: \"x\" is no index of it (0, 1, …)");
+  expect_refused(study(R"([{"name": "s", "path": "/members/0/divisions/2", "values": [2]}])"),
+                 "sweep[0].path: \"/members/0/divisions\" is a number: it has no \"2\"");
+}
+
+TEST_F(Study, APointerMayNameANewKeyOrAppendOneEntry) {
+  // /analysis/max_iterations is a new key of "analysis"; /loads/1 and /loads/- append a load.
+  json s = study(R"([{"name": "setup", "variants": [
+      {"label": "iterations", "set": {"/analysis/max_iterations": 20}},
+      {"label": "second load", "set": {"/loads/1": {"node": 2, "fx": 0.01}}},
+      {"label": "appended", "set": {"/loads/-": {"node": 2, "fx": 0.01}}}]}])");
+  const Outcome o = run_cli_bounded("study " + write("study.json", s) + " --out " + (dir_ / "out").string() + " -q",
+                                    test_memory_kb, test_seconds);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  const json r = read_json(dir_ / "out" / "study.json");
+  ASSERT_EQ(r["cases"].size(), 3u);
+  for (const json& c : r["cases"]) EXPECT_EQ(c["status"], "converged") << c.dump();
+}
+
+TEST_F(Study, APointerAnotherAssignmentMayMakeIsCheckedInEachCase) {
+  // /loads/0/fy names a load only where the first parameter leaves one: the case that empties
+  // "loads" is a bad-input row saying why, the other converges, and nothing is allocated.
+  json s = study(R"([{"name": "loads", "variants": [{"label": "none", "set": {"/loads": []}},
+                                                    {"label": "tip", "set": {"/loads": [{"node": 2, "fy": 1.0}]}}]},
+                     {"name": "fy", "path": "/loads/0/fy", "values": [0.5]}])");
+  const Outcome o = run_cli_bounded("study " + write("study.json", s) + " --out " + (dir_ / "out").string() + " -q",
+                                    test_memory_kb, test_seconds);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  const json r = read_json(dir_ / "out" / "study.json");
+  ASSERT_EQ(r["cases"].size(), 2u);
+  EXPECT_EQ(r["cases"][0]["status"], "bad-input");
+  EXPECT_EQ(r["cases"][0]["message"], "sweep[1].path: \"/loads\" is an empty list: 0 is past its end");
+  EXPECT_EQ(r["cases"][1]["status"], "converged");
 }
 
 // ---- The paper's studies (studies/): regressions ----

@@ -1,8 +1,17 @@
 #pragma once
 // A sweep's assignment: one value set at a JSON pointer (RFC 6901) into a case's model.
+//
+// A pointer may name a value the model has, a new key of an object the model has, or the place
+// one past the end of a list the model has (`/loads/1` on a model with one load, or `/loads/-`:
+// appends one entry, as a variant adding a load does). Anything else is refused: a pointer into
+// something the model does not have is a typo far more often than an intent, and assigning there
+// would build what it names — `/nodes/4000000000` a list of 4·10⁹ nulls, 3.4 GB for
+// `/nodes/100000000` — where further past the end would only add nulls the model reader refuses.
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace tsm::study {
 
@@ -11,5 +20,19 @@ struct Assignment {
   nlohmann::json value;
   std::string path;      ///< where the study file gives it (`sweep[2].path`), for messages
 };
+
+/// Why `pointer` (a valid JSON pointer) names no place of `model` an assignment may set, or
+/// nothing when it does.
+std::optional<std::string> unassignable(const nlohmann::json& model, const std::string& pointer);
+
+/// Sets the value in `model`; throws io::InputError at the assignment's path where the pointer
+/// names no such place.
+void assign(nlohmann::json& model, const Assignment& assignment);
+
+/// Refuses (io::InputError at the first path that gives it) every pointer the base model has no
+/// place for, where no other assignment of the sweep can make one: one that sets the pointer's
+/// parent or an ancestor, or a sibling (which may grow the same list). The others are checked
+/// in each case, against the case's model so far.
+void check_assignments(const nlohmann::json& model, const std::vector<const Assignment*>& assignments);
 
 }  // namespace tsm::study

@@ -43,7 +43,7 @@ std::vector<size_t> case_choice(const Study& study, size_t index) {
 json case_model(const Study& study, const std::vector<size_t>& choice) {
   json m = study.model;
   for (size_t p = 0; p < study.parameters.size(); ++p)
-    for (const Assignment& a : study.parameters[p].assignments[choice[p]]) m[json::json_pointer(a.pointer)] = a.value;
+    for (const Assignment& a : study.parameters[p].assignments[choice[p]]) assign(m, a);
   return m;
 }
 

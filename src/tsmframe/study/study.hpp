@@ -16,7 +16,8 @@
 //      {"name": "peak", "quantity": "load_factor", "of": "max"}, …],
 //    "keep": false}                      // true: each case's results.json and steps.csv under cases/<k>/
 // The cases are the Cartesian product of the sweep entries, the first entry varying slowest.
-// Paths are JSON pointers (RFC 6901) into the model.
+// Paths are JSON pointers (RFC 6901) into the model: to a value it has, a new key of an object it
+// has, or one past the end of a list it has (assignment.hpp).
 
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -93,7 +94,8 @@ struct CaseResult {
 std::vector<CaseResult> run_study(const Study& study, int threads, const std::string& keep_directory,
                                   const std::function<void(const CaseResult&)>& progress = {});
 
-/// The case's model JSON (the base model with the case's assignments).
+/// The case's model JSON: the base model with the case's assignments, in order. Throws
+/// io::InputError where an assignment's pointer names no place in the model so far (assignment.hpp).
 nlohmann::json case_model(const Study& study, const std::vector<size_t>& choice);
 std::vector<size_t> case_choice(const Study& study, size_t index);
 

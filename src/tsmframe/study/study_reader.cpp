@@ -211,6 +211,11 @@ Study read_study(const json& doc, const std::string& directory) {
       fail(child(child("sweep", k), "name"), quote_text(s.parameters.back().name) + " names another column already");
   }
   check_case_count(s);
+  std::vector<const Assignment*> assignments;
+  for (const Parameter& p : s.parameters)
+    for (const auto& sets : p.assignments)
+      for (const Assignment& a : sets) assignments.push_back(&a);
+  check_assignments(s.model, assignments);
   if (doc.contains("record")) {
     if (!doc["record"].is_array()) fail("record", "expected an array of {\"name\": …, \"quantity\": …}");
     for (size_t k = 0; k < doc["record"].size(); ++k) {
