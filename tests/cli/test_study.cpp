@@ -254,6 +254,24 @@ TEST_F(Study, APointerAnotherAssignmentMayMakeIsCheckedInEachCase) {
   EXPECT_EQ(r["cases"][1]["status"], "converged");
 }
 
+TEST_F(Study, ARangeNearTheLimitsOfWholeNumbersIsRefused) {
+  // 2⁶³ − 7 + 5 overflows a long: the values were counted on past it, allocating without end.
+  expect_refused(study(R"([{"name": "n", "path": "/members/0/divisions", "range": [9223372036854775800, 9223372036854775807, 5]}])"),
+                 "sweep[0].range[0]: must be between -9007199254740992 and 9007199254740992, got 9223372036854775800");
+  // to − from = 2⁶⁴ − 1 overflows a long.
+  expect_refused(study(R"([{"name": "n", "path": "/members/0/divisions", "range": [-9223372036854775808, 9223372036854775807, 4611686018427387904]}])"),
+                 "sweep[0].range[0]: must be between -9007199254740992 and 9007199254740992, got -9223372036854775808");
+  expect_refused(study(R"([{"name": "n", "path": "/members/0/divisions", "range": [1, 18446744073709551615]}])"),
+                 "sweep[0].range[1]: must be between -9007199254740992 and 9007199254740992, got 18446744073709551615");
+  // Within ±2⁵³ a large step is counted without overflow: [1, 2⁵³] in steps of 2⁶³ − 1 is one
+  // value (1 + 2⁶³ − 1 overflows a long).
+  json s = study(R"([{"name": "e", "path": "/extra", "range": [1, 9007199254740992, 9223372036854775807]}])");
+  const Outcome o = run_cli_bounded("study " + write("study.json", s) + " --out " + (dir_ / "out").string() + " -q",
+                                    test_memory_kb, test_seconds);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(read_json(dir_ / "out" / "study.json")["cases"].size(), 1u);
+}
+
 // ---- The paper's studies (studies/): regressions ----
 
 TEST_F(Study, Fig3TimoshenkoCircleConvergesForEveryMeshAtLOverH20) {

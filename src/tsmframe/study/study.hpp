@@ -8,7 +8,7 @@
 //    "model": {…} | "model_file": "relative/to/the/study.json",
 //    "sweep": [
 //      {"name": "divisions", "path": "/members/0/divisions", "values": [6, 8, 10]},
-//      {"name": "divisions", "path": ["/members/0/divisions"], "range": [6, 200]},    // [from, to(, step)]
+//      {"name": "divisions", "path": ["/members/0/divisions"], "range": [6, 200]},    // [from, to(, step)], ends within ±2⁵³
 //      {"name": "setup", "variants": [{"label": "cantilever", "set": {"/supports": […], "/loads": […]}}, …]}
 //    ],
 //    "record": [                          // response quantities, one column each (optional)

@@ -21,6 +21,8 @@ using nlohmann::json;
 
 constexpr long max_range_values = 100'000;    // (to − from) / step at most: 100,001 values
 constexpr double max_cases = 1e6;
+/// A range's ends: whole numbers beyond 2⁵³ are no longer exact as the doubles a model's numbers are read as.
+constexpr long largest_range_end = 1L << 53;
 
 std::string pointer(const json& value, const std::string& path) {
   if (!value.is_string()) fail(path, "expected a JSON pointer such as \"/members/0/divisions\"");
@@ -63,17 +65,18 @@ void read_variants(const json& variants, const std::string& path, Parameter& out
   }
 }
 
-/// `[from, to]` or `[from, to, step]`: from, from + step, … up to to.
+/// `[from, to]` or `[from, to, step]`: from, from + step, … up to to, counted without overflow.
 std::vector<json> range_values(const json& r, const std::string& path) {
   if (!r.is_array() || r.size() < 2 || r.size() > 3) fail(path, "expected [from, to] or [from, to, step] (whole numbers)");
-  for (size_t k = 0; k < r.size(); ++k)
-    if (!r[k].is_number_integer()) fail(child(path, k), "expected a whole number");
-  const long from = r[0].get<long>(), to = r[1].get<long>(), step = r.size() == 3 ? r[2].get<long>() : 1;
+  const long from = io::bounded_integer(r[0], child(path, 0), -largest_range_end, largest_range_end);
+  const long to = io::bounded_integer(r[1], child(path, 1), -largest_range_end, largest_range_end);
+  const long step = r.size() == 3 ? io::integer(r[2], child(path, 2)) : 1;
   if (step <= 0) fail(child(path, 2), "must be positive");
   if (to < from) fail(child(path, 1), "must not be below from");
-  if ((to - from) / step > max_range_values) fail(path, "more than " + std::to_string(max_range_values) + " values");
+  const long steps = (to - from) / step;  // within ±2⁵³ the span fits a long
+  if (steps > max_range_values) fail(path, "more than " + std::to_string(max_range_values) + " values");
   std::vector<json> values;
-  for (long v = from; v <= to; v += step) values.push_back(v);
+  for (long k = 0; k <= steps; ++k) values.push_back(from + k * step);  // k · step ≤ to − from
   return values;
 }
 
