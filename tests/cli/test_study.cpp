@@ -272,6 +272,19 @@ TEST_F(Study, ARangeNearTheLimitsOfWholeNumbersIsRefused) {
   EXPECT_EQ(read_json(dir_ / "out" / "study.json")["cases"].size(), 1u);
 }
 
+TEST_F(Study, ASweepOfMoreThanAMillionCasesIsRefusedEvenWhenTheCountWouldWrapToZero) {
+  // 4 parameters of 65,536 values: 2⁶⁴ cases, which a 64-bit product wraps to 0.
+  const char* four = R"([{"name": "a", "path": "/extra/a", "range": [1, 65536]}, {"name": "b", "path": "/extra/b", "range": [1, 65536]},
+                         {"name": "c", "path": "/extra/c", "range": [1, 65536]}, {"name": "d", "path": "/extra/d", "range": [1, 65536]}])";
+  json s = study(four);
+  s["model"]["extra"] = json::object();
+  expect_refused(s, "sweep: more than a million cases (1.84e+19)");
+  // 1,001 × 1,000 = 1,001,000: just past the limit, counted exactly.
+  s = study(R"([{"name": "a", "path": "/extra/a", "range": [1, 1001]}, {"name": "b", "path": "/extra/b", "range": [1, 1000]}])");
+  s["model"]["extra"] = json::object();
+  expect_refused(s, "sweep: more than a million cases (1001000)");
+}
+
 // ---- The paper's studies (studies/): regressions ----
 
 TEST_F(Study, Fig3TimoshenkoCircleConvergesForEveryMeshAtLOverH20) {

@@ -15,7 +15,8 @@
 //      {"name": "tip_uy", "quantity": "displacement", "node": [9.0, 0.0], "dof": "uy"},
 //      {"name": "peak", "quantity": "load_factor", "of": "max"}, …],
 //    "keep": false}                      // true: each case's results.json and steps.csv under cases/<k>/
-// The cases are the Cartesian product of the sweep entries, the first entry varying slowest.
+// The cases are the Cartesian product of the sweep entries, the first entry varying slowest, at
+// most a million.
 // Paths are JSON pointers (RFC 6901) into the model: to a value it has, a new key of an object it
 // has, or one past the end of a list it has (assignment.hpp).
 
@@ -61,7 +62,7 @@ struct Study {
   std::vector<Parameter> parameters;
   std::vector<Record> records;
   bool keep = false;
-  size_t case_count() const;
+  size_t case_count() const;  ///< at most a million (read_study checks)
 };
 
 /// Reads a study file; throws io::InputError with the JSON path.

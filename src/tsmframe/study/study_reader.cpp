@@ -180,8 +180,16 @@ json read_base_model(const json& doc, const std::string& directory) {
   }
 }
 
-void check_case_count(const Study& s) {
-  if (static_cast<double>(s.case_count()) > max_cases) fail("sweep", "more than a million cases");
+/// The number of cases, the product of the parameters' value counts: at most a million.
+void check_case_count(const std::vector<Parameter>& parameters) {
+  double cases = 1.0;  // a double: a count past 2⁶⁴ must not wrap round to a small one
+  for (const Parameter& p : parameters) cases *= static_cast<double>(p.labels.size());
+  if (cases <= max_cases) return;
+  std::ostringstream os;
+  if (cases < 1e15) os << static_cast<long long>(cases);  // exact: below 2⁵³ the products are
+  else if (std::isinf(cases)) os << "past 1e308";
+  else os << std::setprecision(3) << cases;
+  fail("sweep", "more than a million cases (" + os.str() + ")");
 }
 
 }  // namespace
@@ -213,7 +221,7 @@ Study read_study(const json& doc, const std::string& directory) {
     if (!names.insert(s.parameters.back().name).second)
       fail(child(child("sweep", k), "name"), quote_text(s.parameters.back().name) + " names another column already");
   }
-  check_case_count(s);
+  check_case_count(s.parameters);
   std::vector<const Assignment*> assignments;
   for (const Parameter& p : s.parameters)
     for (const auto& sets : p.assignments)
