@@ -285,6 +285,20 @@ TEST_F(Study, ASweepOfMoreThanAMillionCasesIsRefusedEvenWhenTheCountWouldWrapToZ
   expect_refused(s, "sweep: more than a million cases (1001000)");
 }
 
+TEST_F(Study, ACaseThatRunsOutOfMemoryIsARowNotAnAbort) {
+  // 10⁷ elements do not fit in 600 MB: that case's std::bad_alloc — on a worker thread, where it
+  // ended the program — is its row's message; the other case converges.
+  json s = study(R"([{"name": "divisions", "path": "/members/0/divisions", "values": [2, 10000000]}])");
+  const Outcome o = run_cli_bounded("study " + write("study.json", s) + " --out " + (dir_ / "out").string() + " -q --jobs 2",
+                                    600'000, test_seconds);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  const json r = read_json(dir_ / "out" / "study.json");
+  ASSERT_EQ(r["cases"].size(), 2u);
+  EXPECT_EQ(r["cases"][0]["status"], "converged");
+  EXPECT_EQ(r["cases"][1]["status"], "bad-input");
+  EXPECT_NE(r["cases"][1]["message"].get<std::string>().find("std::bad_alloc"), std::string::npos) << r["cases"][1].dump();
+}
+
 // ---- The paper's studies (studies/): regressions ----
 
 TEST_F(Study, Fig3TimoshenkoCircleConvergesForEveryMeshAtLOverH20) {

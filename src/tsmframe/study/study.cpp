@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <exception>
 #include <cmath>
 #include <filesystem>
 #include <mutex>
+#include <new>
 #include <thread>
 
 #include "tsmframe/io/atomic_file.hpp"
@@ -168,6 +170,31 @@ CaseResult run_case(const Study& study, size_t index, const std::string& keep_di
 
 }  // namespace
 
+namespace {
+
+/// run_case, with whatever else it throws made the case's row: a case that runs out of memory
+/// (std::bad_alloc in its reader or its analysis) must neither end the sweep nor escape its
+/// thread, where it ends the program (std::terminate).
+CaseResult run_case_caught(const Study& study, size_t index, const std::string& keep_directory) {
+  const auto failed = [&](const std::string& message) {
+    CaseResult row;
+    row.index = index;
+    row.choice = case_choice(study, index);
+    row.status = "bad-input";
+    row.message = message;
+    return row;
+  };
+  try {
+    return run_case(study, index, keep_directory);
+  } catch (const std::bad_alloc& e) {
+    return failed(std::string("the case ran out of memory (") + e.what() + ")");
+  } catch (const std::exception& e) {
+    return failed(std::string("the case could not be run: ") + e.what());
+  }
+}
+
+}  // namespace
+
 std::vector<CaseResult> run_study(const Study& study, int threads, const std::string& keep_directory,
                                   const std::function<void(const CaseResult&)>& progress) {
   const size_t n = study.case_count();
@@ -177,17 +204,24 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
   // Big cases first would balance better; cases are independent, so a shared counter suffices.
   std::atomic<size_t> next{0};
   std::mutex report;
+  std::exception_ptr failure;  // what `progress` threw, rethrown on the calling thread after the join
   auto worker = [&] {
     // Each case on one thread: the cases share the cores. (A thread's OpenMP setting is its own:
     // the caller's omp_set_num_threads does not reach the pool's threads, whose cases opened
     // two-thread teams on two busy cores.)
     omp_set_num_threads(1);
-    for (size_t k; (k = next.fetch_add(1)) < n;) {
-      rows[k] = run_case(study, k, study.keep ? keep_directory : std::string());
-      if (progress) {
-        std::lock_guard<std::mutex> lock(report);
-        progress(rows[k]);
+    try {
+      for (size_t k; (k = next.fetch_add(1)) < n;) {
+        rows[k] = run_case_caught(study, k, study.keep ? keep_directory : std::string());
+        if (progress) {
+          std::lock_guard<std::mutex> lock(report);
+          progress(rows[k]);
+        }
       }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(report);
+      if (!failure) failure = std::current_exception();
+      next = n;  // the other threads stop after their case
     }
   };
   std::vector<std::thread> pool;
@@ -196,6 +230,7 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
   worker();
   omp_set_num_threads(callers);
   for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
   return rows;
 }
 

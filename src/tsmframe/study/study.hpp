@@ -92,6 +92,8 @@ struct CaseResult {
 };
 
 /// Runs every case on `threads` threads (0: all cores). `progress` is called after each case.
+/// Whatever a case throws is its row (status "bad-input", the reason in its message); what
+/// `progress` throws stops the cases and is rethrown here, after every thread has ended.
 std::vector<CaseResult> run_study(const Study& study, int threads, const std::string& keep_directory,
                                   const std::function<void(const CaseResult&)>& progress = {});
 
