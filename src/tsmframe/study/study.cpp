@@ -51,96 +51,70 @@ json case_model(const Study& study, const std::vector<size_t>& choice) {
 
 namespace {
 
-CaseResult run_case(const Study& study, size_t index, const std::string& keep_directory) {
-  CaseResult row;
-  row.index = index;
-  row.choice = case_choice(study, index);
-  const auto start = std::chrono::steady_clock::now();
-  Model model;
-  try {
-    model = io::read_model(case_model(study, row.choice));
-  } catch (const InputError& e) {
-    row.status = "bad-input";
-    row.message = e.what();
-    return row;
-  } catch (const json::exception& e) {
-    row.status = "bad-input";
-    row.message = e.what();
-    return row;
-  }
-  // The records' nodes (and contacts) in this case's model, then their values at every converged
-  // step (by step number: an arc-length step landing on its target replaces the one before).
-  struct Resolved {
-    int node = -1, contact = -1;
-  };
-  std::vector<Resolved> resolved(study.records.size());
-  try {
-    for (size_t r = 0; r < study.records.size(); ++r) {
-      const Record& record = study.records[r];
-      if (!record.node) continue;
-      const std::string path = io::child(record.path, "node");
-      resolved[r].node = resolve_record_node(model, *record.node, path);
-      const int id = model.nodes[resolved[r].node].id;
-      if (record.quantity == Record::Quantity::contact_force || record.quantity == Record::Quantity::contact_xi) {
-        for (size_t c = 0; c < model.contacts.size(); ++c)
-          if (model.contacts[c].node == resolved[r].node) resolved[r].contact = static_cast<int>(c);
-        if (resolved[r].contact < 0) io::fail(path, "node " + std::to_string(id) + " is no contact node");
-      }
-      if (record.quantity == Record::Quantity::reaction && !model.constrained[dofs_per_node * resolved[r].node + record.dof])
-        io::fail(io::child(record.path, "dof"), "node " + std::to_string(id) + "'s " + dof_name(record.dof) + " is free: it has no reaction");
-    }
-  } catch (const InputError& e) {
-    row.status = "bad-input";
-    row.message = e.what();
-    return row;
-  }
-  std::vector<std::vector<std::pair<int, double>>> values(study.records.size());
-  solver::StepObserver observer;
-  if (!study.records.empty())
-    observer = [&](const solver::StepRecord& step) {
-      if (!step.converged) return;
-      for (size_t r = 0; r < study.records.size(); ++r) {
-        const Record& record = study.records[r];
-        const int dof = dofs_per_node * resolved[r].node + record.dof;
-        double v = NAN;
-        switch (record.quantity) {
-          case Record::Quantity::displacement: v = step.displacements[dof]; break;
-          case Record::Quantity::reaction: v = step.reactions[dof]; break;
-          case Record::Quantity::contact_force: {
-            const solver::ContactPoint& c = step.contacts[resolved[r].contact];
-            v = c.element >= 0 ? c.force : 0.0;
-            break;
-          }
-          case Record::Quantity::contact_xi: {
-            const solver::ContactPoint& c = step.contacts[resolved[r].contact];
-            if (c.element >= 0) v = c.alpha;
-            break;
-          }
-          case Record::Quantity::load_factor: v = step.load_factor; break;
-        }
-        auto& list = values[r];
-        while (!list.empty() && list.back().first >= step.step) list.pop_back();
-        list.emplace_back(step.step, v);
-      }
-    };
-  const solver::RunResult result = solver::run_analysis(model, observer);
-  row.recorded.assign(study.records.size(), NAN);
+/// A record's node and contact (an index into the model's contacts) in one case's model.
+struct ResolvedRecord {
+  int node = -1, contact = -1;
+};
+
+/// The records' nodes (and contacts) in this case's model; throws InputError where the case has none.
+std::vector<ResolvedRecord> resolve_records(const Study& study, const Model& model) {
+  std::vector<ResolvedRecord> resolved(study.records.size());
   for (size_t r = 0; r < study.records.size(); ++r) {
-    const auto& list = values[r];
-    if (list.empty()) continue;
-    double& out = row.recorded[r];
-    for (const auto& [step, v] : list) {
-      if (std::isnan(v)) continue;
-      switch (study.records[r].of) {
-        case Record::Of::last: break;
-        case Record::Of::max: out = std::isnan(out) ? v : std::max(out, v); break;
-        case Record::Of::min: out = std::isnan(out) ? v : std::min(out, v); break;
-        case Record::Of::max_abs: out = std::isnan(out) ? std::abs(v) : std::max(out, std::abs(v)); break;
-      }
+    const Record& record = study.records[r];
+    if (!record.node) continue;
+    const std::string path = io::child(record.path, "node");
+    resolved[r].node = resolve_record_node(model, *record.node, path);
+    const int id = model.nodes[resolved[r].node].id;
+    if (record.quantity == Record::Quantity::contact_force || record.quantity == Record::Quantity::contact_xi) {
+      for (size_t c = 0; c < model.contacts.size(); ++c)
+        if (model.contacts[c].node == resolved[r].node) resolved[r].contact = static_cast<int>(c);
+      if (resolved[r].contact < 0) io::fail(path, "node " + std::to_string(id) + " is no contact node");
     }
-    if (study.records[r].of == Record::Of::last) out = list.back().second;
+    if (record.quantity == Record::Quantity::reaction && !model.constrained[dofs_per_node * resolved[r].node + record.dof])
+      io::fail(io::child(record.path, "dof"), "node " + std::to_string(id) + "'s " + dof_name(record.dof) + " is free: it has no reaction");
   }
-  row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return resolved;
+}
+
+/// A record's value at a converged step; NaN where there is none (a contact not touching: its xi).
+double record_value(const Record& record, const ResolvedRecord& resolved, const solver::StepRecord& step) {
+  const int dof = dofs_per_node * resolved.node + record.dof;
+  switch (record.quantity) {
+    case Record::Quantity::displacement: return step.displacements[dof];
+    case Record::Quantity::reaction: return step.reactions[dof];
+    case Record::Quantity::contact_force: {
+      const solver::ContactPoint& c = step.contacts[resolved.contact];
+      return c.element >= 0 ? c.force : 0.0;
+    }
+    case Record::Quantity::contact_xi: {
+      const solver::ContactPoint& c = step.contacts[resolved.contact];
+      return c.element >= 0 ? c.alpha : NAN;
+    }
+    case Record::Quantity::load_factor: return step.load_factor;
+  }
+  return NAN;
+}
+
+/// A record's column from its values at the converged steps (step, value): the last, or the
+/// extreme over them; NaN where there is none.
+double recorded(Record::Of of, const std::vector<std::pair<int, double>>& list) {
+  if (list.empty()) return NAN;
+  if (of == Record::Of::last) return list.back().second;
+  double out = NAN;
+  for (const auto& [step, v] : list) {
+    if (std::isnan(v)) continue;
+    switch (of) {
+      case Record::Of::last: break;
+      case Record::Of::max: out = std::isnan(out) ? v : std::max(out, v); break;
+      case Record::Of::min: out = std::isnan(out) ? v : std::min(out, v); break;
+      case Record::Of::max_abs: out = std::isnan(out) ? std::abs(v) : std::max(out, std::abs(v)); break;
+    }
+  }
+  return out;
+}
+
+/// The row's run columns and the first contact's story, from the run's steps.
+void summarise_run(const Model& model, const solver::RunResult& result, CaseResult& row) {
   row.status = solver::status_name(result.status);
   row.converged = result.status == solver::Status::converged;
   row.message = result.message;
@@ -158,6 +132,45 @@ CaseResult run_case(const Study& study, size_t index, const std::string& keep_di
     if (row.contact_last_element != 0 && model.elements[element].id != row.contact_last_element) ++row.contact_elements_passed;
     row.contact_last_element = model.elements[element].id;
   }
+}
+
+CaseResult run_case(const Study& study, size_t index, const std::string& keep_directory) {
+  CaseResult row;
+  row.index = index;
+  row.choice = case_choice(study, index);
+  const auto start = std::chrono::steady_clock::now();
+  Model model;
+  std::vector<ResolvedRecord> resolved;
+  try {
+    model = io::read_model(case_model(study, row.choice));
+    resolved = resolve_records(study, model);
+  } catch (const InputError& e) {
+    row.status = "bad-input";
+    row.message = e.what();
+    return row;
+  } catch (const json::exception& e) {
+    row.status = "bad-input";
+    row.message = e.what();
+    return row;
+  }
+  // The records' values at every converged step, by step number: an arc-length step landing on
+  // its target replaces the one before.
+  std::vector<std::vector<std::pair<int, double>>> values(study.records.size());
+  solver::StepObserver observer;
+  if (!study.records.empty())
+    observer = [&](const solver::StepRecord& step) {
+      if (!step.converged) return;
+      for (size_t r = 0; r < study.records.size(); ++r) {
+        auto& list = values[r];
+        while (!list.empty() && list.back().first >= step.step) list.pop_back();
+        list.emplace_back(step.step, record_value(study.records[r], resolved[r], step));
+      }
+    };
+  const solver::RunResult result = solver::run_analysis(model, observer);
+  row.recorded.assign(study.records.size(), NAN);
+  for (size_t r = 0; r < study.records.size(); ++r) row.recorded[r] = recorded(study.records[r].of, values[r]);
+  row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summarise_run(model, result, row);
   if (!keep_directory.empty()) {
     try {
       io::write_results((std::filesystem::path(keep_directory) / "cases" / std::to_string(index + 1)).string(), model, result);
