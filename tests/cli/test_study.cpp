@@ -215,26 +215,38 @@ TEST_F(Study, APointerPastAListsEndIsRefusedWithoutBuildingTheList) {
                  "sweep[0].variants[0].set[\"/supports/7\"]: \"/supports\" has 1 entry: 7 is past its end (0 names it, 1 appends one)");
 }
 
-TEST_F(Study, APointerIntoWhatTheModelDoesNotHaveIsRefused) {
-  expect_refused(study(R"([{"name": "s", "path": "/analysis/contorl/steps", "values": [2]}])"),
-                 "sweep[0].path: the model has no \"/analysis/contorl\" (a pointer names what the model has, or a new key of it)");
+TEST_F(Study, APointerThatNamesNoEntryOfAListOrGoesIntoANumberIsRefused) {
   expect_refused(study(R"([{"name": "s", "path": "/nodes/x", "values": [2]}])"),
                  "sweep[0].path: \"/nodes\" is a list: \"x\" is no index of it (0, 1, …)");
   expect_refused(study(R"([{"name": "s", "path": "/members/0/divisions/2", "values": [2]}])"),
                  "sweep[0].path: \"/members/0/divisions\" is a number: it has no \"2\"");
 }
 
+TEST_F(Study, AMisspeltKeyIsMadeAndTheModelReaderRefusesItInEachCase) {
+  // An object may gain keys at any depth (a base model may leave "analysis" out and a sweep set
+  // /analysis/max_iterations); a misspelt one is the model's unknown key, a bad-input row.
+  json s = study(R"([{"name": "s", "path": "/analysis/contorl/steps", "values": [2]}])");
+  const Outcome o = run_cli_bounded("study " + write("study.json", s) + " --out " + (dir_ / "out").string() + " -q",
+                                    test_memory_kb, test_seconds);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  const json r = read_json(dir_ / "out" / "study.json");
+  EXPECT_EQ(r["cases"][0]["status"], "bad-input");
+  EXPECT_EQ(r["cases"][0]["message"].get<std::string>().rfind("analysis.contorl: unknown key \"contorl\"", 0), 0u) << r.dump();
+}
+
 TEST_F(Study, APointerMayNameANewKeyOrAppendOneEntry) {
-  // /analysis/max_iterations is a new key of "analysis"; /loads/1 and /loads/- append a load.
+  // /analysis/max_iterations is a new key of "analysis"; /members/0/load/fy makes the member's
+  // "load" holding it; /loads/1 and /loads/- append a load.
   json s = study(R"([{"name": "setup", "variants": [
       {"label": "iterations", "set": {"/analysis/max_iterations": 20}},
+      {"label": "member load", "set": {"/members/0/load/fy": 0.01}},
       {"label": "second load", "set": {"/loads/1": {"node": 2, "fx": 0.01}}},
       {"label": "appended", "set": {"/loads/-": {"node": 2, "fx": 0.01}}}]}])");
   const Outcome o = run_cli_bounded("study " + write("study.json", s) + " --out " + (dir_ / "out").string() + " -q",
                                     test_memory_kb, test_seconds);
   EXPECT_EQ(o.exit_code, 0) << o.output;
   const json r = read_json(dir_ / "out" / "study.json");
-  ASSERT_EQ(r["cases"].size(), 3u);
+  ASSERT_EQ(r["cases"].size(), 4u);
   for (const json& c : r["cases"]) EXPECT_EQ(c["status"], "converged") << c.dump();
 }
 

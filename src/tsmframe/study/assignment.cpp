@@ -52,10 +52,9 @@ std::optional<std::string> unassignable(const json& model, const std::string& po
     const bool last = k + 1 == path.size();
     const std::string& token = path[k];
     if (at->is_object()) {
-      if (!at->contains(token)) {
-        if (last) return std::nullopt;  // a new key
-        return "the model has no " + prefix_text(path, k + 1) + " (a pointer names what the model has, or a new key of it)";
-      }
+      // A new key, and under it new objects holding the rest: one value a token, nothing large
+      // (nlohmann makes a missing value an object, or a one-entry list for the token "0").
+      if (!at->contains(token)) return std::nullopt;
       at = &(*at)[token];
       continue;
     }

@@ -1,12 +1,15 @@
 #pragma once
 // A sweep's assignment: one value set at a JSON pointer (RFC 6901) into a case's model.
 //
-// A pointer may name a value the model has, a new key of an object the model has, or the place
-// one past the end of a list the model has (`/loads/1` on a model with one load, or `/loads/-`:
-// appends one entry, as a variant adding a load does). Anything else is refused: a pointer into
-// something the model does not have is a typo far more often than an intent, and assigning there
-// would build what it names — `/nodes/4000000000` a list of 4·10⁹ nulls, 3.4 GB for
-// `/nodes/100000000` — where further past the end would only add nulls the model reader refuses.
+// Through an object a pointer may name a key the model has or a new one — at any depth: an
+// optional object the base model leaves out ("analysis", a member's "load") is made, holding the
+// key (a misspelt key is then the model reader's to refuse, in each case). Through a list it
+// must name an entry the list has, or, as its last token, the place one past the end
+// (`/loads/1` on a model with one load, or `/loads/-`: appends one entry, as a variant adding a
+// load does). Anything else is refused: assigning there would build what it names —
+// `/nodes/4000000000` a list of 4·10⁹ nulls, 3.4 GB for `/nodes/100000000` — where entries
+// further past the end would only be nulls the model reader refuses; and a number or a string
+// has nothing to name inside it.
 
 #include <nlohmann/json.hpp>
 #include <optional>

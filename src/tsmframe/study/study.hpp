@@ -17,8 +17,8 @@
 //    "keep": false}                      // true: each case's results.json and steps.csv under cases/<k>/
 // The cases are the Cartesian product of the sweep entries, the first entry varying slowest, at
 // most a million.
-// Paths are JSON pointers (RFC 6901) into the model: to a value it has, a new key of an object it
-// has, or one past the end of a list it has (assignment.hpp).
+// Paths are JSON pointers (RFC 6901) into the model: through objects to any key, through lists
+// to an entry or one past the end (assignment.hpp).
 
 #include <nlohmann/json.hpp>
 #include <optional>
