@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +21,10 @@ using nlohmann::json;
 
 using tsm::test::Outcome;
 using tsm::test::run_cli;
+using tsm::test::run_cli_bounded;
+
+constexpr long test_memory_kb = 2'000'000;  // what a study run by these tests may take: 2 GB …
+constexpr int test_seconds = 60;            // … and a minute (each takes well under a second)
 
 class Study : public ::testing::Test {
  protected:
@@ -47,14 +52,18 @@ class Study : public ::testing::Test {
       "loads": [{"node": 2, "fy": 1.0}],
       "analysis": {"control": {"type": "load", "steps": 1}, "cutback": false}})");
   }
-  /// The study file `s` is refused: exit 2, one line `FILE: expected…`, nothing written.
+  /// The study file `s` is refused: exit 2, one line `FILE: expected…`, nothing written — within
+  /// bounded memory and time, so that a study that would allocate without end fails here.
   void expect_refused(const json& s, const std::string& expected) {
     const std::string file = write("bad.json", s);
-    const Outcome o = run_cli("study " + file + " --out " + (dir_ / "out").string());
+    const Outcome o = run_cli_bounded("study " + file + " --out " + (dir_ / "out").string(), test_memory_kb, test_seconds);
     EXPECT_EQ(o.exit_code, 2) << o.output;
-    EXPECT_NE(o.output.find(file + ": " + expected), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.rfind(file + ": " + expected, 0), 0u) << o.output;
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
     EXPECT_FALSE(fs::exists(dir_ / "out"));
   }
+  /// The study with the cantilever and `sweep`.
+  static json study(const char* sweep) { return {{"model", cantilever()}, {"sweep", json::parse(sweep)}}; }
   fs::path dir_;
 };
 
@@ -183,13 +192,123 @@ TEST_F(Study, BadRecordsExitTwoWithThePath) {
       {R"([{"name": "x", "quantity": "load_factor", "of": "mean"}])", "record[0].of: expected \"last\", \"max\""},
       {R"([{"name": "status", "quantity": "load_factor"}])", "record[0].name: \"status\" names another column already"},
       {R"([{"name": "n", "quantity": "load_factor"}])", "record[0].name: \"n\" names another column already"},
-      {R"([{"name": "x", "quantity": "reaction", "node": "tip", "dof": "uy"}])", "record[0].node: expected a node id or coordinates"},
+      {R"([{"name": "x", "quantity": "reaction", "node": "tip", "dof": "uy"}])", "record[0].node: expected a node id or [x, y]"},
   };
   for (const Bad& b : cases) {
     json s = {{"model", cantilever()}, {"sweep", json::parse(R"([{"name": "n", "path": "/members/0/divisions", "values": [2]}])")}};
     s["record"] = json::parse(b.record);
     expect_refused(s, b.expected);
   }
+}
+
+// ---- Sweeps that must end with one line and exit 2, never an abort or a silent 0 ----
+
+TEST_F(Study, APointerPastAListsEndIsRefusedWithoutBuildingTheList) {
+  // Assigning at /nodes/4000000000 would resize the 2-node list to 4·10⁹ entries (64 GB).
+  expect_refused(study(R"([{"name": "x", "path": "/nodes/4000000000", "values": [1]}])"),
+                 "sweep[0].path: \"/nodes\" has 2 entries: 4000000000 is past its end (0 to 1 name them, 2 appends one)");
+  expect_refused(study(R"([{"name": "x", "path": "/nodes/100000000/x", "values": [1]}])"),
+                 "sweep[0].path: \"/nodes\" has 2 entries: 100000000 is past its end (0 to 1 name them)");
+  expect_refused(study(R"([{"name": "x", "path": ["/members/0/divisions", "/loads/99999999999999999999999"], "values": [2]}])"),
+                 "sweep[0].path[1]: \"/loads\" has 1 entry: 99999999999999999999999 is past its end (0 names it, 1 appends one)");
+  expect_refused(study(R"([{"name": "v", "variants": [{"label": "far", "set": {"/supports/7": {"node": 2, "type": "fixed"}}}]}])"),
+                 "sweep[0].variants[0].set[\"/supports/7\"]: \"/supports\" has 1 entry: 7 is past its end (0 names it, 1 appends one)");
+}
+
+TEST_F(Study, APointerThatNamesNoEntryOfAListOrGoesIntoANumberIsRefused) {
+  expect_refused(study(R"([{"name": "s", "path": "/nodes/x", "values": [2]}])"),
+                 "sweep[0].path: \"/nodes\" is a list: \"x\" is no index of it (0, 1, …)");
+  expect_refused(study(R"([{"name": "s", "path": "/members/0/divisions/2", "values": [2]}])"),
+                 "sweep[0].path: \"/members/0/divisions\" is a number: it has no \"2\"");
+}
+
+TEST_F(Study, AMisspeltKeyIsMadeAndTheModelReaderRefusesItInEachCase) {
+  // An object may gain keys at any depth (a base model may leave "analysis" out and a sweep set
+  // /analysis/max_iterations); a misspelt one is the model's unknown key, a bad-input row.
+  json s = study(R"([{"name": "s", "path": "/analysis/contorl/steps", "values": [2]}])");
+  const Outcome o = run_cli_bounded("study " + write("study.json", s) + " --out " + (dir_ / "out").string() + " -q",
+                                    test_memory_kb, test_seconds);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  const json r = read_json(dir_ / "out" / "study.json");
+  EXPECT_EQ(r["cases"][0]["status"], "bad-input");
+  EXPECT_EQ(r["cases"][0]["message"].get<std::string>().rfind("analysis.contorl: unknown key \"contorl\"", 0), 0u) << r.dump();
+}
+
+TEST_F(Study, APointerMayNameANewKeyOrAppendOneEntry) {
+  // /analysis/max_iterations is a new key of "analysis"; /members/0/load/fy makes the member's
+  // "load" holding it; /loads/1 and /loads/- append a load.
+  json s = study(R"([{"name": "setup", "variants": [
+      {"label": "iterations", "set": {"/analysis/max_iterations": 20}},
+      {"label": "member load", "set": {"/members/0/load/fy": 0.01}},
+      {"label": "second load", "set": {"/loads/1": {"node": 2, "fx": 0.01}}},
+      {"label": "appended", "set": {"/loads/-": {"node": 2, "fx": 0.01}}}]}])");
+  const Outcome o = run_cli_bounded("study " + write("study.json", s) + " --out " + (dir_ / "out").string() + " -q",
+                                    test_memory_kb, test_seconds);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  const json r = read_json(dir_ / "out" / "study.json");
+  ASSERT_EQ(r["cases"].size(), 4u);
+  for (const json& c : r["cases"]) EXPECT_EQ(c["status"], "converged") << c.dump();
+}
+
+TEST_F(Study, APointerAnotherAssignmentMayMakeIsCheckedInEachCase) {
+  // /loads/0/fy names a load only where the first parameter leaves one: the case that empties
+  // "loads" is a bad-input row saying why, the other converges, and nothing is allocated.
+  json s = study(R"([{"name": "loads", "variants": [{"label": "none", "set": {"/loads": []}},
+                                                    {"label": "tip", "set": {"/loads": [{"node": 2, "fy": 1.0}]}}]},
+                     {"name": "fy", "path": "/loads/0/fy", "values": [0.5]}])");
+  const Outcome o = run_cli_bounded("study " + write("study.json", s) + " --out " + (dir_ / "out").string() + " -q",
+                                    test_memory_kb, test_seconds);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  const json r = read_json(dir_ / "out" / "study.json");
+  ASSERT_EQ(r["cases"].size(), 2u);
+  EXPECT_EQ(r["cases"][0]["status"], "bad-input");
+  EXPECT_EQ(r["cases"][0]["message"], "sweep[1].path: \"/loads\" is an empty list: 0 is past its end");
+  EXPECT_EQ(r["cases"][1]["status"], "converged");
+}
+
+TEST_F(Study, ARangeNearTheLimitsOfWholeNumbersIsRefused) {
+  // 2⁶³ − 7 + 5 overflows a long: the values were counted on past it, allocating without end.
+  expect_refused(study(R"([{"name": "n", "path": "/members/0/divisions", "range": [9223372036854775800, 9223372036854775807, 5]}])"),
+                 "sweep[0].range[0]: must be between -9007199254740992 and 9007199254740992, got 9223372036854775800");
+  // to − from = 2⁶⁴ − 1 overflows a long.
+  expect_refused(study(R"([{"name": "n", "path": "/members/0/divisions", "range": [-9223372036854775808, 9223372036854775807, 4611686018427387904]}])"),
+                 "sweep[0].range[0]: must be between -9007199254740992 and 9007199254740992, got -9223372036854775808");
+  expect_refused(study(R"([{"name": "n", "path": "/members/0/divisions", "range": [1, 18446744073709551615]}])"),
+                 "sweep[0].range[1]: must be between -9007199254740992 and 9007199254740992, got 18446744073709551615");
+  // Within ±2⁵³ a large step is counted without overflow: [1, 2⁵³] in steps of 2⁶³ − 1 is one
+  // value (1 + 2⁶³ − 1 overflows a long).
+  json s = study(R"([{"name": "e", "path": "/extra", "range": [1, 9007199254740992, 9223372036854775807]}])");
+  const Outcome o = run_cli_bounded("study " + write("study.json", s) + " --out " + (dir_ / "out").string() + " -q",
+                                    test_memory_kb, test_seconds);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(read_json(dir_ / "out" / "study.json")["cases"].size(), 1u);
+}
+
+TEST_F(Study, ASweepOfMoreThanAMillionCasesIsRefusedEvenWhenTheCountWouldWrapToZero) {
+  // 4 parameters of 65,536 values: 2⁶⁴ cases, which a 64-bit product wraps to 0.
+  const char* four = R"([{"name": "a", "path": "/extra/a", "range": [1, 65536]}, {"name": "b", "path": "/extra/b", "range": [1, 65536]},
+                         {"name": "c", "path": "/extra/c", "range": [1, 65536]}, {"name": "d", "path": "/extra/d", "range": [1, 65536]}])";
+  json s = study(four);
+  s["model"]["extra"] = json::object();
+  expect_refused(s, "sweep: more than a million cases (1.84e+19)");
+  // 1,001 × 1,000 = 1,001,000: just past the limit, counted exactly.
+  s = study(R"([{"name": "a", "path": "/extra/a", "range": [1, 1001]}, {"name": "b", "path": "/extra/b", "range": [1, 1000]}])");
+  s["model"]["extra"] = json::object();
+  expect_refused(s, "sweep: more than a million cases (1001000)");
+}
+
+TEST_F(Study, ACaseThatRunsOutOfMemoryIsARowNotAnAbort) {
+  // 10⁷ elements do not fit in 600 MB: that case's std::bad_alloc — on a worker thread, where it
+  // ended the program — is its row's message; the other case converges.
+  json s = study(R"([{"name": "divisions", "path": "/members/0/divisions", "values": [2, 10000000]}])");
+  const Outcome o = run_cli_bounded("study " + write("study.json", s) + " --out " + (dir_ / "out").string() + " -q --jobs 2",
+                                    600'000, test_seconds);
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  const json r = read_json(dir_ / "out" / "study.json");
+  ASSERT_EQ(r["cases"].size(), 2u);
+  EXPECT_EQ(r["cases"][0]["status"], "converged");
+  EXPECT_EQ(r["cases"][1]["status"], "bad-input");
+  EXPECT_NE(r["cases"][1]["message"].get<std::string>().find("std::bad_alloc"), std::string::npos) << r["cases"][1].dump();
 }
 
 // ---- The paper's studies (studies/): regressions ----

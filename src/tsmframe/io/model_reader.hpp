@@ -1,7 +1,8 @@
 #pragma once
 // Reads a model file (FORMAT.md, "tsmframe-model/1") strictly: unknown keys, wrong types and
-// inconsistent data are InputErrors carrying the JSON path (`members[2].section`). Members are
-// divided into elements here, and the model is checked for mechanisms before it is returned.
+// inconsistent data are InputErrors carrying the JSON path (`members[2].section`). Each member's
+// keys become a MemberInput that model/mesh.hpp divides into elements; the model is checked for
+// mechanisms before it is returned.
 
 #include <nlohmann/json_fwd.hpp>
 #include <string>

@@ -8,29 +8,39 @@
 //    "model": {…} | "model_file": "relative/to/the/study.json",
 //    "sweep": [
 //      {"name": "divisions", "path": "/members/0/divisions", "values": [6, 8, 10]},
-//      {"name": "divisions", "path": ["/members/0/divisions"], "range": [6, 200]},    // [from, to(, step)]
+//      {"name": "divisions", "path": ["/members/0/divisions"], "range": [6, 200]},    // [from, to(, step)], ends within ±2⁵³
 //      {"name": "setup", "variants": [{"label": "cantilever", "set": {"/supports": […], "/loads": […]}}, …]}
 //    ],
 //    "record": [                          // response quantities, one column each (optional)
 //      {"name": "tip_uy", "quantity": "displacement", "node": [9.0, 0.0], "dof": "uy"},
 //      {"name": "peak", "quantity": "load_factor", "of": "max"}, …],
 //    "keep": false}                      // true: each case's results.json and steps.csv under cases/<k>/
-// The cases are the Cartesian product of the sweep entries, the first entry varying slowest.
-// Paths are JSON pointers (RFC 6901) into the model.
+// The cases are the Cartesian product of the sweep entries, the first entry varying slowest, at
+// most a million.
+// Paths are JSON pointers (RFC 6901) into the model: through objects to any key, through lists
+// to an entry or one past the end (assignment.hpp).
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "tsmframe/io/json_input.hpp"
 #include "tsmframe/solver/status.hpp"
+#include "tsmframe/study/assignment.hpp"
 
 namespace tsm::study {
+
+/// The columns of study.csv and study.json besides case, the parameters, the records and message.
+inline constexpr const char* run_columns[] = {"status", "converged", "steps", "iterations", "last_iterations", "load_factor", "seconds"};
+inline constexpr const char* contact_columns[] = {"contact_first_element", "contact_max_alpha_first", "contact_last_element",
+                                                  "contact_elements_passed"};  ///< models with contacts
 
 struct Parameter {
   std::string name;
   std::vector<std::string> labels;               ///< one per value, as written in the rows
-  std::vector<std::vector<std::pair<std::string, nlohmann::json>>> assignments;  ///< per value: pointer → value
+  std::vector<std::vector<Assignment>> assignments;  ///< per value: what it sets, in order
 };
 
 /// A response quantity each case reports: at its last converged step, or the largest or
@@ -40,10 +50,10 @@ struct Record {
   enum class Of { last, max, min, max_abs };
   std::string name;
   Quantity quantity = Quantity::load_factor;
-  nlohmann::json node;  ///< the node reference as written (id or coordinates; resolved per case); null if none
+  std::optional<io::NodeReference> node;  ///< id or coordinates, resolved in each case's model; none for load_factor
   int dof = -1;         ///< 0 ux, 1 uy, 2 rz (displacement, reaction)
   Of of = Of::last;
-  std::string path;     ///< "record[k]", for messages
+  std::string path;     ///< `record[k]`, for messages
 };
 
 struct Study {
@@ -52,7 +62,7 @@ struct Study {
   std::vector<Parameter> parameters;
   std::vector<Record> records;
   bool keep = false;
-  size_t case_count() const;
+  size_t case_count() const;  ///< at most a million (read_study checks)
 };
 
 /// Reads a study file; throws io::InputError with the JSON path.
@@ -82,10 +92,13 @@ struct CaseResult {
 };
 
 /// Runs every case on `threads` threads (0: all cores). `progress` is called after each case.
+/// Whatever a case throws is its row (status "bad-input", the reason in its message); what
+/// `progress` throws stops the cases and is rethrown here, after every thread has ended.
 std::vector<CaseResult> run_study(const Study& study, int threads, const std::string& keep_directory,
                                   const std::function<void(const CaseResult&)>& progress = {});
 
-/// The case's model JSON (the base model with the case's assignments).
+/// The case's model JSON: the base model with the case's assignments, in order. Throws
+/// io::InputError where an assignment's pointer names no place in the model so far (assignment.hpp).
 nlohmann::json case_model(const Study& study, const std::vector<size_t>& choice);
 std::vector<size_t> case_choice(const Study& study, size_t index);
 

@@ -1,0 +1,25 @@
+#pragma once
+// A model file's "analysis" (FORMAT.md): the control (load, displacement, arc-length), the
+// convergence settings, the output selection and the monitored nodes; and whether the states the
+// output selection keeps fit in memory.
+
+#include <functional>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+
+#include "tsmframe/model/model.hpp"
+
+namespace tsm::io {
+
+/// A node reference written at a JSON path, resolved to a node index (throws InputError).
+using NodeResolver = std::function<int(const nlohmann::json& value, const std::string& path)>;
+
+/// Reads the object at "analysis" into model.analysis, the model's nodes and constraints known
+/// (a controlled dof must be free). Throws InputError.
+void read_analysis_settings(const nlohmann::json& analysis, Model& model, const NodeResolver& node);
+
+/// Refuses (at "analysis.output") an output selection under load or displacement control whose
+/// kept states would take more than 8 GB.
+void check_kept_states(const Model& model);
+
+}  // namespace tsm::io

@@ -1,0 +1,145 @@
+#include "tsmframe/model/mesh.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "tsmframe/model/hinges.hpp"
+
+namespace tsm {
+namespace {
+
+constexpr double two_pi = 2.0 * std::numbers::pi;
+
+/// Shortest text that reads back to the same double, as the results print numbers.
+std::string shortest_text(double x) {
+  if (x == 0.0) return "0";
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return std::string(buffer, result.ptr);
+}
+
+/// The arc's points at angles start + sweep · d / divisions, d = 1 … divisions − 1, after
+/// checking that it runs from `a` to `b` (a closed ring: a = b and a full turn).
+std::vector<Eigen::Vector2d> arc_points(const Arc& arc, const Eigen::Vector2d& a, const Eigen::Vector2d& b, bool closed,
+                                        long divisions, double model_size) {
+  using Value = MeshError::Value;
+  const Eigen::Vector2d& centre = arc.centre;
+  const double radius = (a - centre).norm();
+  if (radius <= 1e-12 * model_size) throw MeshError(Value::arc_centre, "the centre coincides with the start node");
+  if (std::abs((b - centre).norm() - radius) > 1e-6 * radius)
+    throw MeshError(Value::arc_centre, "the start and end nodes are not on one circle about the centre");
+  const double start = std::atan2(a.y() - centre.y(), a.x() - centre.x());
+  const Eigen::Vector2d reached = centre + radius * Eigen::Vector2d(std::cos(start + arc.sweep), std::sin(start + arc.sweep));
+  if ((reached - b).norm() > 1e-6 * radius) {
+    // Name the sweeps that do reach it: the short way round and the long one (a closed ring: ±2π).
+    double to_end = std::atan2(b.y() - centre.y(), b.x() - centre.x()) - start;
+    to_end = std::remainder(to_end, two_pi);
+    const double other = to_end > 0.0 ? to_end - two_pi : to_end + two_pi;
+    throw MeshError(Value::arc_sweep, "the sweep from the start node does not end at the end node (" + shortest_text(to_end) +
+                                          " or " + shortest_text(other) + " does)");
+  }
+  if (closed != (std::abs(std::abs(arc.sweep) - two_pi) < 1e-9))
+    throw MeshError(Value::arc, "a full circle must start and end at the same node");
+  std::vector<Eigen::Vector2d> points;
+  for (long d = 1; d < divisions; ++d) {
+    const double angle = start + arc.sweep * static_cast<double>(d) / divisions;
+    points.push_back(centre + radius * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
+  }
+  return points;
+}
+
+}  // namespace
+
+MemberMesh::MemberMesh(Model& model) : model_(model), next_id_(std::numeric_limits<int>::min()) {
+  for (const Node& n : model_.nodes) next_id_ = std::max(next_id_, n.id + 1);
+}
+
+std::vector<Eigen::Vector2d> MemberMesh::interior_points(const MemberInput& member) const {
+  const Eigen::Vector2d a = model_.nodes[member.from].position, b = model_.nodes[member.to].position;
+  if (member.arc) return arc_points(*member.arc, a, b, member.from == member.to, member.divisions, model_.size);
+  if (member.from == member.to || (b - a).norm() <= 1e-12 * model_.size)
+    throw MeshError(MeshError::Value::member, "zero-length member (from and to are the same point)");
+  std::vector<Eigen::Vector2d> points;
+  for (long d = 1; d < member.divisions; ++d) points.push_back(a + (b - a) * (static_cast<double>(d) / member.divisions));
+  return points;
+}
+
+void MemberMesh::add(const MemberInput& member) {
+  const int index = model_.member_count;
+  if (member.pressure != 0.0 || member.flexibility_from > 0.0 || member.flexibility_to > 0.0) {
+    model_.member_extras.resize(index + 1);
+    model_.member_extras[index] = {member.pressure, member.flexibility_from, member.flexibility_to};
+  }
+  const std::vector<Eigen::Vector2d> interior = interior_points(member);
+  const bool loaded = member.load.x() != 0.0 || member.load.y() != 0.0 || member.pressure != 0.0;
+  int previous = member.from;
+  for (long d = 1; d <= member.divisions; ++d) {
+    int current = member.to;
+    if (d < member.divisions) {
+      if (next_id_ == std::numeric_limits<int>::max()) throw MeshError(MeshError::Value::member, "node ids overflow");
+      model_.nodes.push_back({next_id_++, interior[d - 1]});
+      current = model_.node_count() - 1;
+    }
+    Element e;
+    e.id = static_cast<int>(model_.elements.size()) + 1;
+    e.start = previous;
+    e.end = current;
+    e.member = index;
+    e.theory = member.theory;
+    e.release_start = member.release_start && d == 1;
+    e.release_end = member.release_end && d == member.divisions;
+    e.member_start = d == 1;
+    e.member_end = d == member.divisions;
+    e.section = member.section;
+    model_.elements.push_back(e);
+    if (member.load.x() != 0.0 || member.load.y() != 0.0) {  // per unit length along the drawn element, half to each end
+      const double length = (model_.nodes[e.end].position - model_.nodes[e.start].position).norm();
+      element_loads_.push_back({e.start, e.end, member.load.x() * length / 2.0, member.load.y() * length / 2.0});
+    }
+    if (loaded && member.divisions >= 2 && d == member.divisions / 2) loaded_middles_.push_back(current);
+    previous = current;
+  }
+  ++model_.member_count;
+}
+
+void MemberMesh::finish() {
+  if (!model_.member_extras.empty()) model_.member_extras.resize(model_.member_count);
+  model_.nodes.shrink_to_fit();  // no growth slack kept through the analysis
+  model_.elements.shrink_to_fit();
+  model_.constrained.assign(model_.dof_count(), false);
+  model_.reference_load = Eigen::VectorXd::Zero(model_.dof_count());
+  model_.reference_prescribed = Eigen::VectorXd::Zero(model_.dof_count());
+  for (const ElementLoad& l : element_loads_) {
+    model_.reference_load[dofs_per_node * l.start + ux] += l.fx;
+    model_.reference_load[dofs_per_node * l.start + uy] += l.fy;
+    model_.reference_load[dofs_per_node * l.end + ux] += l.fx;
+    model_.reference_load[dofs_per_node * l.end + uy] += l.fy;
+  }
+}
+
+void fix_free_rotations(Model& model) {
+  const std::vector<char> hinge = hinge_nodes(model);
+  std::vector<bool> held(model.node_count(), false);
+  for (const Element& e : model.elements) held[e.start] = held[e.end] = true;
+  for (int k = 0; k < model.node_count(); ++k)
+    if (!held[k] || hinge[k]) model.constrained[dofs_per_node * k + rz] = true;
+}
+
+std::vector<int> default_monitor(const Model& model, const std::set<int>& nodally_loaded,
+                                 const std::vector<int>& loaded_middles) {
+  std::vector<int> monitor;
+  for (int k = 0; k < model.node_count(); ++k) {
+    bool named = nodally_loaded.count(k) > 0;
+    for (int dof = 0; dof < dofs_per_node; ++dof) named = named || model.prescribed(dofs_per_node * k + dof) != 0.0;
+    if (named) monitor.push_back(k);
+  }
+  if (!monitor.empty()) return monitor;
+  for (const int middle : loaded_middles)
+    if (std::find(monitor.begin(), monitor.end(), middle) == monitor.end()) monitor.push_back(middle);
+  return monitor;
+}
+
+}  // namespace tsm
