@@ -21,7 +21,7 @@
 #include "lattice_model.hpp"
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/assembly/global_system.hpp"
-#include "tsmframe/contact/contact_tracker.hpp"
+#include "tsmframe/contact/contact_set.hpp"
 #include "tsmframe/solver/linear_solver.hpp"
 #include "tsmframe/solver/tsm_problem.hpp"
 
@@ -52,12 +52,12 @@ int main(int argc, char** argv) {
   std::printf("%s: %zu elements\n", lattice ? "lattice 70 x 70 x 10" : (std::to_string(chains) + " chains x 1000").c_str(), model.elements.size());
   std::unique_ptr<tsm::assembly::DofMap> dofs;
   std::unique_ptr<tsm::assembly::GlobalSystem> system;
-  std::unique_ptr<tsm::contact::ContactTracker> contacts;
+  std::unique_ptr<tsm::contact::ContactSet> contacts;
   std::unique_ptr<tsm::solver::TsmProblem> problem;
   timed("set-up: dof map, ordering", [&] { dofs = std::make_unique<tsm::assembly::DofMap>(model); });
   timed("set-up: assembly, pattern", [&] { system = std::make_unique<tsm::assembly::GlobalSystem>(model, *dofs); });
   timed("set-up: solver's analysis", [&] {
-    contacts = std::make_unique<tsm::contact::ContactTracker>(model);
+    contacts = std::make_unique<tsm::contact::ContactSet>(model);
     problem = std::make_unique<tsm::solver::TsmProblem>(*system, contacts.get());
   });
   // A bent state: every node turned and moved as on a circle's arc of its distance from x = 0.

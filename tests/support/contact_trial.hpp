@@ -6,7 +6,7 @@
 
 #include <Eigen/Geometry>
 
-#include "tsmframe/contact/contact_element.hpp"
+#include "tsmframe/contact/contact_response.hpp"
 
 namespace tsm::test {
 
@@ -33,7 +33,7 @@ inline ContactTrial contact_trial(const ContactTrialSpec& p) {
   s.data.contact_start = s.data.initial.start + p.alpha0 * chord;
   s.data.edge = 1e-3;
   s.data.sliding_term = p.sliding_term;
-  s.data.cantilever_frame = p.cantilever_frame;
+  s.data.frame = p.cantilever_frame ? ContactFrame::cantilever : ContactFrame::chord;
   const Eigen::Rotation2Dd R(p.angle);
   const Eigen::Vector2d end = s.data.initial.start + 1.002 * (R * chord);
   const Eigen::Vector2d e = (R * chord).normalized(), n(-e.y(), e.x());

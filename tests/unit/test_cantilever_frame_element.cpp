@@ -11,6 +11,7 @@
 
 #include "support/contact_trial.hpp"
 #include "tsmframe/contact/cantilever_frame_element.hpp"
+#include "tsmframe/contact/contact_response.hpp"
 
 namespace {
 
@@ -45,7 +46,7 @@ TEST(CantileverFrameLaw, TheElementAppliesThatMatrix) {
       data.k0 = tsm::element::basic_stiffness(data.section, 0.8);
       data.contact_start = {alpha * 0.8, 0.0};
       data.edge = 1e-3;
-      data.cantilever_frame = true;
+      data.frame = tsm::ContactFrame::cantilever;
       const Eigen::Vector3d bend(1e-4, -3e-4, 2e-4);  // v_j, θ_j, v_c
       Vector9 d;
       d << 0, 0, 0, 0, bend[0], bend[1], 0, bend[2], 0;

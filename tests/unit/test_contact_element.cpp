@@ -10,7 +10,7 @@
 #include <Eigen/LU>
 
 #include "support/contact_trial.hpp"
-#include "tsmframe/contact/contact_element.hpp"
+#include "tsmframe/contact/contact_response.hpp"
 
 namespace {
 

@@ -12,7 +12,7 @@
 
 #include "support/models.hpp"
 #include "tsmframe/assembly/global_system.hpp"
-#include "tsmframe/contact/contact_tracker.hpp"
+#include "tsmframe/contact/contact_set.hpp"
 
 namespace {
 
@@ -84,7 +84,7 @@ TEST_P(ContactChange, FormsBitForBitWhatAFullEvaluationForms) {
   tsm::assembly::GlobalSystem patched(model, dofs), full(model, dofs);
   patched.set_load_factor(0.6);
   full.set_load_factor(0.6);
-  const tsm::contact::ContactTracker tracker(model);
+  const tsm::contact::ContactSet tracker(model);
   std::vector<tsm::contact::ContactState> states = tracker.initial_states();
 
   // A bent, turned state; the contact nodes near the beam.

@@ -2,11 +2,11 @@
 // and three contacts, worked by hand.
 #include <gtest/gtest.h>
 
-#include "tsmframe/solver/release_forecast.hpp"
+#include "tsmframe/contact/release_forecast.hpp"
 
 namespace {
 
-using tsm::solver::forecast_releases;
+using tsm::contact::forecast_releases;
 
 // Two contacts, k = 1, G = [[0.5, 0.4], [0.4, 0.5]] (K holds k u uᵀ, so k G_ii < 1), side −1:
 // compression = Y. Contact 0 pulls (Y = −1). Let go of alone, its would-be force is

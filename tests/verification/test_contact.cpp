@@ -16,7 +16,7 @@
 #include "support/models.hpp"
 #include "support/rk4.hpp"
 #include "tsmframe/assembly/global_system.hpp"
-#include "tsmframe/contact/contact_tracker.hpp"
+#include "tsmframe/contact/contact_set.hpp"
 #include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/model/resting_contact.hpp"
 
@@ -1506,7 +1506,7 @@ TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
     const tsm::Model model = tsm::io::read_model(post_on_cantilever(element, 0.45));
     tsm::assembly::DofMap dofs(model);
     tsm::assembly::GlobalSystem system(model, dofs);
-    tsm::contact::ContactTracker tracker(model);
+    tsm::contact::ContactSet tracker(model);
     std::vector<tsm::contact::ContactState> states = tracker.initial_states();
     // A bent, rotated state with the pusher pressed 0.02 into the beam near α = 0.7.
     Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
@@ -1563,13 +1563,13 @@ VertexSetUp vertex_set_up(const char* element) {
     v.D.segment<3>(3 * k) << -0.05 * x * x, 0.3 * x * x, 0.6 * x;
   }
   v.D.segment<2>(3 * v.model.node_index(100)) << -0.05 * 0.25, 0.3 * 0.25 + 0.02;
-  tsm::contact::ContactTracker tracker(v.model);
+  tsm::contact::ContactSet tracker(v.model);
   v.states = tracker.initial_states();
   tsm::contact::ContactState& s = v.states[0];
   s.active = true;
   s.element = v.ending;
-  s.partner = v.starting;
-  s.side = s.partner_side = -1;  // it came from below (y < 0 at the start would be +1: it pushes up)
+  s.vertex = tsm::contact::Vertex{v.starting, -1, 0.0};
+  s.side = -1;  // it came from below (y < 0 at the start would be +1: it pushes up), on both elements
   s.alpha = 1.0;
   return v;
 }
@@ -1581,7 +1581,7 @@ TEST(ContactVertex, TheAssembledTangentMatchesFiniteDifferences) {
     ASSERT_GE(v.starting, 0);
     tsm::assembly::DofMap dofs(v.model);
     tsm::assembly::GlobalSystem system(v.model, dofs);
-    tsm::contact::ContactTracker tracker(v.model);
+    tsm::contact::ContactSet tracker(v.model);
     const auto active = tracker.active_contacts(v.states);
     ASSERT_EQ(active.size(), 2u);
     std::vector<double> rotations(v.model.elements.size(), 0.0);
@@ -1598,7 +1598,7 @@ TEST(ContactVertex, TheAssembledTangentMatchesFiniteDifferences) {
 
 TEST(ContactVertex, ASidePullingAtAConvergedIterateLetsGoAndBothPullingRelease) {
   VertexSetUp v = vertex_set_up("timoshenko");
-  tsm::contact::ContactTracker tracker(v.model);
+  tsm::contact::ContactSet tracker(v.model);
   tsm::assembly::DofMap dofs(v.model);
   tsm::assembly::GlobalSystem system(v.model, dofs);
   std::vector<double> rotations(v.model.elements.size(), 0.0);
@@ -1608,8 +1608,9 @@ TEST(ContactVertex, ASidePullingAtAConvergedIterateLetsGoAndBothPullingRelease) 
   using E = tsm::contact::ContactEvaluation;
   {
     auto states = v.states;  // both press: nothing changes, even at a converged iterate
-    EXPECT_FALSE(tracker.update(v.D, e.chord_rotations, {E{1.0, 5.0}, E{0.0, 3.0}}, states, true).any());
-    EXPECT_EQ(states[0].partner, v.starting);
+    EXPECT_FALSE(tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, 5.0}, E{0, true, 0.0, 3.0}}, states, true).any());
+    ASSERT_TRUE(states[0].vertex);
+    EXPECT_EQ(states[0].vertex->element, v.starting);
     // Reported: the compression of the resultant 5 n_ending + 3 n_starting (chord normals).
     const auto normal = [&](int element) {
       const tsm::Element& f = v.model.elements[element];
@@ -1625,30 +1626,31 @@ TEST(ContactVertex, ASidePullingAtAConvergedIterateLetsGoAndBothPullingRelease) 
   }
   {
     auto states = v.states;  // one pulls, but the iterate has not converged: held
-    EXPECT_FALSE(tracker.update(v.D, e.chord_rotations, {E{1.0, 5.0}, E{0.0, -3.0}}, states, false).any());
-    EXPECT_EQ(states[0].partner, v.starting);
+    EXPECT_FALSE(tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, 5.0}, E{0, true, 0.0, -3.0}}, states, false).any());
+    ASSERT_TRUE(states[0].vertex);
+    EXPECT_EQ(states[0].vertex->element, v.starting);
   }
   {
     auto states = v.states;  // the starting element pulls: the ending one carries on alone, held at the node
-    const auto changes = tracker.update(v.D, e.chord_rotations, {E{1.0, 5.0}, E{0.0, -3.0}}, states, true);
+    const auto changes = tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, 5.0}, E{0, true, 0.0, -3.0}}, states, true);
     EXPECT_EQ(changes.released, 1);
     EXPECT_TRUE(states[0].active);
     EXPECT_EQ(states[0].element, v.ending);
-    EXPECT_EQ(states[0].partner, -1);
-    EXPECT_EQ(states[0].held_node, v.node);
+    EXPECT_FALSE(states[0].vertex);
+    EXPECT_EQ(states[0].step.held_node, v.node);
   }
   {
     auto states = v.states;  // the ending element pulls: the starting one carries on
-    tracker.update(v.D, e.chord_rotations, {E{1.0, -5.0}, E{0.0, 3.0}}, states, true);
+    tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, -5.0}, E{0, true, 0.0, 3.0}}, states, true);
     EXPECT_EQ(states[0].element, v.starting);
     EXPECT_EQ(states[0].side, -1);
-    EXPECT_EQ(states[0].partner, -1);
+    EXPECT_FALSE(states[0].vertex);
   }
   {
     auto states = v.states;  // both pull: released
-    tracker.update(v.D, e.chord_rotations, {E{1.0, -5.0}, E{0.0, -3.0}}, states, true);
+    tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, -5.0}, E{0, true, 0.0, -3.0}}, states, true);
     EXPECT_FALSE(states[0].active);
-    EXPECT_EQ(states[0].partner, -1);
+    EXPECT_FALSE(states[0].vertex);
   }
 }
 
@@ -1665,7 +1667,7 @@ TEST(ContactDetection, AlongTheNodesPathOnlyWhereTheNodeItselfCrossedTheElement)
   BeamSpec b;
   b.divisions = 4;
   const tsm::Model model = tsm::io::read_model(pusher_model(b, 0.125, 0.02, 0.0, -0.02, 1));
-  tsm::contact::ContactTracker tracker(model);
+  tsm::contact::ContactSet tracker(model);
   const std::vector<double> straight(model.elements.size(), 0.0);
   const int pusher = model.node_index(100);
   {
@@ -1681,7 +1683,7 @@ TEST(ContactDetection, AlongTheNodesPathOnlyWhereTheNodeItselfCrossedTheElement)
   {
     json m = pusher_model(b, -0.25, 0.02, 0.0, -0.02, 1);
     const tsm::Model outside = tsm::io::read_model(m);
-    tsm::contact::ContactTracker outside_tracker(outside);
+    tsm::contact::ContactSet outside_tracker(outside);
     std::vector<tsm::contact::ContactState> states = outside_tracker.initial_states();
     Eigen::VectorXd D = Eigen::VectorXd::Zero(outside.dof_count());
     for (int k = 0; k < outside.node_count(); ++k) {
@@ -1705,7 +1707,7 @@ TEST(ContactRelease, ANodeThatLetGoByPullingMayNotBeThroughTheBeamAnywhere) {
   BeamSpec b;
   b.divisions = 10;
   const tsm::Model model = tsm::io::read_model(pusher_model(b, 0.35, 0.01, 0.0, -0.02, 1));
-  tsm::contact::ContactTracker tracker(model);
+  tsm::contact::ContactSet tracker(model);
   std::vector<tsm::contact::ContactState> states = tracker.initial_states();
   states[0].active = true;
   states[0].element = 3;
@@ -1720,7 +1722,7 @@ TEST(ContactRelease, ANodeThatLetGoByPullingMayNotBeThroughTheBeamAnywhere) {
   const Eigen::VectorXd wild = at(5.0, 3.0);
   // Y > 0 on side +1 is a pull (compression −side·Y); the iterate has converged.
   const tsm::contact::ContactChanges changes =
-      tracker.update(wild, rotations, {tsm::contact::ContactEvaluation{0.4, 10.0}}, states, true);
+      tracker.update(wild, rotations, {tsm::contact::ContactEvaluation{0, false, 0.4, 10.0}}, states, true);
   ASSERT_EQ(changes.released, 1);
   ASSERT_FALSE(states[0].active);
   EXPECT_TRUE(tracker.passed_through(at(0.75, -0.001), rotations, states));   // under element 7
@@ -1744,7 +1746,7 @@ TEST(ContactRelease, ANodeThatLetGoOfARingIsThroughItOnlyWhereItIsInside) {
                   {"contacts", json::array({{{"node", 100}, {"members", {0}}}})},
                   {"analysis", {{"control", {{"type", "load"}, {"steps", 1}}}}}};
   const tsm::Model model = tsm::io::read_model(m);
-  tsm::contact::ContactTracker tracker(model);
+  tsm::contact::ContactSet tracker(model);
   std::vector<tsm::contact::ContactState> states = tracker.initial_states();
   int top = -1;  // the element under the node
   for (size_t e = 0; e < model.elements.size(); ++e) {
@@ -1766,7 +1768,7 @@ TEST(ContactRelease, ANodeThatLetGoOfARingIsThroughItOnlyWhereItIsInside) {
     return D;
   };
   const tsm::contact::ContactChanges changes =
-      tracker.update(at(0.01, 1.005), rotations, {tsm::contact::ContactEvaluation{0.5, side * 10.0}}, states, true);
+      tracker.update(at(0.01, 1.005), rotations, {tsm::contact::ContactEvaluation{0, false, 0.5, side * 10.0}}, states, true);
   ASSERT_EQ(changes.released, 1);
   EXPECT_FALSE(tracker.passed_through(at(0.01, 1.02), rotations, states));   // above the ring
   EXPECT_FALSE(tracker.passed_through(at(0.3, 1.2), rotations, states));     // above, further on

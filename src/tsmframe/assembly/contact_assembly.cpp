@@ -1,5 +1,7 @@
 #include "tsmframe/assembly/contact_assembly.hpp"
 
+#include "tsmframe/contact/contact_response.hpp"
+
 namespace tsm::assembly {
 
 std::array<int, 9> contact_dofs(const Element& e, int node) {

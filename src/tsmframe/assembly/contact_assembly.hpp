@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "tsmframe/assembly/dof_map.hpp"
-#include "tsmframe/contact/contact_tracker.hpp"
+#include "tsmframe/contact/contact_set.hpp"
 #include "tsmframe/model/model.hpp"
 
 namespace tsm::assembly {

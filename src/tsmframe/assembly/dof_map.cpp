@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "tsmframe/assembly/elimination_order.hpp"
+#include "tsmframe/element/chord.hpp"
 #include "tsmframe/model/resting_contact.hpp"
 #include "tsmframe/util/first_touch.hpp"
 
@@ -22,10 +23,8 @@ int nearest_candidate(const Model& model, const ContactSpec& spec, double reach)
     if (e.start == spec.node || e.end == spec.node ||
         std::find(spec.members.begin(), spec.members.end(), e.member) == spec.members.end())
       continue;
-    const Eigen::Vector2d a = model.nodes[e.start].position, b = model.nodes[e.end].position;
-    const double length2 = (b - a).squaredNorm();
-    const double t = length2 > 0.0 ? std::clamp((x - a).dot(b - a) / length2, 0.0, 1.0) : 0.0;
-    const double distance = (a + t * (b - a) - x).norm() - spec.gap;
+    const double distance =
+        element::distance_to_segment(model.nodes[e.start].position, model.nodes[e.end].position, x) - spec.gap;
     if (distance <= best) best = distance, nearest = static_cast<int>(k);
   }
   return nearest;

@@ -1,5 +1,6 @@
 #include "tsmframe/assembly/global_system.hpp"
 
+#include "tsmframe/contact/contact_response.hpp"
 #include "tsmframe/util/first_touch.hpp"
 #include "tsmframe/util/parallel_for.hpp"
 
@@ -311,7 +312,7 @@ void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen
   const contact::Vector9 d = gather(displacements, g);
   const contact::ContactResponse r = contact::contact_response(a.data, d, previous_rotations[a.element], with_tangent);
   out.chord_rotations[a.element] = r.chord.rotation;
-  out.contacts.push_back({r.alpha, r.forces[3]});
+  out.contacts.push_back({a.contact, a.vertex, r.alpha, r.forces[3]});
   for (int k = 0; k < 9; ++k) out.internal_force[g[k]] += r.nodal_forces[k];
   if (!with_tangent) return;
   // The symmetric part joins the node blocks (i, j, c; each node pair once, the lower triangle);

@@ -16,7 +16,7 @@
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/assembly/follower_loads.hpp"
 #include "tsmframe/assembly/rounding_floor.hpp"
-#include "tsmframe/contact/contact_tracker.hpp"
+#include "tsmframe/contact/contact_set.hpp"
 #include "tsmframe/element/beam_element.hpp"
 #include "tsmframe/linalg/block_matrix.hpp"
 #include "tsmframe/linalg/rank_one.hpp"

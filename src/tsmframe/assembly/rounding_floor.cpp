@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "tsmframe/contact/contact_element.hpp"
+#include "tsmframe/contact/contact_response.hpp"
 #include "tsmframe/element/beam_element.hpp"
 
 namespace tsm::assembly {

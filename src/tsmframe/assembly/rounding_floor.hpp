@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 #include <array>
 
-#include "tsmframe/contact/contact_tracker.hpp"
+#include "tsmframe/contact/contact_set.hpp"
 
 namespace tsm::assembly {
 

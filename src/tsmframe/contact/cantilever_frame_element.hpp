@@ -19,7 +19,7 @@ element::Matrix3 cantilever_bending_stiffness(const element::SectionStiffness& s
 /// The plain cantilever (no contact): (v_j, θ_j) → (Q, M).
 Eigen::Matrix2d cantilever_stiffness(const element::SectionStiffness& section, double l0);
 
-/// The three-node element in the cantilever frame; `data.cantilever_frame` is ignored here.
+/// The three-node element in the cantilever frame (`data.frame` is not read here).
 /// The response's forces are reported in the chord frame (N, M_i, M_j from the nodal forces, Y).
 ContactResponse cantilever_frame_response(const ContactElementData& data, const Vector9& d, double previous_rotation,
                                           bool with_tangent = true);

@@ -1,7 +1,5 @@
 #include "tsmframe/contact/contact_element.hpp"
 
-#include "tsmframe/contact/cantilever_frame_element.hpp"
-
 namespace tsm::contact {
 namespace {
 
@@ -26,9 +24,8 @@ ContactEquilibriumMatrix contact_equilibrium_matrix(const element::Chord& chord,
   return J;
 }
 
-ContactResponse contact_response(const ContactElementData& data, const Vector9& d, double previous_rotation,
-                                 bool with_tangent) {
-  if (data.cantilever_frame) return cantilever_frame_response(data, d, previous_rotation, with_tangent);
+ContactResponse chord_frame_response(const ContactElementData& data, const Vector9& d, double previous_rotation,
+                                     bool with_tangent) {
   ContactResponse r;
   const Vector6 beam = d.head<6>();
   r.chord = element::current_chord(data.initial, beam, previous_rotation);
@@ -91,20 +88,9 @@ ContactResponse contact_response(const ContactElementData& data, const Vector9& 
   return r;
 }
 
-ChordFrame chord_frame(const element::InitialChord& initial, const element::Vector6& d) {
-  // The chord's length and direction as current_chord forms them.
-  const Eigen::Vector2d delta = (initial.end - initial.start) + Eigen::Vector2d(d[3] - d[0], d[4] - d[1]);
-  ChordFrame frame;
-  frame.length = delta.norm();
-  const double inverse = 1.0 / frame.length;
-  frame.e = Eigen::Vector2d(delta.x() * inverse, delta.y() * inverse);
-  frame.start = initial.start + d.head<2>();
-  return frame;
-}
-
 double alpha_on_element(const element::InitialChord& initial, const element::Vector6& d,
                         const Eigen::Vector2d& node_position) {
-  return chord_frame(initial, d).alpha(node_position);
+  return element::chord_frame(initial, d).alpha(node_position);
 }
 
 NodeOnElement node_on_element(const element::InitialChord& initial, const element::SectionStiffness& section,

@@ -11,6 +11,7 @@
 
 #include "tsmframe/contact/contact_force_law.hpp"
 #include "tsmframe/element/chord.hpp"
+#include "tsmframe/model/model.hpp"
 
 namespace tsm::contact {
 
@@ -29,7 +30,7 @@ struct ContactElementData {
   double edge = 1e-2;                 ///< compliance clamp, see point_load_law
   double min_compliance = 0.0;        ///< the stiffness cap's compliance floor (0: none), see point_load_law
   bool sliding_term = true;           ///< include J (∂S/∂α)(∂α/∂x)ᵀ in the tangent
-  bool cantilever_frame = false;      ///< FORMULATION §2b's frame instead of the chord (Eq. 6–9)
+  ContactFrame frame = ContactFrame::chord;  ///< the chord's (Eq. 6–9) or the cantilever's (FORMULATION §2b; contact_response.hpp)
   /// How the element's ends are joined to its nodes: 0 rigidly, ∞ by a hinge (a member's
   /// "release"), 1/k by a rotational spring ("end_springs"); see connected_law. Chord frame only.
   double flexibility_i = 0.0, flexibility_j = 0.0;
@@ -54,10 +55,10 @@ struct ContactResponse {
   Vector9 sliding_v = Vector9::Zero();  ///< … v = ∂α/∂x (both zero without the sliding term)
 };
 
-/// d = (u_i, v_i, Θ_i, u_j, v_j, Θ_j, u_c, v_c, Θ_c); Θ_c plays no part. With
-/// data.cantilever_frame the cantilever-frame element answers (cantilever_frame_element.hpp).
-ContactResponse contact_response(const ContactElementData& data, const Vector9& d, double previous_rotation,
-                                 bool with_tangent = true);
+/// The element in the chord frame (Eq. 6–9; `data.frame` is not read here).
+/// d = (u_i, v_i, Θ_i, u_j, v_j, Θ_j, u_c, v_c, Θ_c); Θ_c plays no part.
+ContactResponse chord_frame_response(const ContactElementData& data, const Vector9& d, double previous_rotation,
+                                     bool with_tangent = true);
 
 /// J (9×4): columns N, M_i, M_j as for the two-node element, Y: i −(1−α) n, j −α n, c +n.
 ContactEquilibriumMatrix contact_equilibrium_matrix(const element::Chord& chord, double alpha);
@@ -69,15 +70,6 @@ struct NodeOnElement {
   double alpha = 0.0;
   double gap = 0.0;
 };
-/// An element's current chord as α needs it: its start X_i + u_i, unit direction e and length
-/// (current_chord's arithmetic).
-struct ChordFrame {
-  Eigen::Vector2d start, e;
-  double length = 0.0;
-  /// α of a point on this chord (node_on_element's).
-  double alpha(const Eigen::Vector2d& point) const { return (point - start).dot(e) / length; }
-};
-ChordFrame chord_frame(const element::InitialChord& initial, const element::Vector6& element_displacements);
 /// node_on_element's α alone (the same arithmetic, without the chord's rotation or the free
 /// shape): what rules an element out before its gap is worth measuring.
 double alpha_on_element(const element::InitialChord& initial, const element::Vector6& element_displacements,

@@ -1,67 +1,84 @@
 #pragma once
 // Where each contact of the model stands at one point of the path (part of solver::State, so a
-// failed step restores it with everything else).
+// failed step restores it with everything else): whether and where it touches, the second
+// element of a contact resting on a beam node (a vertex), where its node was at the last
+// converged state (what detection compares with), and what it remembers within the current step.
 
+#include <optional>
 #include <vector>
 
 namespace tsm::contact {
 
+/// A reference side of a candidate element that is not known: the node was beyond the
+/// element's reach at the last converged state (sides.hpp).
 inline constexpr signed char no_side = 2;
 
-struct ContactState {
-  bool active = false;
-  int element = -1;   ///< element carrying the contact (index), −1 when inactive
-  /// Inactive: an element the node has reached that another contact is on (one contact per
-  /// element), at the last update; −1 none.
-  int blocked_element = -1;
-  int side = 0;       ///< side of that element's chord the node is on: +1 along n, −1 against
-  double alpha = 0.0; ///< α = l_ic / l at the last evaluation
-  double force = 0.0; ///< compression −side·Y (≥ 0 when converged); at a vertex, of the resultant
-  double Y = 0.0;     ///< the element force Y (chord frame, Eq. 6–9)
-  /// A vertex: the node rests on a beam node where two elements meet at an angle (on either
-  /// element alone, the force normal to its chord pushes the point over the node onto the other).
-  /// Both elements then carry a contact element with the node held at that beam node, so the
-  /// force lies between the two chords' normals (README, Contact). −1: on one element.
-  int partner = -1;
-  int partner_side = 0;
-  double partner_Y = 0.0;
-  /// The beam node at which a vertex opened on one side in this step: the contact left on the
-  /// other element stays there rather than go back into the corner (until the step converges).
-  int held_node = -1;
-  /// Per candidate element (ContactTracker order): the side the node was on at the last
-  /// converged state (+1, −1), 0 while it lies on the element's centre line, or no_side when it
-  /// was beyond the element's reach then (see ContactTracker). Contact starts when it reaches
-  /// the other side.
-  std::vector<signed char> reference_side;
-  /// Per candidate element: where the node was at the last converged state in the frame of
-  /// that element's straight chord then — along it (α) and across it (signed distance). An
-  /// iterate that takes the node across an element's span without ending within it (a long step
-  /// along a beam) is caught by interpolating between these and the iterate's (ContactTracker).
-  std::vector<double> reference_along, reference_across;
-  /// The node's position at the last converged state (the start of its path in the step).
-  double reference_position[2] = {0.0, 0.0};
-  /// Released during the current step: it stays released until the step has converged (the
-  /// iterates after a release may sweep the beam through the node).
-  bool released_in_step = false;
-  /// Direction of the last hand-over in this step (+1 past node j, −1 past node i, 0 none), to
-  /// tell a point sliding on from one hopping back and forth.
-  int handover_direction = 0;
-  /// The beam node (index) across which the point last came back the way it had gone, −1: none
-  /// in this step — for the message when it keeps hopping.
-  int hop_node = -1;
+/// The second element of a contact whose node rests on a beam node where two elements meet at an
+/// angle (vertex.hpp): on either element alone, the force normal to its chord pushes the point
+/// over the node onto the other, so both carry a contact element with the node held at that beam
+/// node, and the force lies between the two chords' normals (README, Contact).
+struct Vertex {
+  int element = -1;  ///< the other element at the beam node
+  int side = 0;      ///< the side of its chord the node is on
+  double Y = 0.0;    ///< its contact element's force Y
+};
+
+/// Where the node was at the last converged state, per candidate element (ContactGeometry
+/// order): detection starts a contact where the node has crossed to the other side since.
+struct ContactReference {
+  /// The side of the element's deflected centre line the node was on (+1 along n, −1 against),
+  /// 0 on it, or no_side beyond the element's reach (sides.hpp).
+  std::vector<signed char> side;
+  /// The node in the frame of the element's straight chord then: α along it, the signed
+  /// distance across it. An iterate that takes the node across an element's span without ending
+  /// within it (a long step along a beam) is caught by interpolating between these and the
+  /// iterate's (detection.hpp).
+  std::vector<double> along, across;
+  double position[2] = {0.0, 0.0};  ///< the node's position (the start of its path in the step)
+};
+
+/// What a contact remembers within the current step only: cleared when a step is accepted.
+struct StepMemory {
+  /// Released during the step: it stays released until the step has converged (the iterates
+  /// after a release may sweep the beam through the node), unless its node passes through a beam.
+  bool released = false;
+  /// Released because it would pull (not off a free end): it let go on its side of the beam and
+  /// may not reach the other side of any element of it within the step (the reference sides
+  /// hold that side, carried along the beam from the element it left).
+  bool released_pulled = false;
   /// At that release: the side the node was on, the normal n of the element it left, and per
   /// candidate whether the node lay within its span (0 ≤ α ≤ 1). Until the step ends the node
   /// must not reach the other side of those elements while within their span (going round a
   /// free end is allowed).
   int released_side = 0;
-  /// Released because it would pull (not off a free end): it let go on its side of the beam and
-  /// may not reach the other side of any element of it within the step (reference_side holds
-  /// that side, carried along the beam from the element it left).
-  bool released_pulled = false;
-  /// The element whose free end the point left in this step (released so), −1: none.
-  int slid_off_element = -1;
   double released_normal[2] = {0.0, 0.0};
   std::vector<char> released_within;
+  /// The element whose free end the point left (released so), −1: none.
+  int slid_off_element = -1;
+  /// Direction of the last hand-over (+1 past node j, −1 past node i, 0 none), to tell a point
+  /// sliding on from one hopping back and forth.
+  int handover_direction = 0;
+  /// The beam node (index) across which the point last came back the way it had gone, −1: none
+  /// — for the message when it keeps hopping.
+  int hop_node = -1;
+  /// The beam node at which a vertex opened on one side: the contact left on the other element
+  /// stays there rather than go back into the corner.
+  int held_node = -1;
+  /// Inactive: an element the node has reached that another contact is on (one contact per
+  /// element), at the last update; −1 none.
+  int blocked_element = -1;
+};
+
+struct ContactState {
+  bool active = false;
+  int element = -1;   ///< element carrying the contact (index), −1 when inactive
+  int side = 0;       ///< side of that element's chord the node is on: +1 along n, −1 against
+  double alpha = 0.0; ///< α = l_ic / l at the last evaluation
+  double force = 0.0; ///< compression −side·Y (≥ 0 when converged); at a vertex, of the resultant
+  double Y = 0.0;     ///< the element force Y (chord frame, Eq. 6–9)
+  std::optional<Vertex> vertex;  ///< resting on a beam node between two elements (vertex.hpp)
+  ContactReference reference;
+  StepMemory step;
 };
 
 }  // namespace tsm::contact

@@ -1,5 +1,6 @@
 #include "tsmframe/element/chord.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -64,6 +65,36 @@ Matrix6 geometric_stiffness(const Chord& chord, const Eigen::Vector3d& forces) {
   r << -c, -s, 0.0, c, s, 0.0;
   const double N = forces[0], moment_sum = forces[1] + forces[2];
   return (N / l) * z * z.transpose() + (moment_sum / (l * l)) * (r * z.transpose() + z * r.transpose());
+}
+
+ChordPlace place_on_chord(const Vector2& a, const Vector2& b, const Vector2& x) {
+  const Vector2 chord = b - a, r = x - a;
+  const double length2 = chord.squaredNorm();
+  if (!(length2 > 0.0)) return {};
+  return {r.dot(chord) / length2, (chord.x() * r.y() - chord.y() * r.x()) / std::sqrt(length2)};
+}
+
+double alpha_on_chord(const Vector2& a, const Vector2& b, const Vector2& x) {
+  const Vector2 chord = b - a, r = x - a;
+  const double length2 = chord.squaredNorm();
+  return length2 > 0.0 ? r.dot(chord) / length2 : 0.0;
+}
+
+double distance_to_segment(const Vector2& a, const Vector2& b, const Vector2& x) {
+  const double length2 = (b - a).squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((x - a).dot(b - a) / length2, 0.0, 1.0) : 0.0;
+  return (a + t * (b - a) - x).norm();
+}
+
+ChordFrame chord_frame(const InitialChord& initial, const Vector6& d) {
+  // The chord's length and direction as current_chord forms them.
+  const Vector2 delta = (initial.end - initial.start) + Vector2(d[3] - d[0], d[4] - d[1]);
+  ChordFrame frame;
+  frame.length = delta.norm();
+  const double inverse = 1.0 / frame.length;
+  frame.e = Vector2(delta.x() * inverse, delta.y() * inverse);
+  frame.start = initial.start + d.head<2>();
+  return frame;
 }
 
 }  // namespace tsm::element

@@ -46,4 +46,28 @@ EquilibriumMatrix equilibrium_matrix(const Chord& chord);
 /// K_G = (N/l) z zᵀ + ((M_i + M_j)/l²)(r zᵀ + z rᵀ) (FORMULATION §1; the δJ·S term of Eq. 2).
 Matrix6 geometric_stiffness(const Chord& chord, const Eigen::Vector3d& forces);
 
+// ---- A point against a straight chord (contact detection, resting contacts, the ordering)
+
+/// Point x in the frame of the straight chord a → b: α along it (0 at a, 1 at b) and the signed
+/// distance across it (along n, the chord's direction turned +90°). {0, 0} for a zero chord.
+struct ChordPlace {
+  double alpha = 0.0;
+  double across = 0.0;
+};
+ChordPlace place_on_chord(const Vector2& a, const Vector2& b, const Vector2& x);
+/// place_on_chord's α alone (the same arithmetic, no square root).
+double alpha_on_chord(const Vector2& a, const Vector2& b, const Vector2& x);
+/// The distance from x to the segment a–b (to its nearer end beyond it).
+double distance_to_segment(const Vector2& a, const Vector2& b, const Vector2& x);
+
+/// An element's current chord as α needs it: its start X_i + u_i, unit direction e and length
+/// (current_chord's arithmetic).
+struct ChordFrame {
+  Vector2 start, e;
+  double length = 0.0;
+  /// α of a point on this chord, (x − x_i)·e / l.
+  double alpha(const Vector2& point) const { return (point - start).dot(e) / length; }
+};
+ChordFrame chord_frame(const InitialChord& initial, const Vector6& element_displacements);
+
 }  // namespace tsm::element

@@ -457,9 +457,10 @@ class Reader {
       fail(mpath, (named ? "no member for " + which + " to touch" : std::string("no member to touch")) +
                       (refused.empty() ? "" : " (hinged or sprung members carry no cantilever-coordinate contact)"));
     if (c.contains("element")) {
-      spec.element = string(c["element"], child(path, "element"));
-      if (spec.element != "euler-bernoulli" && spec.element != "timoshenko") fail(child(path, "element"), "unknown element " + quote_text(spec.element) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
-      if (spec.element == "timoshenko") {
+      const std::string element = string(c["element"], child(path, "element"));
+      if (element != "euler-bernoulli" && element != "timoshenko") fail(child(path, "element"), "unknown element " + quote_text(element) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
+      spec.theory = element == "timoshenko" ? BeamTheory::timoshenko : BeamTheory::euler_bernoulli;
+      if (spec.theory == BeamTheory::timoshenko) {
         spec.member_shear_flexibility.assign(model_.member_count, 0.0);
         for (int m : spec.members) {
           try {
@@ -471,8 +472,9 @@ class Reader {
       }
     }
     if (c.contains("frame")) {
-      spec.frame = string(c["frame"], child(path, "frame"));
-      if (spec.frame != "chord" && spec.frame != "cantilever") fail(child(path, "frame"), "unknown frame " + quote_text(spec.frame) + " (expected \"chord\" or \"cantilever\")");
+      const std::string frame = string(c["frame"], child(path, "frame"));
+      if (frame != "chord" && frame != "cantilever") fail(child(path, "frame"), "unknown frame " + quote_text(frame) + " (expected \"chord\" or \"cantilever\")");
+      spec.frame = frame == "cantilever" ? ContactFrame::cantilever : ContactFrame::chord;
     }
     if (auto edge = optional_number(c, "edge", path)) {
       if (!(*edge >= 1e-12 && *edge <= 0.25)) fail(child(path, "edge"), "must lie between 1e-12 and 0.25 (a fraction of the element length)");

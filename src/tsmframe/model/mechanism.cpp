@@ -1,5 +1,6 @@
 #include "tsmframe/model/mechanism.hpp"
 
+#include "tsmframe/element/chord.hpp"
 #include "tsmframe/model/hinges.hpp"
 #include "tsmframe/model/resting_contact.hpp"
 
@@ -37,7 +38,7 @@ std::string why_not_resting(const Model& model, const ContactSpec& contact) {
   double nearest = INFINITY;
   for (const Element& e : model.elements) {
     if (!in_set[e.member] || e.start == contact.node || e.end == contact.node) continue;
-    const ChordPlace place = place_on_chord(model.nodes[e.start].position, model.nodes[e.end].position, x);
+    const element::ChordPlace place = element::place_on_chord(model.nodes[e.start].position, model.nodes[e.end].position, x);
     if (place.alpha >= 0.0 && place.alpha <= 1.0) nearest = std::min(nearest, std::abs(place.across));
   }
   std::ostringstream os;

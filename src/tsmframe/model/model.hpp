@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,11 +64,16 @@ inline Eigen::Matrix<double, 6, 1> element_displacements(const Eigen::VectorXd& 
   return d;
 }
 
+/// The frame a contact element is written in: the chord's (Eq. 6–9) or the cantilever's
+/// clamped at node i (FORMULATION §2b).
+enum class ContactFrame { chord, cantilever };
+
 struct ContactSpec {
   int node = 0;                 ///< contact node index
   std::vector<int> members;     ///< member indices the node may touch
-  std::string element;          ///< "" (follow the touched element), "euler-bernoulli", "timoshenko"
-  std::string frame = "chord";  ///< "chord" or "cantilever"
+  /// The contact law's beam theory where it overrides the touched element's (none: follow it).
+  std::optional<BeamTheory> theory;
+  ContactFrame frame = ContactFrame::chord;
   double gap = 0.0;             ///< distance from the centre line at which contact starts
   double edge = -1.0;           ///< compliance clamp zone (contact_force_law); < 0: default per theory
   /// The contact at most this many times as stiff as the stiffest element holding its node, in

@@ -3,20 +3,9 @@
 #include <cmath>
 #include <vector>
 
+#include "tsmframe/element/chord.hpp"
+
 namespace tsm {
-
-ChordPlace place_on_chord(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& x) {
-  const Eigen::Vector2d chord = b - a, r = x - a;
-  const double length2 = chord.squaredNorm();
-  if (!(length2 > 0.0)) return {};
-  return {r.dot(chord) / length2, (chord.x() * r.y() - chord.y() * r.x()) / std::sqrt(length2)};
-}
-
-double alpha_on_chord(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& x) {
-  const Eigen::Vector2d chord = b - a, r = x - a;
-  const double length2 = chord.squaredNorm();
-  return length2 > 0.0 ? r.dot(chord) / length2 : 0.0;
-}
 
 std::optional<RestingContact> resting_contact(const Model& model, const ContactSpec& contact) {
   const double tolerance = 1e-10 * model.size;  // as the contact tracker's "on the centre line"
@@ -29,7 +18,7 @@ std::optional<RestingContact> resting_contact(const Model& model, const ContactS
     const Element& e = model.elements[k];
     if (!in_set[e.member] || e.start == contact.node || e.end == contact.node) continue;
     const Eigen::Vector2d a = model.nodes[e.start].position, b = model.nodes[e.end].position;
-    const auto [alpha, across] = place_on_chord(a, b, x);
+    const auto [alpha, across] = element::place_on_chord(a, b, x);
     const double distance = std::abs(across);
     if (alpha < 0.0 || alpha > 1.0 || distance <= tolerance || distance > contact.gap + tolerance) continue;
     if (distance >= best_distance) continue;

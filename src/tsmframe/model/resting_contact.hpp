@@ -21,16 +21,6 @@ struct RestingContact {
   Eigen::Vector2d normal;    ///< n of that chord (unit)
 };
 
-/// Point x in the frame of the straight chord a → b: α along it (0 at a, 1 at b) and the signed
-/// distance across it (along n, the chord's direction turned +90°). {0, 0} for a zero chord.
-struct ChordPlace {
-  double alpha = 0.0;
-  double across = 0.0;
-};
-ChordPlace place_on_chord(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& x);
-/// place_on_chord's α alone (the same arithmetic, no square root).
-double alpha_on_chord(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& x);
-
 /// The element `contact` rests on in the undeformed model (the nearest, if several), or none.
 std::optional<RestingContact> resting_contact(const Model& model, const ContactSpec& contact);
 

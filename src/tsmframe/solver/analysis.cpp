@@ -23,7 +23,7 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   const Control& control = settings.control;
   assembly::DofMap dofs(model);
   assembly::GlobalSystem system(model, dofs);
-  const contact::ContactTracker contacts(model);
+  const contact::ContactSet contacts(model);
   TsmProblem problem(system, &contacts);
   NewtonSolver newton(problem, {settings.tolerance, settings.max_iterations});
 #if defined(__GLIBC__)

@@ -8,7 +8,7 @@
 #include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/model/resting_contact.hpp"
 #include "tsmframe/solver/convergence.hpp"
-#include "tsmframe/solver/release_forecast.hpp"
+#include "tsmframe/contact/release_forecast.hpp"
 #include "tsmframe/util/first_touch.hpp"
 
 namespace tsm::solver {
@@ -19,7 +19,7 @@ constexpr int max_passes = 4;  // contact changes settled per iterate before New
 
 }  // namespace
 
-TsmProblem::TsmProblem(assembly::GlobalSystem& system, const contact::ContactTracker* contacts)
+TsmProblem::TsmProblem(assembly::GlobalSystem& system, const contact::ContactSet* contacts)
     : system_(system), contacts_(contacts && contacts->contact_count() > 0 ? contacts : nullptr) {
   const assembly::DofMap& dofs = system.dofs();
   const Model& model = system.model();
@@ -148,10 +148,10 @@ std::optional<StepFailure> TsmProblem::after_iterate(const State& state) const {
   // A point that rests on a beam node where two elements meet at an angle (a symmetric push on
   // a node) is pushed along one chord's normal, then the other's (README, Contact).
   const auto hops = std::find_if(state.contacts.begin(), state.contacts.end(),
-                                 [](const contact::ContactState& c) { return c.hop_node >= 0; });
+                                 [](const contact::ContactState& c) { return c.step.hop_node >= 0; });
   if (hops != state.contacts.end()) {
     failure.hopping_contact = static_cast<int>(hops - state.contacts.begin());
-    failure.hop_node = hops->hop_node;
+    failure.hop_node = hops->step.hop_node;
   }
   return failure;
 }
@@ -205,8 +205,8 @@ Settlement TsmProblem::at_convergence(State& state) {
 std::vector<std::pair<int, int>> TsmProblem::accept(State& state) {
   std::vector<std::pair<int, int>> slid_off;
   for (size_t k = 0; k < state.contacts.size(); ++k)
-    if (!state.contacts[k].active && state.contacts[k].slid_off_element >= 0)
-      slid_off.emplace_back(static_cast<int>(k), state.contacts[k].slid_off_element);
+    if (!state.contacts[k].active && state.contacts[k].step.slid_off_element >= 0)
+      slid_off.emplace_back(static_cast<int>(k), state.contacts[k].step.slid_off_element);
   if (contacts_) contacts_->accept(state.displacements, state.chord_rotations, state.contacts);
   return slid_off;
 }
@@ -263,12 +263,12 @@ std::vector<int> TsmProblem::look_ahead_releases(State& state, bool& overwrote_t
     if (!c.active) continue;
     owner.push_back(static_cast<int>(k));
     side.push_back(c.side);
-    may_join.push_back(c.partner < 0);
-    if (c.partner >= 0) {
+    may_join.push_back(!c.vertex);
+    if (c.vertex) {
       owner.push_back(static_cast<int>(k));
-      side.push_back(c.partner_side);
+      side.push_back(c.vertex->side);
       may_join.push_back(0);
-      if (-c.side * c.Y < 0.0 || -c.partner_side * c.partner_Y < 0.0) return also;  // a vertex opens: as before
+      if (-c.side * c.Y < 0.0 || -c.vertex->side * c.vertex->Y < 0.0) return also;  // a vertex opens: as before
     }
     pulls = pulls || c.force < 0.0;
   }
@@ -300,7 +300,7 @@ std::vector<int> TsmProblem::look_ahead_releases(State& state, bool& overwrote_t
     finite = finite && g.allFinite();
     return g;
   };
-  const std::vector<char> released = forecast_releases(column, stiffness, Y, side, may_join);
+  const std::vector<char> released = contact::forecast_releases(column, stiffness, Y, side, may_join);
   if (!finite) return also;
   for (int i = 0; i < n; ++i)
     if (released[i] && !(-side[i] * Y[i] < 0.0)) also.push_back(owner[i]);  // beyond those that pull now
@@ -319,7 +319,7 @@ std::vector<ContactPoint> TsmProblem::contact_points(const State& state) const {
   std::vector<ContactPoint> points;
   for (const contact::ContactState& c : state.contacts) {
     ContactPoint p;
-    if (c.active) p = {c.element, c.alpha, c.force, c.Y, c.partner, c.partner_Y};
+    if (c.active) p = {c.element, c.alpha, c.force, c.Y, c.vertex ? c.vertex->element : -1, c.vertex ? c.vertex->Y : 0.0};
     points.push_back(p);
   }
   return points;
@@ -339,7 +339,8 @@ Eigen::VectorXd TsmProblem::reactions(double load_factor) const {
 
 int TsmProblem::contact_on(const State& state, int element) const {
   for (size_t k = 0; k < state.contacts.size(); ++k)
-    if (state.contacts[k].active && (state.contacts[k].element == element || state.contacts[k].partner == element))
+    if (state.contacts[k].active &&
+        (state.contacts[k].element == element || (state.contacts[k].vertex && state.contacts[k].vertex->element == element)))
       return static_cast<int>(k);
   return -1;
 }

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "tsmframe/assembly/global_system.hpp"
-#include "tsmframe/contact/contact_tracker.hpp"
+#include "tsmframe/contact/contact_set.hpp"
 #include "tsmframe/solver/linear_solver.hpp"
 #include "tsmframe/solver/problem.hpp"
 
@@ -20,7 +20,7 @@ namespace tsm::solver {
 class TsmProblem final : public Problem {
  public:
   /// `contacts` (may be null: no contacts) runs the contact life cycle after every evaluation.
-  TsmProblem(assembly::GlobalSystem& system, const contact::ContactTracker* contacts = nullptr);
+  TsmProblem(assembly::GlobalSystem& system, const contact::ContactSet* contacts = nullptr);
 
   const Equations& equations() const override { return equations_; }
   bool has_contacts() const override { return contacts_ != nullptr; }
@@ -75,7 +75,7 @@ class TsmProblem final : public Problem {
   int contact_on(const State& state, int element) const;
 
   assembly::GlobalSystem& system_;
-  const contact::ContactTracker* contacts_ = nullptr;
+  const contact::ContactSet* contacts_ = nullptr;
   Equations equations_;
   bool hinged_ = false;  ///< some member end is released (a singular tangent may be a mechanism among hinges)
   /// Contacts (model order) resting on the structure as drawn that it needs: without them

@@ -12,7 +12,7 @@
 #include <functional>
 #include <vector>
 
-namespace tsm::solver {
+namespace tsm::contact {
 
 /// G's column j, Uᵀ K⁻¹ u_j (one entry per contact).
 using ForecastColumn = std::function<Eigen::VectorXd(int j)>;
@@ -29,4 +29,4 @@ std::vector<char> forecast_releases(const Eigen::MatrixXd& G, const Eigen::Vecto
                                     const std::vector<int>& side, const std::vector<char>& may_join, int rounds = 50,
                                     int largest_set = 400);
 
-}  // namespace tsm::solver
+}  // namespace tsm::contact

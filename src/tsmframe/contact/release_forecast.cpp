@@ -1,8 +1,8 @@
-#include "tsmframe/solver/release_forecast.hpp"
+#include "tsmframe/contact/release_forecast.hpp"
 
 #include <Eigen/LU>
 
-namespace tsm::solver {
+namespace tsm::contact {
 
 std::vector<char> forecast_releases(const ForecastColumn& column, const Eigen::VectorXd& stiffness,
                                     const Eigen::VectorXd& Y, const std::vector<int>& side,
@@ -51,4 +51,4 @@ std::vector<char> forecast_releases(const Eigen::MatrixXd& G, const Eigen::Vecto
                            largest_set);
 }
 
-}  // namespace tsm::solver
+}  // namespace tsm::contact

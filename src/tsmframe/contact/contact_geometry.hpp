@@ -1,0 +1,99 @@
+#pragma once
+// What each contact may touch and how its law is set up, fixed for the run: its node, its
+// candidate elements (the members it may touch), the contact law's section and end conditions on
+// each, the stiffness cap, and where a node stands against an element at a state (α along it and
+// its gap from the element's deflected centre line). The life cycle (sides, detection, sliding,
+// vertex, release, contact_set) reads it; nothing here changes with the path.
+
+#include <Eigen/Core>
+#include <cmath>
+#include <span>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "tsmframe/contact/contact_element.hpp"
+#include "tsmframe/model/model.hpp"
+
+namespace tsm::contact {
+
+/// A contact's node, its candidate elements and its law's settings (from ContactSpec).
+struct ContactCandidates {
+  int node = 0;
+  std::vector<int> candidates;        ///< element indices the node may touch, ascending
+  std::vector<int> candidate_index;   ///< per element: its place in candidates, −1 if not one
+  std::vector<double> shear_flexibility;  ///< per candidate: Ψ of the contact law
+  double gap = 0.0;
+  double edge = -1.0;                 ///< the compliance floor's edge δ; < 0: the default
+  double max_stiffness_ratio = 0.0;   ///< the cap: see ContactGeometry::cap_compliance
+  /// The elements holding the node, as drawn: axis (cos, sin of φ0), EA, EI and l0.
+  struct Own {
+    double cos = 0.0, sin = 0.0, EA = 0.0, EI = 0.0, l0 = 0.0;
+  };
+  std::vector<Own> own;
+  bool sliding_term = true;
+  ContactFrame frame = ContactFrame::chord;
+  bool is_candidate(int element) const { return candidate_index[element] >= 0; }
+};
+
+class ContactGeometry {
+ public:
+  explicit ContactGeometry(const Model& model);
+
+  const Model& model() const { return model_; }
+  int contact_count() const { return static_cast<int>(contacts_.size()); }
+  const ContactCandidates& contact(int k) const { return contacts_[k]; }
+  const element::InitialChord& initial(int element) const { return initial_[element]; }
+  /// The elements at a node.
+  std::span<const int> node_elements(int node) const {
+    return {node_elements_.data() + node_start_[node], node_elements_.data() + node_start_[node + 1]};
+  }
+  /// Elements some contact may touch, ascending.
+  const std::vector<int>& candidate_elements() const { return candidate_elements_; }
+  /// |gap| below this: the node lies on the centre line (it has no side yet).
+  double touch_tolerance() const { return touch_tolerance_; }
+
+  /// A node's current position.
+  Eigen::Vector2d position(int node, const Eigen::VectorXd& displacements) const {
+    return model_.nodes[node].position + displacements.segment<2>(dofs_per_node * node);
+  }
+  /// The unit normal n of an element's current chord.
+  Eigen::Vector2d chord_normal(int element, const Eigen::VectorXd& displacements, const std::vector<double>& rotations) const;
+  /// Where the contact node is on `element` (node_on_element); its gap is measured only where α
+  /// lies in [lowest, highest] (NaN elsewhere: α alone rules the element out).
+  NodeOnElement locate(const ContactCandidates& contact, int element, const Eigen::VectorXd& displacements,
+                       const std::vector<double>& rotations, double lowest = -INFINITY, double highest = INFINITY) const;
+  /// The contact node in the frame of an element's straight current chord: α along it, the
+  /// signed distance across it (along n). Unlike locate(), meaningful far beyond the element.
+  NodeOnElement on_chord(const ContactCandidates& contact, int element, const Eigen::VectorXd& displacements) const;
+  /// What the contact element of `contact` on `element`, the node on `side` of it, is made of.
+  ContactElementData element_data(const ContactCandidates& contact, int element, int side) const;
+  /// The compliance floor's edge δ of a contact (its own, or the default).
+  static double edge_of(const ContactCandidates& contact);
+
+ private:
+  element::SectionStiffness contact_section(const ContactCandidates& contact, int element) const;
+  /// How the element's ends are joined to its nodes (ContactElementData::flexibility_i, _j): ∞ at
+  /// a hinge, 1/k at an end spring, 0 where rigid.
+  std::pair<double, double> end_flexibilities(int element) const;
+  /// The stiffness cap's compliance for `contact` on `element`: 1 / (ratio · k), k the stiffest
+  /// element holding the contact node across that element (as drawn: EA/l0 along the element's
+  /// axis, 12EI/l0³ across it, mixed by the angle to the touched element's normal); 0 where no
+  /// element holds the node (a rigid pusher: no cap).
+  double cap_compliance(const ContactCandidates& contact, int element) const;
+  ContactCandidates candidates_of(const ContactSpec& spec) const;
+
+  const Model& model_;
+  std::vector<ContactCandidates> contacts_;
+  std::vector<element::InitialChord> initial_;
+  std::vector<int> node_start_, node_elements_;  ///< elements at each node (CSR)
+  std::vector<int> candidate_elements_;
+  double touch_tolerance_ = 0.0;
+};
+
+/// The element displacements (u, v, θ)_i, (u, v, θ)_j of element `e`.
+inline element::Vector6 element_displacements(const Element& e, const Eigen::VectorXd& displacements) {
+  return tsm::element_displacements(displacements, e.start, e.end);
+}
+
+}  // namespace tsm::contact

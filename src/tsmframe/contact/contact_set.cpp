@@ -1,0 +1,157 @@
+#include "tsmframe/contact/contact_set.hpp"
+
+#include "tsmframe/contact/detection.hpp"
+#include "tsmframe/contact/release.hpp"
+#include "tsmframe/contact/sides.hpp"
+#include "tsmframe/contact/sliding.hpp"
+#include "tsmframe/contact/vertex.hpp"
+#include "tsmframe/model/resting_contact.hpp"
+
+namespace tsm::contact {
+namespace {
+
+void add(const HandOver& h, ContactChanges& changes) {
+  changes.handed_over += h.handed_over;
+  changes.reversed += h.reversed;
+  changes.released += h.released ? 1 : 0;
+}
+
+}  // namespace
+
+std::vector<ContactState> ContactSet::initial_states() const {
+  const Model& model = geometry_.model();
+  const Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
+  const std::vector<double> rotations(model.elements.size(), 0.0);
+  std::vector<ContactState> states(contact_count());
+  std::vector<char> occupied(model.elements.size(), 0);
+  for (int k = 0; k < contact_count(); ++k) {
+    const ContactCandidates& contact = geometry_.contact(k);
+    states[k].reference.side.assign(contact.candidates.size(), 0);
+    reset_sides(geometry_, contact, D, rotations, 0, states[k]);
+    // Resting on an element as drawn (model/resting_contact): in contact from the start, so a
+    // structure held only by its contacts has a tangent to start from (one contact per element,
+    // as always: a second one on the same element starts at the first update instead).
+    if (const auto r = resting_contact(model, model.contacts[k]); r && !occupied[r->element]) {
+      occupied[r->element] = 1;
+      states[k].active = true;
+      states[k].element = r->element;
+      states[k].side = r->side;
+      states[k].alpha = r->alpha;
+    }
+  }
+  return states;
+}
+
+std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<ContactState>& states) const {
+  std::vector<ActiveContact> active;
+  for (int k = 0; k < contact_count(); ++k) {
+    const ContactState& s = states[k];
+    if (!s.active) continue;
+    const ContactCandidates& contact = geometry_.contact(k);
+    active.push_back({k, false, contact.node, s.element, geometry_.element_data(contact, s.element, s.side)});
+    if (s.vertex)
+      active.push_back({k, true, contact.node, s.vertex->element, geometry_.element_data(contact, s.vertex->element, s.vertex->side)});
+  }
+  return active;
+}
+
+void ContactSet::record(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                        const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states) const {
+  for (const ContactEvaluation& e : evaluated) {
+    if (e.vertex) continue;
+    ContactState& state = states[e.contact];
+    state.alpha = e.alpha;
+    state.Y = e.Y;
+    state.force = -state.side * state.Y;
+  }
+  for (const ContactEvaluation& e : evaluated)  // a vertex's second element, with its first read
+    if (e.vertex) read_vertex(geometry_, D, rotations, e.Y, states[e.contact]);
+}
+
+ContactChanges ContactSet::update(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                  const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states,
+                                  bool at_convergence) const {
+  record(D, rotations, evaluated, states);
+  ContactChanges changes;
+  std::vector<char> occupied(geometry_.model().elements.size(), 0);
+  for (const ContactState& s : states)
+    if (s.active) {
+      occupied[s.element] = 1;
+      if (s.vertex) occupied[s.vertex->element] = 1;
+    }
+  ChordFrames frames(geometry_, D);
+  for (int k = 0; k < contact_count(); ++k) {
+    const ContactCandidates& contact = geometry_.contact(k);
+    ContactState& state = states[k];
+    if (state.active) {
+      update_active(contact, D, rotations, at_convergence, state, occupied, changes);
+    } else if (const std::optional<HandOver> touched = detect(geometry_, contact, D, rotations, frames, state, occupied)) {
+      ++changes.activated;
+      add(*touched, changes);
+    }
+  }
+  return changes;
+}
+
+void ContactSet::update_active(const ContactCandidates& contact, const Eigen::VectorXd& D,
+                               const std::vector<double>& rotations, bool at_convergence, ContactState& state,
+                               std::vector<char>& occupied, ContactChanges& changes) const {
+  if (state.vertex) {
+    // A vertex holds the node at the beam node until a converged iterate finds a side pulling.
+    if (at_convergence && open_vertex(geometry_, contact, D, rotations, state, occupied)) ++changes.released;
+    return;
+  }
+  if (at_convergence && state.force < 0.0) {  // compression only
+    occupied[state.element] = 0;
+    release(geometry_, contact, D, rotations, state, true);
+    ++changes.released;
+    return;
+  }
+  if (state.alpha >= 0.0 && state.alpha <= 1.0) return;
+  add(hand_over(geometry_, contact, D, rotations, at_convergence, state, occupied), changes);
+}
+
+bool ContactSet::passed_through(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                const std::vector<ContactState>& states) const {
+  for (int k = 0; k < contact_count(); ++k)
+    if (contact::passed_through(geometry_, geometry_.contact(k), D, rotations, states[k])) return true;
+  return false;
+}
+
+std::pair<int, int> ContactSet::blocked(const std::vector<ContactState>& states) const {
+  for (size_t k = 0; k < states.size(); ++k)
+    if (!states[k].active && states[k].step.blocked_element >= 0) return {static_cast<int>(k), states[k].step.blocked_element};
+  return {-1, -1};
+}
+
+int ContactSet::allow_touching_again(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                     std::vector<ContactState>& states) const {
+  int count = 0;
+  for (int k = 0; k < contact_count(); ++k)
+    if (contact::passed_through(geometry_, geometry_.contact(k), D, rotations, states[k])) {
+      states[k].step.released = false;
+      ++count;
+    }
+  return count;
+}
+
+int ContactSet::release_as_pulling(const std::vector<int>& which, const Eigen::VectorXd& D,
+                                   const std::vector<double>& rotations, std::vector<ContactState>& states) const {
+  int released = 0;
+  for (const int k : which) {
+    if (!states[k].active || states[k].vertex) continue;
+    release(geometry_, geometry_.contact(k), D, rotations, states[k], true);
+    ++released;
+  }
+  return released;
+}
+
+void ContactSet::accept(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                        std::vector<ContactState>& states) const {
+  for (int k = 0; k < contact_count(); ++k) {
+    states[k].step = StepMemory{};
+    if (!states[k].active) reset_sides(geometry_, geometry_.contact(k), D, rotations, 0, states[k]);
+  }
+}
+
+}  // namespace tsm::contact

@@ -1,0 +1,103 @@
+#pragma once
+// The contacts of a model through their life cycle (FORMULATION §3). After every evaluation of
+// the structure, update() runs, contact by contact:
+//  - an active contact whose force would pull at a converged iterate lets go (release.hpp), and
+//    a vertex where one side pulls opens (vertex.hpp);
+//  - an active contact whose point has left its element is handed on along the beam, or lets go
+//    past a free end at a converged iterate (sliding.hpp);
+//  - an inactive contact whose node has reached an element's deflected centre line starts there
+//    (detection.hpp), its sides at the last converged state telling (sides.hpp).
+// Evaluations come back keyed by contact (ContactEvaluation::contact). What may touch what, and
+// where a node stands against an element, is contact_geometry's.
+
+#include <Eigen/Core>
+#include <utility>
+#include <vector>
+
+#include "tsmframe/contact/contact_element.hpp"
+#include "tsmframe/contact/contact_geometry.hpp"
+#include "tsmframe/contact/contact_state.hpp"
+#include "tsmframe/model/model.hpp"
+
+namespace tsm::contact {
+
+/// A contact element to evaluate: the node of contact `contact` on element `element`.
+struct ActiveContact {
+  int contact = -1;     ///< index of the contact (model order)
+  bool vertex = false;  ///< the second element of a vertex (ContactState::vertex)
+  int node = 0;
+  int element = 0;
+  ContactElementData data;
+};
+
+/// What an evaluation of an active contact element found, for its contact.
+struct ContactEvaluation {
+  int contact = -1;     ///< ActiveContact::contact
+  bool vertex = false;  ///< ActiveContact::vertex
+  double alpha = 0.0;
+  double Y = 0.0;
+};
+
+/// Changes made by one update().
+struct ContactChanges {
+  int activated = 0;
+  int released = 0;
+  int handed_over = 0;
+  int reversed = 0;  ///< hand-overs back the way a contact point came within the step
+  bool any() const { return activated + released + handed_over > 0; }
+};
+
+class ContactSet {
+ public:
+  explicit ContactSet(const Model& model) : geometry_(model) {}
+
+  int contact_count() const { return geometry_.contact_count(); }
+  /// States at the undeformed model: sides of every contact node against its candidates, and
+  /// in touch where a node rests on an element as drawn (model/resting_contact).
+  std::vector<ContactState> initial_states() const;
+  /// The contact elements of the active contacts (two for a vertex).
+  std::vector<ActiveContact> active_contacts(const std::vector<ContactState>& states) const;
+  /// Reads the evaluations of the active contacts into their states (α, Y, compression) without
+  /// changing the active set: the evaluation that stands.
+  void record(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+              const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states) const;
+  /// Records the evaluations, then runs the life cycle at `displacements` (chord rotations of
+  /// that evaluation). A pull releases a contact only `at_convergence` — Newton asks for it once
+  /// the residual has converged: an unconverged iterate's Y is no evidence of pulling (a stiff
+  /// contact's Y swings through zero while the beam catches up with the node).
+  ContactChanges update(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+                        const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states,
+                        bool at_convergence) const;
+  /// Whether a contact released during this step has let its node pass through a beam: the
+  /// converged state is then not acceptable.
+  bool passed_through(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+                      const std::vector<ContactState>& states) const;
+  /// A contact (index) whose node reached an element another contact is on — one contact
+  /// element per element — and that element; {−1, −1} if none.
+  std::pair<int, int> blocked(const std::vector<ContactState>& states) const;
+  /// Lets every contact released during this step whose node has passed through a beam touch
+  /// again (the next update() starts it from its side at the step's start); returns how many.
+  /// With several contacts pressing one beam, releasing all that pull at once can let another
+  /// node through: the active set then needs that contact back.
+  int allow_touching_again(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+                           std::vector<ContactState>& states) const;
+  /// Lets go of the contacts `which` (indices, each active on one element) as a contact that
+  /// pulls lets go: Newton's look-ahead found that they would pull once the pulling ones have let
+  /// go. Returns how many it released.
+  int release_as_pulling(const std::vector<int>& which, const Eigen::VectorXd& displacements,
+                         const std::vector<double>& rotations, std::vector<ContactState>& states) const;
+  /// At a converged state: the step's memory is cleared, and inactive contacts take their
+  /// current sides as reference.
+  void accept(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+              std::vector<ContactState>& states) const;
+
+ private:
+  /// The life cycle of one active contact at an update.
+  void update_active(const ContactCandidates& contact, const Eigen::VectorXd& displacements,
+                     const std::vector<double>& rotations, bool at_convergence, ContactState& state,
+                     std::vector<char>& occupied, ContactChanges& changes) const;
+
+  ContactGeometry geometry_;
+};
+
+}  // namespace tsm::contact

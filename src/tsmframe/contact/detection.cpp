@@ -1,0 +1,126 @@
+#include "tsmframe/contact/detection.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace tsm::contact {
+namespace {
+
+constexpr double alpha_tolerance = 1e-12;  // a node on a beam node counts for both elements
+
+int sign(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
+
+}  // namespace
+
+void ChordFrames::form() {
+  const Model& model = geometry_.model();
+  frames_.resize(model.elements.size());
+  for (const int e : geometry_.candidate_elements())
+    frames_[e] = element::chord_frame(geometry_.initial(e), element_displacements(model.elements[e], displacements_));
+}
+
+int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spec, const ContactState& state,
+                   const Eigen::VectorXd& D, const std::vector<char>& occupied) {
+  const Model& model = geometry.model();
+  // In each element's own frame the node moved from (α0, g0) at the last converged state to
+  // (α1, g1) now: where g reaches the contact's gap on the far side, α is interpolated between.
+  // Only elements with a side (the side the node is to come from) and whose chord the node was
+  // then on that side of; none the node now lies within (the ordinary test covers those). And
+  // only where the node itself moved across the element as it lies now (its straight path
+  // meets the current chord): an element that turned a long way in the step sweeps its frame
+  // past nodes that never met it (a strip rolled onto a die in one step).
+  if (state.reference.along.size() != spec.candidates.size()) return -1;
+  const auto position = [&](int n) { return geometry.position(n, D); };
+  const Eigen::Vector2d p0(state.reference.position[0], state.reference.position[1]), p1 = position(spec.node);
+  const Eigen::Vector2d path = p1 - p0;
+  if (!(path.squaredNorm() > 0.0)) return -1;
+  const auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
+  const auto path_meets_chord = [&](int f) {
+    const Eigen::Vector2d a = position(model.elements[f].start), b = position(model.elements[f].end);
+    const double denominator = cross(path, b - a);
+    if (denominator == 0.0) return false;
+    const double s = cross(a - p0, b - a) / denominator, u = cross(a - p0, path) / denominator;
+    return s >= 0.0 && s <= 1.0 && u >= 0.0 && u <= 1.0;
+  };
+  int first = -1;
+  double first_t = INFINITY;
+  for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
+    const int f = spec.candidates[ci], side = state.reference.side[ci];
+    if (occupied[f] || (side != 1 && side != -1)) continue;
+    const double before = side * state.reference.across[ci];
+    if (!(before > spec.gap)) continue;
+    const Element& e = model.elements[f];
+    const Eigen::Vector2d a = position(e.start), b = position(e.end);
+    if (const double alpha = element::alpha_on_chord(a, b, p1); alpha >= -alpha_tolerance && alpha <= 1.0 + alpha_tolerance)
+      continue;  // on_chord's α, without its square root
+    {  // Still on its side beyond the gap, surely (on_chord's distance, squared, with room for rounding).
+      const Eigen::Vector2d chord = b - a, r = p1 - a;
+      const double across = chord.x() * r.y() - chord.y() * r.x(), length2 = chord.squaredNorm();
+      if (length2 > 0.0 && side * across > 0.0 && across * across > spec.gap * spec.gap * length2 * (1.0 + 1e-9)) continue;
+    }
+    const NodeOnElement now = geometry.on_chord(spec, f, D);
+    const double after = side * now.gap;
+    if (after > spec.gap) continue;
+    const double t = (before - spec.gap) / (before - after);
+    const double alpha = state.reference.along[ci] + t * (now.alpha - state.reference.along[ci]);
+    if (alpha < 0.0 || alpha > 1.0 || t >= first_t || !path_meets_chord(f)) continue;
+    first = f;
+    first_t = t;
+  }
+  return first;
+}
+
+std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& D,
+                               const std::vector<double>& rotations, ChordFrames& frames, ContactState& state,
+                               std::vector<char>& occupied) {
+  state.step.blocked_element = -1;
+  if (state.step.released) return std::nullopt;
+  int best = -1, best_side = 0;
+  double best_gap = INFINITY, best_alpha = 0.0;
+  const Eigen::Vector2d node = geometry.position(contact.node, D);
+  for (size_t ci = 0; ci < contact.candidates.size(); ++ci) {
+    const int f = contact.candidates[ci];
+    if (const double alpha = frames(f).alpha(node); alpha < -alpha_tolerance || alpha > 1.0 + alpha_tolerance)
+      continue;  // the same α as locate's
+    const NodeOnElement where = geometry.locate(contact, f, D, rotations);
+    const int reference = state.reference.side[ci];
+    int side = 0;
+    if (reference == no_side) {
+      continue;
+    } else if (reference != 0) {
+      if (reference * where.gap <= contact.gap) side = reference;
+    } else if (std::abs(where.gap) > geometry.touch_tolerance()) {
+      side = -sign(where.gap);  // it left the centre line: it pushes the way it moves
+    }
+    if (side != 0 && occupied[f]) {  // another contact holds this element: one per element
+      state.step.blocked_element = f;
+      continue;
+    }
+    if (side != 0 && std::abs(where.gap) < best_gap) {
+      best = f;
+      best_side = side;
+      best_gap = std::abs(where.gap);
+      best_alpha = where.alpha;
+    }
+  }
+  if (best < 0) {
+    // Across an element's span and on beyond it within one iterate (a long step along a beam
+    // the node was pressed onto): contact starts on that element, and is handed on along the
+    // beam from there to where the node is — as far as the beam lets it (a column in the way).
+    best = swept_crossing(geometry, contact, state, D, occupied);
+    if (best < 0) return std::nullopt;
+    best_side = state.reference.side[contact.candidate_index[best]];
+    best_alpha = geometry.locate(contact, best, D, rotations).alpha;
+  }
+  state.step.blocked_element = -1;
+  state.active = true;
+  state.element = best;
+  state.side = best_side;
+  state.alpha = best_alpha;
+  state.force = state.Y = 0.0;
+  occupied[best] = 1;
+  if (state.alpha < 0.0 || state.alpha > 1.0) return hand_over(geometry, contact, D, rotations, false, state, occupied);
+  return HandOver{};
+}
+
+}  // namespace tsm::contact

@@ -1,0 +1,50 @@
+#pragma once
+// A contact starts where its node has reached or crossed a candidate element's deflected centre
+// line since the last converged state: within the element's span on the other side of it (or
+// off the centre line, for a node that was on it), measured from the element's own deflected
+// shape (the line where the contact force is exactly zero), so a contact starts with Y = 0 and
+// no jump. A node that went across an element's span and on beyond it within one iterate (a
+// long step along a beam it was pressed onto) is caught along its path (swept_crossing).
+
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "tsmframe/contact/contact_geometry.hpp"
+#include "tsmframe/contact/contact_state.hpp"
+#include "tsmframe/contact/sliding.hpp"
+
+namespace tsm::contact {
+
+/// Every candidate element's current chord frame, formed once per update when first asked for:
+/// detection takes α of each inactive node on every candidate, and α alone rules out all but the
+/// few whose span holds it.
+class ChordFrames {
+ public:
+  ChordFrames(const ContactGeometry& geometry, const Eigen::VectorXd& displacements)
+      : geometry_(geometry), displacements_(displacements) {}
+  const element::ChordFrame& operator()(int element) {
+    if (frames_.empty()) form();
+    return frames_[element];
+  }
+
+ private:
+  void form();
+  const ContactGeometry& geometry_;
+  const Eigen::VectorXd& displacements_;
+  std::vector<element::ChordFrame> frames_;
+};
+
+/// The first candidate whose span the node has crossed, from its side, between the last
+/// converged state and now while ending beyond the span, first along the path (−1: none).
+int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& contact, const ContactState& state,
+                   const Eigen::VectorXd& displacements, const std::vector<char>& occupied);
+
+/// Starts the inactive contact `state` where its node has reached an element, and hands it on
+/// along the beam to where the node is (sliding.hpp). None: it touches nothing (or only elements
+/// another contact is on: state.step.blocked_element says which).
+std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCandidates& contact,
+                               const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+                               ChordFrames& frames, ContactState& state, std::vector<char>& occupied);
+
+}  // namespace tsm::contact
