@@ -254,13 +254,13 @@ def main():
 
     longest_function = max((last - first + 1 for _, first, last, _ in functions), default=0)
     print(f"floors: {' < '.join(FLOORS)} < {', '.join(TOP)}")
-    print(f"includes: {include_count} of tsmframe headers in src/tsmframe, {len(include_violations)} against the floor order")
+    print(f"includes: {include_count} of tsmframe headers in src/tsmframe/, {len(include_violations)} against the floor order")
     print(f"functions: {len(functions)} in src/, longest {longest_function} lines, "
           f"{len(function_violations)} over {FUNCTION_LIMIT}")
     print(f".cpp files: {cpp_count} in src/, longest {longest_cpp} lines, {len(cpp_violations)} over {CPP_LIMIT}")
     print(f"python: {module_count} modules in scripts/ and python/tsmframe/, {import_count} imports among them, "
           f"{len(import_violations)} circles")
-    print(f"layout: {'ok' if not violations else f'{len(violations)} violations'}")
+    print(f"layout: {'ok' if not violations else f'{len(violations)} violation' + ('s' if len(violations) > 1 else '')}")
     return 1 if violations else 0
 
 
