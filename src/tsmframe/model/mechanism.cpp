@@ -57,7 +57,7 @@ std::string why_not_resting(const Model& model, const ContactSpec& contact) {
 }
 
 /// The nodes that elements join into connected parts (a union-find over the nodes), and the
-/// nodes some element holds; a node no element holds is a part of its own, checked on its own.
+/// nodes some element holds; a node no element holds is in no part (unheld_node checks it).
 struct Parts {
   std::vector<int> parent;
   std::vector<bool> held;
