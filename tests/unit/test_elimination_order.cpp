@@ -121,6 +121,42 @@ TEST(EliminationOrder, AChainGoesFromBothEndsToItsMiddleWithoutFill) {
   EXPECT_EQ(ldlt.rows_above_tasks(), 1);
 }
 
+TEST(EliminationOrder, AChainWithoutJointsGoesFromBothEndsTowardItsMiddle) {
+  // 0–1–2–3–4: the first half from node 0, the second from node 4, the middle last.
+  EXPECT_EQ(tsm::assembly::elimination_order(graph(5, chain(0, 4))), (std::vector<int>{0, 1, 4, 3, 2}));
+}
+
+TEST(EliminationOrder, MembersWithADeadEndGoFromItTowardTheirJoint) {
+  // Joint 0 with three members of two elements: 0–1–2, 0–3–4, 0–5–6. Each from its free end
+  // toward the joint (no fill), in the order of their first nodes, then the joint.
+  const NodeGraph g = graph(7, {{0, 1}, {1, 2}, {0, 3}, {3, 4}, {0, 5}, {5, 6}});
+  EXPECT_EQ(tsm::assembly::elimination_order(g), (std::vector<int>{2, 1, 4, 3, 6, 5, 0}));
+}
+
+TEST(EliminationOrder, ARingIsOpenedAtItsFirstNodeWhichGoesLast) {
+  // 0–1–2–3–4–5–0: node 0 becomes the ring's joint, the path 1 … 5 goes from both ends toward
+  // its middle node 3.
+  std::vector<std::pair<int, int>> edges = chain(0, 5);
+  edges.emplace_back(5, 0);
+  EXPECT_EQ(tsm::assembly::elimination_order(graph(6, edges)), (std::vector<int>{1, 2, 5, 4, 3, 0}));
+}
+
+TEST(EliminationOrder, PathsWithoutAJointComeBeforeTheJoints) {
+  // Node 0 has no element (a joint of its own); the chain 1–2–3 has no joint: it comes first.
+  EXPECT_EQ(tsm::assembly::elimination_order(graph(4, chain(1, 3))), (std::vector<int>{1, 3, 2, 0}));
+}
+
+TEST(EliminationOrder, AMemberBetweenTwoJointsGoesFromTheSideOfTheFirstJoint) {
+  // Joint 0 (ends 1, 2 hanging off it) and joint 6 (ends 7, 8) joined by the member 0–3–4–5–6.
+  // Two joints form the top path: every member goes before both, in the order of their first
+  // nodes, the member between them starting next to whichever joint minimum degree takes first.
+  const NodeGraph g = graph(9, {{0, 1}, {0, 2}, {0, 3}, {3, 4}, {4, 5}, {5, 6}, {6, 7}, {6, 8}});
+  const std::vector<int> order = tsm::assembly::elimination_order(g);
+  ASSERT_EQ(order.size(), 9u);
+  if (order[7] == 0) EXPECT_EQ(order, (std::vector<int>{1, 2, 3, 4, 5, 7, 8, 0, 6}));
+  else EXPECT_EQ(order, (std::vector<int>{1, 2, 5, 4, 3, 7, 8, 6, 0}));
+}
+
 TEST(EliminationOrder, AnyGraphGivesAPermutation) {
   // A ring (no joint), a star, isolated nodes, two elements between the same nodes, a chain
   // hanging off a joint, a single element: all in one graph.

@@ -57,25 +57,45 @@ std::string why_not_resting(const Model& model, const ContactSpec& contact) {
   return os.str();
 }
 
-}  // namespace
+/// The nodes that elements join into connected parts (a union-find over the nodes), and the
+/// nodes some element holds; a node no element holds is in no part (unheld_node checks it).
+struct Parts {
+  std::vector<int> parent;
+  std::vector<bool> held;
+  std::vector<std::vector<int>> members;  // per root: the part's held nodes, ascending (members_by_root)
 
-std::optional<std::string> find_mechanism(const Model& model, bool resting_contacts_hold) {
+  int root(int k) { return find_root(parent, k); }
+};
+
+Parts join_by_elements(const Model& model) {
   const int n = model.node_count();
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  std::vector<bool> held(n, false);
+  Parts parts;
+  parts.parent.resize(n);
+  std::iota(parts.parent.begin(), parts.parent.end(), 0);
+  parts.held.assign(n, false);
   for (const Element& e : model.elements) {
-    held[e.start] = held[e.end] = true;
-    parent[find_root(parent, e.start)] = find_root(parent, e.end);
+    parts.held[e.start] = parts.held[e.end] = true;
+    parts.parent[parts.root(e.start)] = parts.root(e.end);
   }
-  const std::vector<char> hinge = hinge_nodes(model);
-  for (int k = 0; k < n; ++k) {
+  return parts;
+}
+
+void members_by_root(Parts& parts) {
+  const int n = static_cast<int>(parts.parent.size());
+  parts.members.assign(n, {});
+  for (int k = 0; k < n; ++k)
+    if (parts.held[k]) parts.members[parts.root(k)].push_back(k);
+}
+
+/// The first node no element holds with a dof its supports leave free, named with that dof, or
+/// none. A contact node resting on a beam as drawn is held by it along the normal there: enough
+/// if that is its one free translation's direction, in part (a load riding on a beam: ux
+/// prescribed, uy free).
+std::optional<std::string> unheld_node(const Model& model, const std::vector<bool>& held, bool resting_contacts_hold) {
+  for (int k = 0; k < model.node_count(); ++k) {
     if (held[k]) continue;
     const auto spec = std::find_if(model.contacts.begin(), model.contacts.end(), [&](const ContactSpec& c) { return c.node == k; });
     const bool contact_node = spec != model.contacts.end();
-    // A contact node resting on a beam as drawn is held by it along the normal there: enough if
-    // that is its one free translation's direction, in part (a load riding on a beam: ux
-    // prescribed, uy free).
     int free_translations = 0, free_dof = -1;
     for (const int dof : {ux, uy})
       if (!model.constrained[dofs_per_node * k + dof]) ++free_translations, free_dof = dof;
@@ -91,139 +111,196 @@ std::optional<std::string> find_mechanism(const Model& model, bool resting_conta
                                    why_not_resting(model, *spec)
                              : std::string());
   }
-  std::vector<std::vector<int>> parts(n);
-  for (int k = 0; k < n; ++k)
-    if (held[k]) parts[find_root(parent, k)].push_back(k);
-  // A contact resting on a part as drawn (resting_contact) holds that part along the element's
-  // normal at the touch point where its node is held — in both translations by supports (a knife
-  // edge), or as a node of a part that is itself held (a beam lying on a supported one) — and,
-  // the other way round, holds its node's part where the part it rests on is held. Bilaterally,
-  // for this check: a contact lets go only if it would pull, which a solve finds out. Parts held
-  // so hold others in turn, until nothing changes.
-  struct Touch {
-    int node_part, element_part;  // roots; node_part −1: a node held by supports, in no part
-    Eigen::Vector2d point, normal;
-  };
+  return std::nullopt;
+}
+
+/// A contact resting on a part as drawn (resting_contact): its touch point and normal on the
+/// element's part, and its node's part (−1: a node held in both translations by supports, in no
+/// part).
+struct Touch {
+  int node_part, element_part;  // roots
+  Eigen::Vector2d point, normal;
+};
+
+/// The contacts resting as drawn whose node is held, by supports (a knife edge) or as a node of
+/// a part; none unless `resting_contacts_hold`.
+std::vector<Touch> resting_touches(const Model& model, Parts& parts, bool resting_contacts_hold) {
   std::vector<Touch> touches;
   for (const ContactSpec& c : model.contacts) {
     if (!resting_contacts_hold) break;
     const bool fixed = model.constrained[dofs_per_node * c.node + ux] && model.constrained[dofs_per_node * c.node + uy];
-    if (!fixed && !held[c.node]) continue;
+    if (!fixed && !parts.held[c.node]) continue;
     if (const auto r = resting_contact(model, c))
-      touches.push_back({fixed ? -1 : find_root(parent, c.node), find_root(parent, model.elements[r->element].start),
-                         r->point, r->normal});
+      touches.push_back({fixed ? -1 : parts.root(c.node), parts.root(model.elements[r->element].start), r->point, r->normal});
   }
-  std::vector<std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>> resting(n);  // per part root: (point, normal)
-  std::vector<char> part_held(n, 0), used(touches.size(), 0);
-  // The part's rigid-body modes against its supports: the Gram matrix of the constraint rows
-  // (translation x, y; rotation about the centre, scaled by the part's extent so the columns are
-  // commensurate), one row per constrained dof and per contact holding it.
-  struct Modes {
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-    Eigen::Vector2d centre;
-    double extent = 1.0;
-    bool stable() const { return eig.eigenvalues()[0] > 1e-10 * std::max(1.0, eig.eigenvalues()[2]); }
-  };
-  auto modes_of = [&](const std::vector<int>& part, int root) {
-    Modes m;
-    m.centre = Eigen::Vector2d::Zero();
-    Eigen::Vector2d lo = model.nodes[part.front()].position, hi = lo;
-    for (int k : part) {
-      const Eigen::Vector2d& p = model.nodes[k].position;
-      m.centre += p;
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-    m.centre /= static_cast<double>(part.size());
-    m.extent = std::max((hi - lo).norm(), 1e-300);
-    Eigen::Matrix3d gram = Eigen::Matrix3d::Zero();
-    for (int k : part) {
-      const Eigen::Vector2d p = (model.nodes[k].position - m.centre) / m.extent;
-      const Eigen::Vector3d rows[3] = {{1.0, 0.0, -p.y()}, {0.0, 1.0, p.x()}, {0.0, 0.0, 1.0}};
-      // A fixed rotation where every element end is hinged holds nothing of the part.
-      for (int dof = 0; dof < dofs_per_node; ++dof)
-        if (model.constrained[dofs_per_node * k + dof] && (dof != rz || !hinge[k])) gram += rows[dof] * rows[dof].transpose();
-    }
-    for (const auto& [point, normal] : resting[root]) {
-      const Eigen::Vector2d p = (point - m.centre) / m.extent;
-      const Eigen::Vector3d row(normal.x(), normal.y(), -normal.x() * p.y() + normal.y() * p.x());
-      gram += row * row.transpose();
-    }
-    m.eig.compute(gram);
-    return m;
-  };
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (size_t t = 0; t < touches.size(); ++t) {
-      if (used[t]) continue;
-      const Touch& touch = touches[t];
-      const bool node_held = touch.node_part < 0 || part_held[touch.node_part];
-      if (node_held && touch.node_part != touch.element_part) {
-        resting[touch.element_part].push_back({touch.point, touch.normal});
-      } else if (part_held[touch.element_part] && touch.node_part >= 0 && touch.node_part != touch.element_part) {
-        resting[touch.node_part].push_back({touch.point, touch.normal});
-      } else {
-        continue;
-      }
-      used[t] = 1;
-      changed = true;
-    }
-    for (const std::vector<int>& part : parts) {
-      if (part.empty()) continue;
-      const int root = find_root(parent, part.front());
-      if (!part_held[root] && modes_of(part, root).stable()) part_held[root] = 1, changed = true;
-    }
-  }
+  return touches;
+}
 
-  for (const std::vector<int>& part : parts) {
-    if (part.empty()) continue;
-    const int root = find_root(parent, part.front());
-    if (part_held[root]) continue;
-    const Modes m = modes_of(part, root);
-    const Eigen::Vector3d mode = m.eig.eigenvectors().col(0);  // (a, b, ω·extent)
-    const double extent = m.extent;
-    const Eigen::Vector2d centre = m.centre;
-    std::ostringstream os;
-    os << "structure is a mechanism: the part holding " << part_name(model, part) << " is free to ";
-    if (std::abs(mode[2]) < 1e-6) {
-      const double angle = std::atan2(mode[1], mode[0]);
-      if (std::abs(mode[1]) < 1e-9) os << "move along x (no support fixes ux)";
-      else if (std::abs(mode[0]) < 1e-9) os << "move along y (no support fixes uy)";
-      else os << "move in the direction " << angle << " rad from x";
+using Resting = std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>;  // (point, normal) of contacts holding a part
+
+/// The part's rigid-body modes against its supports: the Gram matrix of the constraint rows
+/// (translation x, y; rotation about the centre, scaled by the part's extent so the columns are
+/// commensurate), one row per constrained dof and per contact holding it.
+struct Modes {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  Eigen::Vector2d centre;
+  double extent = 1.0;
+  bool stable() const { return eig.eigenvalues()[0] > 1e-10 * std::max(1.0, eig.eigenvalues()[2]); }
+};
+
+Modes modes_of(const Model& model, const std::vector<char>& hinge, const std::vector<int>& part, const Resting& resting) {
+  Modes m;
+  m.centre = Eigen::Vector2d::Zero();
+  Eigen::Vector2d lo = model.nodes[part.front()].position, hi = lo;
+  for (int k : part) {
+    const Eigen::Vector2d& p = model.nodes[k].position;
+    m.centre += p;
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  m.centre /= static_cast<double>(part.size());
+  m.extent = std::max((hi - lo).norm(), 1e-300);
+  Eigen::Matrix3d gram = Eigen::Matrix3d::Zero();
+  for (int k : part) {
+    const Eigen::Vector2d p = (model.nodes[k].position - m.centre) / m.extent;
+    const Eigen::Vector3d rows[3] = {{1.0, 0.0, -p.y()}, {0.0, 1.0, p.x()}, {0.0, 0.0, 1.0}};
+    // A fixed rotation where every element end is hinged holds nothing of the part.
+    for (int dof = 0; dof < dofs_per_node; ++dof)
+      if (model.constrained[dofs_per_node * k + dof] && (dof != rz || !hinge[k])) gram += rows[dof] * rows[dof].transpose();
+  }
+  for (const auto& [point, normal] : resting) {
+    const Eigen::Vector2d p = (point - m.centre) / m.extent;
+    const Eigen::Vector3d row(normal.x(), normal.y(), -normal.x() * p.y() + normal.y() * p.x());
+    gram += row * row.transpose();
+  }
+  m.eig.compute(gram);
+  return m;
+}
+
+/// Which parts are held, and the contacts holding each (per part root).
+struct Holding {
+  std::vector<Resting> resting;
+  std::vector<char> held;
+};
+
+/// Hands each unused touch to the part it holds: the element's part where the node is held, or
+/// the other way round the node's part where the element's part is held. True if any was.
+bool pass_touches(const std::vector<Touch>& touches, std::vector<char>& used, Holding& holding) {
+  bool changed = false;
+  for (size_t t = 0; t < touches.size(); ++t) {
+    if (used[t]) continue;
+    const Touch& touch = touches[t];
+    const bool node_held = touch.node_part < 0 || holding.held[touch.node_part];
+    if (node_held && touch.node_part != touch.element_part) {
+      holding.resting[touch.element_part].push_back({touch.point, touch.normal});
+    } else if (holding.held[touch.element_part] && touch.node_part >= 0 && touch.node_part != touch.element_part) {
+      holding.resting[touch.node_part].push_back({touch.point, touch.normal});
     } else {
-      const double omega = mode[2] / extent;
-      const Eigen::Vector2d pole = centre + Eigen::Vector2d(-mode[1] / omega, mode[0] / omega);
-      os << "rotate about (" << pole.x() << ", " << pole.y() << ") (add a support that stops it)";
+      continue;
     }
-    // Contacts on this part, or from its nodes, count only where they rest as drawn.
-    std::vector<bool> contact_member(model.member_count, false);
-    for (const ContactSpec& c : model.contacts)
-      for (const int m : c.members) contact_member[m] = true;
-    const bool touches_part =
-        std::any_of(model.elements.begin(), model.elements.end(),
-                    [&](const Element& e) { return contact_member[e.member] && find_root(parent, e.start) == root; }) ||
-        std::any_of(model.contacts.begin(), model.contacts.end(),
-                    [&](const ContactSpec& c) { return held[c.node] && find_root(parent, c.node) == root; });
-    if (touches_part) {
-      os << "; a contact holds it from the start only if its node is drawn at the contact's \"gap\" from the "
-            "beam's centre line, on the side it supports, and the node or the beam is held (by supports, or by a "
-            "part that is)";
-      // The first contact from this part's nodes, or onto its members, that plainly does not rest.
-      for (const ContactSpec& c : model.contacts) {
-        std::vector<bool> in_set(model.member_count, false);
-        for (const int m : c.members) in_set[m] = true;
-        const bool on_part = find_root(parent, c.node) == root ||
-                             std::any_of(model.elements.begin(), model.elements.end(), [&](const Element& e) {
-                               return in_set[e.member] && find_root(parent, e.start) == root;
-                             });
-        const std::string why = on_part ? why_not_resting(model, c) : std::string();
-        if (!why.empty()) {
-          os << why;
-          break;
-        }
-      }
+    used[t] = 1;
+    changed = true;
+  }
+  return changed;
+}
+
+/// A resting contact holds the part it rests on along the element's normal at the touch point
+/// where its node is held — in both translations by supports (a knife edge), or as a node of a
+/// part that is itself held (a beam lying on a supported one) — and, the other way round, holds
+/// its node's part where the part it rests on is held. Bilaterally, for this check: a contact
+/// lets go only if it would pull, which a solve finds out. Parts held so hold others in turn,
+/// until nothing changes.
+Holding hold_parts(const Model& model, const std::vector<char>& hinge, Parts& parts, const std::vector<Touch>& touches) {
+  const int n = model.node_count();
+  Holding holding{std::vector<Resting>(n), std::vector<char>(n, 0)};
+  std::vector<char> used(touches.size(), 0);
+  for (bool changed = true; changed;) {
+    changed = pass_touches(touches, used, holding);
+    for (const std::vector<int>& part : parts.members) {
+      if (part.empty()) continue;
+      const int root = parts.root(part.front());
+      if (!holding.held[root] && modes_of(model, hinge, part, holding.resting[root]).stable())
+        holding.held[root] = 1, changed = true;
     }
-    return os.str();
+  }
+  return holding;
+}
+
+/// The free motion of the part's weakest mode (a, b, ω·extent): a translation's direction, or a
+/// rotation about its pole.
+void describe_motion(std::ostream& os, const Modes& m) {
+  const Eigen::Vector3d mode = m.eig.eigenvectors().col(0);
+  const double extent = m.extent;
+  const Eigen::Vector2d centre = m.centre;
+  if (std::abs(mode[2]) < 1e-6) {
+    const double angle = std::atan2(mode[1], mode[0]);
+    if (std::abs(mode[1]) < 1e-9) os << "move along x (no support fixes ux)";
+    else if (std::abs(mode[0]) < 1e-9) os << "move along y (no support fixes uy)";
+    else os << "move in the direction " << angle << " rad from x";
+  } else {
+    const double omega = mode[2] / extent;
+    const Eigen::Vector2d pole = centre + Eigen::Vector2d(-mode[1] / omega, mode[0] / omega);
+    os << "rotate about (" << pole.x() << ", " << pole.y() << ") (add a support that stops it)";
+  }
+}
+
+/// Whether a contact acts on the part: onto the elements of its members, or from its nodes.
+bool contacts_touch_part(const Model& model, Parts& parts, int root) {
+  std::vector<bool> contact_member(model.member_count, false);
+  for (const ContactSpec& c : model.contacts)
+    for (const int m : c.members) contact_member[m] = true;
+  return std::any_of(model.elements.begin(), model.elements.end(),
+                     [&](const Element& e) { return contact_member[e.member] && parts.root(e.start) == root; }) ||
+         std::any_of(model.contacts.begin(), model.contacts.end(),
+                     [&](const ContactSpec& c) { return parts.held[c.node] && parts.root(c.node) == root; });
+}
+
+/// Why the first contact from the part's nodes, or onto its members, that plainly does not rest
+/// does not (why_not_resting); empty if none plainly does not.
+std::string first_not_resting(const Model& model, Parts& parts, int root) {
+  for (const ContactSpec& c : model.contacts) {
+    std::vector<bool> in_set(model.member_count, false);
+    for (const int m : c.members) in_set[m] = true;
+    const bool on_part = parts.root(c.node) == root ||
+                         std::any_of(model.elements.begin(), model.elements.end(), [&](const Element& e) {
+                           return in_set[e.member] && parts.root(e.start) == root;
+                         });
+    const std::string why = on_part ? why_not_resting(model, c) : std::string();
+    if (!why.empty()) return why;
+  }
+  return std::string();
+}
+
+/// The sentence for a part no support holds: its free motion and, where contacts act on it,
+/// when a contact holds it. Contacts on this part, or from its nodes, count only where they rest
+/// as drawn.
+std::string free_part(const Model& model, Parts& parts, const std::vector<int>& part, int root, const Modes& m) {
+  std::ostringstream os;
+  os << "structure is a mechanism: the part holding " << part_name(model, part) << " is free to ";
+  describe_motion(os, m);
+  if (contacts_touch_part(model, parts, root)) {
+    os << "; a contact holds it from the start only if its node is drawn at the contact's \"gap\" from the "
+          "beam's centre line, on the side it supports, and the node or the beam is held (by supports, or by a "
+          "part that is)";
+    os << first_not_resting(model, parts, root);
+  }
+  return os.str();
+}
+
+}  // namespace
+
+std::optional<std::string> find_mechanism(const Model& model, bool resting_contacts_hold) {
+  Parts parts = join_by_elements(model);
+  const std::vector<char> hinge = hinge_nodes(model);
+  if (auto message = unheld_node(model, parts.held, resting_contacts_hold)) return message;
+  members_by_root(parts);
+  const std::vector<Touch> touches = resting_touches(model, parts, resting_contacts_hold);
+  const Holding holding = hold_parts(model, hinge, parts, touches);
+  for (const std::vector<int>& part : parts.members) {
+    if (part.empty()) continue;
+    const int root = parts.root(part.front());
+    if (holding.held[root]) continue;
+    return free_part(model, parts, part, root, modes_of(model, hinge, part, holding.resting[root]));
   }
   return std::nullopt;
 }
