@@ -1,0 +1,56 @@
+#pragma once
+// A small contact model for the life cycle's rules (tests/unit/contact/): a beam of four
+// elements along x from (0, 0) to (1, 0) (member 0, elements 0–3 left to right, beam nodes at
+// x = 0, 0.25, 0.5, 0.75, 1) and a post (member 1) hanging from (x, y + 0.5) down to its foot at
+// (x, y), node 100, the contact node on member 0. Displacements are set by hand.
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "support/models.hpp"
+#include "tsmframe/contact/contact_geometry.hpp"
+#include "tsmframe/contact/contact_state.hpp"
+
+namespace tsm::test {
+
+struct ContactFixture {
+  Model model;
+  Eigen::VectorXd D;
+  std::vector<double> rotations;
+  int foot = -1;  ///< the contact node's index
+
+  /// The beam and the post, with `contact` (a contacts entry; node and members are set here).
+  explicit ContactFixture(double x, double y, json contact = json::object(), int divisions = 4) {
+    BeamSpec b;
+    b.divisions = divisions;
+    b.A = 1e3;
+    json m = beam_model(b);
+    m["nodes"].push_back({{"id", 100}, {"x", x}, {"y", y}});
+    m["nodes"].push_back({{"id", 11}, {"x", x}, {"y", y + 0.5}});
+    m["members"].push_back({{"from", 11}, {"to", 100}, {"divisions", 2}, {"material", "m"}, {"section", "s"}});
+    m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 11}, {"type", "fixed"}}});
+    contact["node"] = 100;
+    if (!contact.contains("members")) contact["members"] = json::array({0});
+    m["contacts"] = json::array({contact});
+    model = io::read_model(m);
+    foot = model.node_index(100);
+    D = Eigen::VectorXd::Zero(model.dof_count());
+    rotations.assign(model.elements.size(), 0.0);
+  }
+
+  /// Moves the contact node by (dx, dy) from where it was drawn.
+  void move_foot(double dx, double dy) { D.segment<2>(dofs_per_node * foot) << dx, dy; }
+  /// Bends the beam into v = a x² (its nodes on the parabola, rotations its slope).
+  void bend_beam(double a) {
+    for (int k = 0; k < model.node_count(); ++k) {
+      if (k == foot || model.nodes[k].id == 11 || model.nodes[k].position.y() != 0.0) continue;
+      const double x = model.nodes[k].position.x();
+      D.segment<3>(dofs_per_node * k) << 0.0, a * x * x, 2.0 * a * x;
+    }
+  }
+  /// The index of the beam's element whose span [x0, x1] holds x (beam elements come first).
+  int beam_element(double x) const { return static_cast<int>(x * 4.0); }
+};
+
+}  // namespace tsm::test

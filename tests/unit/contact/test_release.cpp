@@ -1,0 +1,91 @@
+// A contact letting go, and the node that may not pass through the beam after it (contact/release.hpp).
+#include <gtest/gtest.h>
+
+#include "support/contact_fixture.hpp"
+#include "tsmframe/contact/release.hpp"
+#include "tsmframe/contact/sides.hpp"
+
+namespace {
+
+using tsm::contact::ContactGeometry;
+using tsm::contact::ContactState;
+using tsm::contact::no_side;
+using tsm::test::ContactFixture;
+
+/// The fixture's node pressing element `element` from above, on the centre line.
+ContactState pressing(const ContactGeometry& geometry, const ContactFixture& f, int element) {
+  ContactState state;
+  state.reference.side.assign(geometry.contact(0).candidates.size(), 0);
+  tsm::contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);
+  state.active = true;
+  state.element = element;
+  state.side = 1;
+  state.alpha = geometry.locate(geometry.contact(0), element, f.D, f.rotations).alpha;
+  state.Y = 5.0;  // pulling (side +1: compression −Y)
+  state.force = -5.0;
+  return state;
+}
+
+TEST(ContactRelease, ALetGoByPullingRemembersItsSideAlongTheWholeBeam) {
+  ContactFixture f(0.3, 0.0);
+  const ContactGeometry geometry(f.model);
+  ContactState state = pressing(geometry, f, 1);
+  tsm::contact::release(geometry, geometry.contact(0), f.D, f.rotations, state, true);
+  EXPECT_FALSE(state.active);
+  EXPECT_EQ(state.element, -1);
+  EXPECT_EQ(state.force, 0.0);
+  EXPECT_TRUE(state.step.released);
+  EXPECT_TRUE(state.step.released_pulled);
+  EXPECT_EQ(state.step.slid_off_element, -1);
+  EXPECT_EQ(state.step.released_side, 1);
+  EXPECT_EQ(state.step.released_normal[1], 1.0);
+  // The side it let go on, carried from element 1 to every element of the beam.
+  EXPECT_EQ(state.reference.side, (std::vector<signed char>{1, 1, 1, 1}));
+  // Within the span of element 1, and its neighbours across its nodes.
+  EXPECT_EQ(state.step.released_within, (std::vector<char>{1, 1, 1, 0}));
+}
+
+TEST(ContactRelease, ALetGoOffAFreeEndNamesTheElementItLeft) {
+  ContactFixture f(1.05, 0.0);
+  const ContactGeometry geometry(f.model);
+  ContactState state = pressing(geometry, f, 3);
+  tsm::contact::release(geometry, geometry.contact(0), f.D, f.rotations, state, false);
+  EXPECT_EQ(state.step.slid_off_element, 3);
+  EXPECT_FALSE(state.step.released_pulled);
+}
+
+TEST(ContactRelease, AfterLettingGoTheNodeMayNotPassThroughTheBeam) {
+  ContactFixture f(0.3, 0.0);
+  const ContactGeometry geometry(f.model);
+  ContactState state = pressing(geometry, f, 1);
+  tsm::contact::release(geometry, geometry.contact(0), f.D, f.rotations, state, true);
+  const auto through = [&](double dx, double dy) {
+    f.move_foot(dx, dy);
+    return tsm::contact::passed_through(geometry, geometry.contact(0), f.D, f.rotations, state);
+  };
+  EXPECT_FALSE(through(0.0, 0.01));   // above, where it let go
+  EXPECT_TRUE(through(0.0, -0.01));   // below element 1
+  EXPECT_TRUE(through(0.5, -0.01));   // below element 3: the side holds along the whole beam
+  EXPECT_FALSE(through(0.9, -0.01));  // beyond the free end: no beam to be through
+}
+
+TEST(ContactRelease, OffAFreeEndTheNodeMayGoRoundIt) {
+  ContactFixture f(0.95, 0.0);
+  const ContactGeometry geometry(f.model);
+  ContactState state = pressing(geometry, f, 3);
+  f.move_foot(0.1, 0.0);  // past the end
+  tsm::contact::release(geometry, geometry.contact(0), f.D, f.rotations, state, false);
+  f.move_foot(0.1, -0.05);  // under the beam's end, beyond its span: round the end, not through
+  EXPECT_FALSE(tsm::contact::passed_through(geometry, geometry.contact(0), f.D, f.rotations, state));
+}
+
+TEST(ContactRelease, ANodeNotReleasedInTheStepIsNeverThrough) {
+  ContactFixture f(0.3, -0.01);
+  const ContactGeometry geometry(f.model);
+  ContactState state;
+  state.reference.side.assign(4, 0);
+  tsm::contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);
+  EXPECT_FALSE(tsm::contact::passed_through(geometry, geometry.contact(0), f.D, f.rotations, state));
+}
+
+}  // namespace

@@ -1,0 +1,112 @@
+// A contact point handed on through element ends (contact/sliding.hpp).
+#include <gtest/gtest.h>
+
+#include "support/contact_fixture.hpp"
+#include "tsmframe/contact/sides.hpp"
+#include "tsmframe/contact/sliding.hpp"
+
+namespace {
+
+using tsm::contact::ContactGeometry;
+using tsm::contact::ContactState;
+using tsm::contact::HandOver;
+using tsm::test::ContactFixture;
+
+/// The contact active on `element` from above, its node at the fixture's displacements.
+ContactState on(const ContactGeometry& geometry, const ContactFixture& f, int element, std::vector<char>& occupied) {
+  ContactState state;
+  state.reference.side.assign(geometry.contact(0).candidates.size(), 0);
+  tsm::contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);
+  state.active = true;
+  state.element = element;
+  state.side = 1;
+  state.alpha = geometry.locate(geometry.contact(0), element, f.D, f.rotations).alpha;
+  occupied.assign(f.model.elements.size(), 0);
+  occupied[element] = 1;
+  return state;
+}
+
+TEST(ContactSliding, APointPastAnElementsEndGoesOnToTheNextElement) {
+  ContactFixture f(0.3, 0.0);
+  const ContactGeometry geometry(f.model);
+  std::vector<char> occupied;
+  ContactState state = on(geometry, f, 1, occupied);
+  f.move_foot(0.25, 0.0);  // to x = 0.55: α = 1.2 on element 1
+  state.alpha = geometry.locate(geometry.contact(0), 1, f.D, f.rotations).alpha;
+  const HandOver h = tsm::contact::hand_over(geometry, geometry.contact(0), f.D, f.rotations, false, state, occupied);
+  EXPECT_EQ(h.handed_over, 1);
+  EXPECT_EQ(h.reversed, 0);
+  EXPECT_EQ(state.element, 2);
+  EXPECT_NEAR(state.alpha, 0.2, 1e-12);
+  EXPECT_EQ(state.side, 1);
+  EXPECT_EQ(state.step.handover_direction, 1);
+  EXPECT_FALSE(occupied[1]);
+  EXPECT_TRUE(occupied[2]);
+}
+
+TEST(ContactSliding, APointGoesNoFartherThanOneElementOrAFewPerCentOfTheModelPerIterate) {
+  // 5 % of the model's size (its bounding box's diagonal, 1.166 here) is less than an element
+  // (0.25): one element per iterate, the point left beyond it for the next.
+  ContactFixture f(0.1, 0.0);
+  const ContactGeometry geometry(f.model);
+  std::vector<char> occupied;
+  ContactState state = on(geometry, f, 0, occupied);
+  f.move_foot(0.6, 0.0);  // to x = 0.7: α = 2.8 on element 0
+  state.alpha = geometry.locate(geometry.contact(0), 0, f.D, f.rotations).alpha;
+  const HandOver h = tsm::contact::hand_over(geometry, geometry.contact(0), f.D, f.rotations, false, state, occupied);
+  EXPECT_EQ(h.handed_over, 1);
+  EXPECT_EQ(state.element, 1);
+  EXPECT_NEAR(state.alpha, 1.8, 1e-12);
+}
+
+TEST(ContactSliding, AtAFreeEndThePointIsHeldUntilAConvergedIterateLetsItGo) {
+  ContactFixture f(0.9, 0.0);
+  const ContactGeometry geometry(f.model);
+  std::vector<char> occupied;
+  ContactState state = on(geometry, f, 3, occupied);
+  f.move_foot(0.2, 0.0);  // to x = 1.1: past the free end
+  state.alpha = geometry.locate(geometry.contact(0), 3, f.D, f.rotations).alpha;
+  HandOver h = tsm::contact::hand_over(geometry, geometry.contact(0), f.D, f.rotations, false, state, occupied);
+  EXPECT_FALSE(h.released);
+  EXPECT_TRUE(state.active);  // the force still acts at the end
+  EXPECT_EQ(state.element, 3);
+  h = tsm::contact::hand_over(geometry, geometry.contact(0), f.D, f.rotations, true, state, occupied);
+  EXPECT_TRUE(h.released);
+  EXPECT_FALSE(state.active);
+  EXPECT_EQ(state.step.slid_off_element, 3);
+  EXPECT_TRUE(state.step.released);
+  EXPECT_FALSE(occupied[3]);
+}
+
+TEST(ContactSliding, AnElementAnotherContactIsOnStopsThePointAsAFreeEndWould) {
+  ContactFixture f(0.3, 0.0);
+  const ContactGeometry geometry(f.model);
+  std::vector<char> occupied;
+  ContactState state = on(geometry, f, 1, occupied);
+  occupied[2] = 1;
+  f.move_foot(0.25, 0.0);
+  state.alpha = geometry.locate(geometry.contact(0), 1, f.D, f.rotations).alpha;
+  const HandOver h = tsm::contact::hand_over(geometry, geometry.contact(0), f.D, f.rotations, false, state, occupied);
+  EXPECT_EQ(h.handed_over, 0);
+  EXPECT_EQ(state.element, 1);
+}
+
+TEST(ContactSliding, APointComingBackTheWayItWentCountsAReversalAtThatNode) {
+  ContactFixture f(0.3, 0.0);
+  const ContactGeometry geometry(f.model);
+  std::vector<char> occupied;
+  ContactState state = on(geometry, f, 1, occupied);
+  f.move_foot(0.25, 0.0);  // on to element 2
+  state.alpha = geometry.locate(geometry.contact(0), 1, f.D, f.rotations).alpha;
+  tsm::contact::hand_over(geometry, geometry.contact(0), f.D, f.rotations, false, state, occupied);
+  ASSERT_EQ(state.element, 2);
+  f.move_foot(0.15, 0.0);  // back to x = 0.45: α = −0.2 on element 2
+  state.alpha = geometry.locate(geometry.contact(0), 2, f.D, f.rotations).alpha;
+  const HandOver h = tsm::contact::hand_over(geometry, geometry.contact(0), f.D, f.rotations, false, state, occupied);
+  EXPECT_EQ(h.reversed, 1);
+  EXPECT_EQ(state.element, 1);
+  EXPECT_EQ(state.step.hop_node, f.model.elements[1].end);
+  EXPECT_EQ(state.step.handover_direction, -1);
+}
+
+}  // namespace
