@@ -37,9 +37,9 @@ DofMap::DofMap(const Model& model) {
   // Contacts join their node to the element they touch: ordered as if joined by an element where
   // that is known or likely before the run — the element a contact rests on, or else the nearest
   // of its candidates within half the model's size beyond its gap. A mat lying on a beam, 1,000
-  // nodes on 3,000 elements, ordered as two separate chains filled in completely once its
-  // contacts joined them (minutes in a dense block). Within 2 % of the size only, a beam drawn
-  // half a metre above another (5 %) took 34 s where it now takes 5, for 50 iterations.
+  // nodes on 3,000 elements, ordered as two separate chains, fills in completely once its
+  // contacts join them (a dense block). The reach is wide: a beam drawn a twentieth of the
+  // model's size above another closes its contacts within its first step.
   std::vector<std::pair<int, int>> joined;
   for (const ContactSpec& spec : model.contacts) {
     bool moves = false;  // a node held in every dof (a rigid pusher) is no unknown: nothing to order

@@ -225,9 +225,9 @@ double GlobalSystem::ElementRecord::connected_end_rotation(const element::BeamRe
 
 void GlobalSystem::prefetch_element(int q, const Eigen::VectorXd& displacements, bool with_tangent, const Evaluation& out) const {
   // In a frame whose nodes are numbered for the factorisation (a lattice), consecutive elements'
-  // blocks are far apart in the tangent: each store into one missed the cache and stalled the
-  // loop. Asked for a few elements ahead: the lattice's evaluation 20–25 % faster, the chains'
-  // (whose blocks follow each other) unchanged (bench/README "Ninth session").
+  // blocks are far apart in the tangent: each store into one would miss the cache and stall the
+  // loop, so they are asked for a few elements ahead (a chain's blocks follow each other and
+  // gain nothing; bench/README.md measures both).
   const ElementRecord& ahead = records_[q];
   __builtin_prefetch(displacements.data() + dofs_per_node * ahead.start, 0);
   __builtin_prefetch(displacements.data() + dofs_per_node * ahead.end, 0);

@@ -13,8 +13,8 @@ InitialChord initial_chord(const Vector2& start, const Vector2& end) {
 
 double direction_angle(double y, double x) {
   // atan2 by the quadrant around atan of the smaller ratio (|ratio| ≤ 1 keeps atan's accuracy):
-  // within an ulp of std::atan2, at ~10 ns against ~18 here, as glibc's atan2 saves and restores
-  // the rounding mode on every call (bench/README "Seventh session").
+  // within an ulp of std::atan2 and cheaper, as glibc's atan2 saves and restores the rounding
+  // mode on every call (bench/README.md).
   constexpr double pi = std::numbers::pi, half_pi = pi / 2;
   if (std::abs(x) >= std::abs(y)) {
     const double a = std::atan(y / x);

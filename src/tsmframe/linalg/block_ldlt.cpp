@@ -17,9 +17,8 @@ constexpr int path_rows_per_thread = 8;      // a thread's run of consecutive pa
 
 // The factorisation's 3×3 block products are arithmetic-bound (a lattice frame's top separator):
 // on x86-64 they are also compiled for AVX2 + FMA, picked at load time where the CPU has them
-// (GCC function multi-versioning; the baseline build still runs anywhere). 30 % less time
-// factorising the lattice's tangent on one core. Results then depend on the CPU's instruction
-// set in their last bits (FMA rounds once), never on the number of threads.
+// (GCC function multi-versioning; the baseline build still runs anywhere). Results then depend on
+// the CPU's instruction set in their last bits (FMA rounds once), never on the number of threads.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
 #define TSM_BLOCK_KERNEL __attribute__((target_clones("default", "arch=x86-64-v3")))
 #else
@@ -29,7 +28,7 @@ constexpr int path_rows_per_thread = 8;      // a thread's run of consecutive pa
 /// C −= Z Bᵀ for 3×3 blocks (column-major, 9 doubles each) with Z fixed: the factorisation's
 /// inner update, streaming B down a column. Z is spread over lanes once, so that each update is
 /// two 4-wide and one scalar multiply-add chain on C's entries 0–3, 4–7 and 8, with B's columns
-/// permuted into place: 2.5× Eigen's 3×3 product on blocks in cache. Every load and store stays
+/// permuted into place (faster than Eigen's 3×3 product on blocks in cache). Every load and store stays
 /// inside its own block (a neighbouring block may be another thread's). Entry by entry it is the
 /// same arithmetic as (Z Bᵀ)(r, c) = Z(r, 0) B(c, 0) + Z(r, 1) B(c, 1) + Z(r, 2) B(c, 2).
 class RankThreeUpdate {

@@ -172,16 +172,15 @@ BlockLDLTSchedule schedule_block_ldlt(const BlockMatrix& a, const BlockRows& row
   for (int l = 0; l < s.level_count(); ++l)
     if (s.level_start[l + 1] - s.level_start[l] > 1) shared += s.level_start[l + 1] - s.level_start[l];
   // In parallel only where the rows above the tasks are many (else a barrier per stage costs
-  // more than it saves), or where the top chain is long enough for a dense block: a lattice of
-  // one element per member has ~230 rows above its tasks, 74 % of the work, most of it in the
-  // last separator (factorisation 7.7 → 5.6 ms on two threads; bench/README "Eleventh session").
+  // more than it saves), or where the top chain is long enough for a dense block: a frame
+  // lattice has few rows above its tasks but most of its work there, in the last separator.
   s.parallel_top = s.top_rows.size() >= parallel_rows_above || n - chain >= dense_path_rows;
   s.parallel_tasks = s.task_count() > 1 && n >= util::smallest_shared_model;
   form_stages(a, rows, s);
   // The solves go level by level (a barrier per level): only where levels hold several rows.
   // A small matrix keeps the stages' arithmetic (paths, a dense top: bit-identical either way)
-  // but runs them on one thread: a ring of 80 elements between two plates spent 2.5× its time
-  // starting and waking the second thread for them (74 % of its samples in libgomp).
+  // but runs them on one thread: there, starting and waking the second thread costs more than
+  // the stages' work (util::smallest_shared_model).
   s.team = n >= util::smallest_shared_model;
   s.parallel_top_levels = s.parallel_top && 2 * shared >= static_cast<int>(s.top_rows.size()) && s.team;
   return s;

@@ -53,8 +53,8 @@ struct MemberExtras {
 
 /// An element's end displacements (u, v, θ)_i, (u, v, θ)_j out of all dofs' D. Each node's
 /// (u, v) is copied as one pair: the chord reads them as pairs, and a pair read back from two
-/// single stores waits for both to reach the cache (no store-to-load forwarding), a stall that
-/// cost the element loop 15 % (bench/README "Sixth session").
+/// single stores waits for both to reach the cache (no store-to-load forwarding), a stall in
+/// the element loop's hot path (bench/README.md measures it).
 inline Eigen::Matrix<double, 6, 1> element_displacements(const Eigen::VectorXd& D, int start, int end) {
   Eigen::Matrix<double, 6, 1> d;
   d.segment<2>(0) = D.segment<2>(dofs_per_node * start);

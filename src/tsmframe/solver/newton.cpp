@@ -10,9 +10,9 @@ namespace {
 // The problem's optional tangent terms — the contacts' sliding terms (FORMULATION §2) — join the
 // solve only once the relative residual is below this (and in a step's first solve, from a
 // converged state). Far from it the point hops between short elements, where ∂k0/∂α is large and
-// changes from element to element, and the consistent tangent sent Newton farther off: a
-// 10⁴-element push took 8–24 iterates a step with it, 6–9 with the symmetric part alone
-// (bench/README "Seventh session"). Near the solution the terms bring back quadratic convergence.
+// changes from element to element, and the consistent tangent sends Newton farther off than the
+// symmetric part alone (bench/README.md, a push over 10⁴ elements). Near the solution the terms
+// bring back quadratic convergence.
 constexpr double sliding_terms_below = 1e-2;
 
 StepFailure failure_of(StepFailure::Reason reason) {

@@ -11,12 +11,11 @@ namespace tsm::solver {
 namespace {
 
 // Equations run in elimination order, the model's vectors in node order: a loop over the
-// equations reads them in runs (a member's nodes) with jumps between, and each jump missed the
-// cache (the lattice of bench/: 0.83 ms an update_residual, the chains 0.31). Each loop fetches
-// the entry this many equations ahead — in models whose vectors outgrow the core's caches
-// (from 2¹⁵ equations, 256 kB a vector): below, the extra instructions cost a 10³-element
-// chain 3 % an iteration. Written out in each loop: GCC drops a call to a helper that only
-// prefetches (no side effects, so a dead call), and the prefetch with it.
+// equations reads them in runs (a member's nodes) with jumps between, and each jump misses the
+// cache (a frame lattice's most). Each loop fetches the entry this many equations ahead — in
+// models whose vectors outgrow the core's caches (from 2¹⁵ equations, 256 kB a vector): below,
+// the extra instructions cost more than they save. Written out in each loop: GCC drops a call to
+// a helper that only prefetches (no side effects, so a dead call), and the prefetch with it.
 constexpr Eigen::Index gather_ahead = 32;
 constexpr Eigen::Index gather_from = Eigen::Index{1} << 15;
 

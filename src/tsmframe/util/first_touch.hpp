@@ -1,8 +1,8 @@
 #pragma once
-// The first write to a page of fresh memory is a page fault; on a virtual machine each costs
-// about 10 µs, far more than the work done on the page, and the set-up's large arrays are
-// thousands of pages. Asking the kernel to map a whole range at once (MADV_POPULATE_WRITE,
-// Linux ≥ 5.14) costs about a fifth of that per page, and two threads can ask side by side. Only
+// The first write to a page of fresh memory is a page fault; on a virtual machine each costs far
+// more than the work done on the page, and the set-up's large arrays are thousands of pages.
+// Asking the kernel to map a whole range at once (MADV_POPULATE_WRITE, Linux ≥ 5.14) costs a
+// fraction of that per page, and two threads can ask side by side. Only
 // memory about to be written is populated: the resident size stays what it would be.
 
 #include <Eigen/Core>

@@ -1,23 +1,18 @@
 #pragma once
 // Loops shared out over OpenMP's threads only where a team would run them. GCC's libgomp makes
 // a futex system call at the end of every parallel construct, even one whose `if` clause is
-// false or whose team has a single thread: 1.3 µs on the project's VM (bench/README "Ninth
-// session"), and a Newton iteration passed through about seven such constructs that ran
-// serially. Here the choice is a C++ branch, so a serial loop is a plain loop. The loop body
-// and its order per index are the same either way: results do not depend on the branch taken.
+// false or whose team has a single thread, and a Newton iteration passes through several such
+// constructs that run serially. Here the choice is a C++ branch, so a serial loop is a plain
+// loop. The loop body and its order per index are the same either way: results do not depend on
+// the branch taken.
 
 #include <omp.h>
 
 namespace tsm::util {
 
 /// Models smaller than this (elements, or node blocks of the tangent) run every loop on one
-/// thread. A region's wake-up of the second thread costs ~1 µs on this VM while it still spins
-/// and the first regions of a process up to a few ms (starting the thread), so below this the
-/// second thread does not pay. Measured in one process (bench/README "Twelfth session", median of
-/// 40 runs, three alternations): a 1,000-element chain 83–134 ns on two threads against 122 on
-/// one (faster in 2 of 3), 1,500 elements 79 against 123 in all three, 500 elements 97–161
-/// against 120, 250 elements 114–116 against 118–120. (The ninth session measured two threads
-/// slower at 1,000; the factorisation's parallel top and the prefetching have changed that.)
+/// thread: waking the second thread for each region, and starting it in a process's first
+/// regions, costs more than it saves below this size (bench/README.md, the two-thread crossover).
 constexpr int smallest_shared_model = 1000;
 
 /// Whether a loop that `wants` threads gets a parallel region: only if more than one thread is
