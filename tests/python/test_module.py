@@ -109,6 +109,17 @@ def test_a_study_runs_its_cases_and_returns_their_rows():
         tf.study({**definition, "record": [{"name": "x", "quantity": "stress"}]})
 
 
+def test_a_study_file_that_is_no_json_says_so_as_the_command_line_does(tmp_path):
+    path = tmp_path / "broken.json"
+    path.write_text('{\n  "sweep": [\n    {"name": "n",, "values": [1]}\n  ]\n}\n')
+    cli = subprocess.run([CLI, "study", str(path), "--out", str(tmp_path / "out")], capture_output=True, text=True)
+    assert cli.returncode == 2
+    assert cli.stderr.startswith(f"{path}: invalid JSON at line 3, column 18: "), cli.stderr
+    with pytest.raises(ValueError) as raised:
+        tf.study(str(path))
+    assert f"{path}: {raised.value}" == cli.stderr.strip()
+
+
 def test_bad_model_raises_value_error_with_the_path():
     doc = tf.load(os.path.join(SOURCE, "examples", "portal-frame.json")).to_dict()
     doc["members"][1]["section"] = "nope"
