@@ -288,6 +288,23 @@ def test_a_pin_jointed_truss_is_drawn_with_straight_bars(tmp_path):
     plt.close(fig)
 
 
+def test_a_colour_given_to_plot_shape_draws_every_step_in_it():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.colors
+    import matplotlib.pyplot as plt
+    r = tf.run(os.path.join(SOURCE, "examples", "contact-push.json"))
+    fig, ax = plt.subplots()
+    r.plot_shape(steps=(0, 4, -1), ax=ax, undeformed=False, color="red")
+    assert len(ax.lines) == 3 * len(r.element_ids)
+    assert {matplotlib.colors.to_hex(line.get_color()) for line in ax.lines} == {"#ff0000"}
+    plt.close(fig)
+    fig, ax = plt.subplots()  # without one, each step its own colour
+    r.plot_shape(steps=(0, -1), ax=ax, undeformed=False)
+    assert len({matplotlib.colors.to_hex(line.get_color()) for line in ax.lines}) == 2
+    plt.close(fig)
+
+
 def test_a_pickled_result_still_draws_its_curves():
     import pickle
     r = tf.run(os.path.join(SOURCE, "examples", "semi-rigid-portal.json"))
