@@ -200,10 +200,16 @@ def test_a_shallow_arch_built_in_code_snaps_through_and_says_so():
     r = arch({"center": [0.0, -10.0], "sweep": sweep})
     assert r.ok, r.message
     assert r.results_json == arch((0.0, -10.0, sweep)).results_json
-    snaps = [n for n in r.notes if "snapped through" in n]
-    assert len(snaps) == 1 and snaps[0].startswith("step 9 moved "), r.notes
     crown = int(np.flatnonzero((np.abs(r.node_xy[:, 0]) < 1e-9) & (r.node_xy[:, 1] > 1.0))[0])
     assert r.displacements[-1, crown, 1] < -2.0 * (11.180339887498949 - 10.0)  # below the feet's mirror image
+    # The note names the step in which the crown went from above its feet to below them, one past
+    # the bifurcation.
+    assert list(r.state_steps) == list(r.step)  # every step's state
+    crown_y = r.node_xy[crown, 1] + r.displacements[:, crown, 1]
+    [jump] = [k for k in range(1, len(crown_y)) if crown_y[k - 1] > 0.0 > crown_y[k]]
+    assert r.load_factor[jump] > 0.78
+    snaps = [n for n in r.notes if "snapped through" in n]
+    assert len(snaps) == 1 and snaps[0].startswith(f"step {r.state_steps[jump]} moved "), r.notes
 
 
 def test_a_beam_on_end_springs_built_in_code_has_the_moments_of_slope_deflection():
