@@ -202,8 +202,8 @@ def test_a_shallow_arch_built_in_code_snaps_through_and_says_so():
     assert r.results_json == arch((0.0, -10.0, sweep)).results_json
     crown = int(np.flatnonzero((np.abs(r.node_xy[:, 0]) < 1e-9) & (r.node_xy[:, 1] > 1.0))[0])
     assert r.displacements[-1, crown, 1] < -2.0 * (11.180339887498949 - 10.0)  # below the feet's mirror image
-    # The note names the step in which the crown went from above its feet to below them, one past
-    # the bifurcation.
+    # The note names the step in which the crown went from above its feet to below them, a step
+    # past the bifurcation.
     assert list(r.state_steps) == list(r.step)  # every step's state
     crown_y = r.node_xy[crown, 1] + r.displacements[:, crown, 1]
     [jump] = [k for k in range(1, len(crown_y)) if crown_y[k - 1] > 0.0 > crown_y[k]]
