@@ -17,7 +17,8 @@
 #include "tsmframe/io/results_writer.hpp"
 #include "tsmframe/io/vtk_writer.hpp"
 #include "tsmframe/solver/analysis.hpp"
-#include "tsmframe/study/study.hpp"
+#include "tsmframe/study/study_runner.hpp"
+#include "tsmframe/study/study_writer.hpp"
 #include "tsmframe/version.hpp"
 
 namespace {

@@ -18,8 +18,9 @@ def plot_shape(result, steps=(-1,), ax=None, undeformed=True, **kw):
             p = result.node_xy[[int(np.flatnonzero(result.node_ids == a)[0]), int(np.flatnonzero(result.node_ids == b)[0])]]
             ax.plot(p[:, 0], p[:, 1], color="0.75", lw=1)
     cmap = plt.get_cmap("viridis")
+    given = kw.pop("color", None)  # one colour for every step drawn, else one per step from the colour map
     for n, k in enumerate(steps):
-        colour = kw.pop("color", None) or cmap(n / max(1, len(steps) - 1))
+        colour = given or cmap(n / max(1, len(steps) - 1))
         label = f"step {result.state_steps[k]}"
         for c, points in enumerate(result.curves(k, segments=12)):
             ax.plot(points[:, 0], points[:, 1], color=colour, label=label if c == 0 else None, **kw)

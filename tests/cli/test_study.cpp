@@ -93,11 +93,20 @@ TEST_F(Study, ABadCaseModelIsARowNotACrash) {
   EXPECT_EQ(o.exit_code, 1) << o.output;
   const json r = read_json(dir_ / "out" / "study.json");
   ASSERT_EQ(r["cases"].size(), 2u);
+  EXPECT_TRUE(r["cases"][0]["converged"].get<bool>()) << r["cases"][0].dump();
   EXPECT_EQ(r["cases"][1]["status"], "bad-input");
-  EXPECT_NE(r["cases"][1]["message"].get<std::string>().find("members[0].divisions"), std::string::npos);
-  // The summary tells the invalid case from one that did not converge, with its reason.
-  EXPECT_NE(o.output.find("2 cases, 0 did not converge, 1 had a model the sweep made invalid (bad-input; case 2: "
-                          "members[0].divisions"),
+  const std::string reason = r["cases"][1]["message"];
+  EXPECT_EQ(reason.rfind("members[0].divisions: ", 0), 0u) << reason;
+  // The summary tells the invalid case from one that did not converge, with its reason: its
+  // counts are those of the rows written.
+  int not_converged = 0, invalid = 0;
+  for (const json& c : r["cases"]) {
+    not_converged += !c["converged"].get<bool>();
+    invalid += c["status"] == "bad-input";
+  }
+  EXPECT_NE(o.output.find(std::to_string(r["cases"].size()) + " cases, " + std::to_string(not_converged - invalid) +
+                          " did not converge, " + std::to_string(invalid) +
+                          " had a model the sweep made invalid (bad-input; case 2: " + reason + ")"),
             std::string::npos)
       << o.output;
 }

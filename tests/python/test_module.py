@@ -109,6 +109,17 @@ def test_a_study_runs_its_cases_and_returns_their_rows():
         tf.study({**definition, "record": [{"name": "x", "quantity": "stress"}]})
 
 
+def test_a_study_file_that_is_no_json_says_so_as_the_command_line_does(tmp_path):
+    path = tmp_path / "broken.json"
+    path.write_text('{\n  "sweep": [\n    {"name": "n",, "values": [1]}\n  ]\n}\n')
+    cli = subprocess.run([CLI, "study", str(path), "--out", str(tmp_path / "out")], capture_output=True, text=True)
+    assert cli.returncode == 2
+    assert cli.stderr.startswith(f"{path}: invalid JSON at line 3, column 18: "), cli.stderr
+    with pytest.raises(ValueError) as raised:
+        tf.study(str(path))
+    assert f"{path}: {raised.value}" == cli.stderr.strip()
+
+
 def test_bad_model_raises_value_error_with_the_path():
     doc = tf.load(os.path.join(SOURCE, "examples", "portal-frame.json")).to_dict()
     doc["members"][1]["section"] = "nope"
@@ -189,10 +200,16 @@ def test_a_shallow_arch_built_in_code_snaps_through_and_says_so():
     r = arch({"center": [0.0, -10.0], "sweep": sweep})
     assert r.ok, r.message
     assert r.results_json == arch((0.0, -10.0, sweep)).results_json
-    snaps = [n for n in r.notes if "snapped through" in n]
-    assert len(snaps) == 1 and snaps[0].startswith("step 9 moved "), r.notes
     crown = int(np.flatnonzero((np.abs(r.node_xy[:, 0]) < 1e-9) & (r.node_xy[:, 1] > 1.0))[0])
     assert r.displacements[-1, crown, 1] < -2.0 * (11.180339887498949 - 10.0)  # below the feet's mirror image
+    # The note names the step in which the crown went from above its feet to below them, a step
+    # past the bifurcation.
+    assert list(r.state_steps) == list(r.step)  # every step's state
+    crown_y = r.node_xy[crown, 1] + r.displacements[:, crown, 1]
+    [jump] = [k for k in range(1, len(crown_y)) if crown_y[k - 1] > 0.0 > crown_y[k]]
+    assert r.load_factor[jump] > 0.78
+    snaps = [n for n in r.notes if "snapped through" in n]
+    assert len(snaps) == 1 and snaps[0].startswith(f"step {r.state_steps[jump]} moved "), r.notes
 
 
 def test_a_beam_on_end_springs_built_in_code_has_the_moments_of_slope_deflection():
@@ -274,6 +291,23 @@ def test_a_pin_jointed_truss_is_drawn_with_straight_bars(tmp_path):
     assert len(ax.lines) == len(drawn)
     for line, curve in zip(ax.lines, drawn):
         assert np.array_equal(np.column_stack(line.get_data()), curve)
+    plt.close(fig)
+
+
+def test_a_colour_given_to_plot_shape_draws_every_step_in_it():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.colors
+    import matplotlib.pyplot as plt
+    r = tf.run(os.path.join(SOURCE, "examples", "contact-push.json"))
+    fig, ax = plt.subplots()
+    r.plot_shape(steps=(0, 4, -1), ax=ax, undeformed=False, color="red")
+    assert len(ax.lines) == 3 * len(r.element_ids)
+    assert {matplotlib.colors.to_hex(line.get_color()) for line in ax.lines} == {"#ff0000"}
+    plt.close(fig)
+    fig, ax = plt.subplots()  # without one, each step its own colour
+    r.plot_shape(steps=(0, -1), ax=ax, undeformed=False)
+    assert len({matplotlib.colors.to_hex(line.get_color()) for line in ax.lines}) == 2
     plt.close(fig)
 
 

@@ -13,7 +13,7 @@
 #include "tsmframe/assembly/global_system.hpp"
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/linalg/block_ldlt.hpp"
-#include "tsmframe/study/study.hpp"
+#include "tsmframe/study/study_runner.hpp"
 #include "tsmframe/element/beam_element.hpp"
 #include "tsmframe/util/parallel_for.hpp"
 

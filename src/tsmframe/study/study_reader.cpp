@@ -6,9 +6,11 @@
 #include <iomanip>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "tsmframe/io/json_input.hpp"
 #include "tsmframe/study/study.hpp"
+#include "tsmframe/study/study_writer.hpp"
 
 namespace tsm::study {
 namespace {
@@ -20,7 +22,6 @@ using io::quote_text;
 using nlohmann::json;
 
 constexpr long max_range_values = 100'000;    // (to − from) / step at most: 100,001 values
-constexpr double max_cases = 1e6;
 /// A range's ends: whole numbers beyond 2⁵³ are no longer exact as the doubles a model's numbers are read as.
 constexpr long largest_range_end = 1L << 53;
 
@@ -184,7 +185,7 @@ json read_base_model(const json& doc, const std::string& directory) {
 void check_case_count(const std::vector<Parameter>& parameters) {
   double cases = 1.0;  // a double: a count past 2⁶⁴ must not wrap round to a small one
   for (const Parameter& p : parameters) cases *= static_cast<double>(p.labels.size());
-  if (cases <= max_cases) return;
+  if (cases <= static_cast<double>(max_cases)) return;
   std::ostringstream os;
   if (cases < 1e15) os << static_cast<long long>(cases);  // exact: below 2⁵³ the products are
   else if (std::isinf(cases)) os << "past 1e308";
@@ -195,8 +196,13 @@ void check_case_count(const std::vector<Parameter>& parameters) {
 }  // namespace
 
 size_t Study::case_count() const {
+  for (const Parameter& p : parameters)
+    if (p.labels.empty()) return 0;
   size_t n = 1;
-  for (const Parameter& p : parameters) n *= p.labels.size();
+  for (const Parameter& p : parameters) {
+    if (p.labels.size() > max_cases / n) throw std::length_error("a study of more than a million cases");
+    n *= p.labels.size();
+  }
   return n;
 }
 
@@ -213,9 +219,8 @@ Study read_study(const json& doc, const std::string& directory) {
   if (!doc.contains("sweep") || !doc["sweep"].is_array() || doc["sweep"].empty())
     fail("sweep", "missing (required: a non-empty array of parameters)");
   // Every column of study.csv has a name of its own: the fixed ones, the parameters', the records'.
-  std::set<std::string> names = {"case", "message"};
-  names.insert(std::begin(run_columns), std::end(run_columns));
-  names.insert(std::begin(contact_columns), std::end(contact_columns));
+  const std::vector<std::string> fixed = fixed_column_names();
+  std::set<std::string> names(fixed.begin(), fixed.end());
   for (size_t k = 0; k < doc["sweep"].size(); ++k) {
     s.parameters.push_back(read_parameter(doc["sweep"][k], child("sweep", k)));
     if (!names.insert(s.parameters.back().name).second)

@@ -1,0 +1,157 @@
+#include "src/results.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tsmframe/io/results_writer.hpp"
+#include "src/bindings.hpp"
+
+namespace tsm::python {
+namespace {
+
+template <typename T>
+py::array_t<T> array(std::vector<py::ssize_t> shape, const std::vector<T>& data) {
+  py::array_t<T> a(shape);
+  std::copy(data.begin(), data.end(), a.mutable_data());
+  return a;
+}
+
+py::ssize_t count(size_t n) { return static_cast<py::ssize_t>(n); }
+
+/// status, message, notes, and the bifurcations found under load control: {step, load_factor, bracket}.
+void add_outcome(py::dict& out, const solver::RunResult& result) {
+  out["status"] = solver::status_name(result.status);
+  out["message"] = result.message;
+  out["notes"] = result.notes;
+  py::list critical;
+  for (const solver::CriticalPoint& c : result.critical_points) {
+    py::dict point;
+    point["step"] = c.step;
+    point["load_factor"] = c.load_factor;
+    point["bracket"] = py::make_tuple(c.stable, c.unstable);
+    critical.append(point);
+  }
+  out["critical_points"] = critical;
+}
+
+/// The meshed model: node ids and coordinates, element ids, end node ids, members and kinds, contact node ids.
+void add_model(py::dict& out, const Model& model) {
+  std::vector<int> node_ids, element_ids, element_nodes, element_members, contact_nodes;
+  std::vector<double> node_xy;
+  std::vector<std::string> element_kinds;
+  for (const Node& node : model.nodes) {
+    node_ids.push_back(node.id);
+    node_xy.insert(node_xy.end(), {node.position.x(), node.position.y()});
+  }
+  for (const Element& e : model.elements) {
+    element_ids.push_back(e.id);
+    element_nodes.insert(element_nodes.end(), {model.nodes[e.start].id, model.nodes[e.end].id});
+    element_members.push_back(e.member);
+    element_kinds.push_back(theory_name(e.theory));
+  }
+  for (const ContactSpec& spec : model.contacts) contact_nodes.push_back(model.nodes[spec.node].id);
+  const py::ssize_t n = model.node_count(), m = count(model.elements.size());
+  out["node_ids"] = array<int>({n}, node_ids);
+  out["node_xy"] = array<double>({n, 2}, node_xy);
+  out["element_ids"] = array<int>({m}, element_ids);
+  out["element_nodes"] = array<int>({m, 2}, element_nodes);
+  out["element_members"] = array<int>({m}, element_members);
+  out["element_kinds"] = element_kinds;
+  out["contact_nodes"] = array<int>({count(contact_nodes.size())}, contact_nodes);
+}
+
+/// Every step (converged or the failed last attempt): step number, λ, iterations, whether it
+/// converged, negative eigenvalues (−1 unknown), residuals per iterate, criterion.
+void add_steps(py::dict& out, const solver::RunResult& result) {
+  std::vector<int> steps, iterations, converged, negative_eigenvalues;
+  std::vector<double> load_factors;
+  py::list residuals, criteria;
+  for (const solver::StepRecord& s : result.steps) {
+    steps.push_back(s.step);
+    load_factors.push_back(s.load_factor);
+    iterations.push_back(s.iterations);
+    converged.push_back(s.converged ? 1 : 0);
+    negative_eigenvalues.push_back(s.converged ? s.negative_eigenvalues : -1);
+    residuals.append(array<double>({count(s.residual_norms.size())}, s.residual_norms));
+    criteria.append(solver::criterion_name(s.criterion));
+  }
+  const py::ssize_t S = count(result.steps.size());
+  out["step"] = array<int>({S}, steps);
+  out["load_factor"] = array<double>({S}, load_factors);
+  out["iterations"] = array<int>({S}, iterations);
+  out["converged"] = array<int>({S}, converged);
+  out["negative_eigenvalues"] = array<int>({S}, negative_eigenvalues);
+  out["residual_norms"] = residuals;
+  out["criterion"] = criteria;
+}
+
+/// The steps with state: their numbers, displacements, element forces and reactions.
+void add_states(py::dict& out, const Model& model, const solver::RunResult& result) {
+  const py::ssize_t n = model.node_count(), m = count(model.elements.size());
+  std::vector<int> state_steps;
+  std::vector<double> displacements, forces, reactions;
+  for (const solver::StepRecord& s : result.steps) {
+    if (!s.has_state) continue;
+    state_steps.push_back(s.step);
+    displacements.insert(displacements.end(), s.displacements.data(), s.displacements.data() + 3 * n);
+    forces.insert(forces.end(), s.element_forces.data(), s.element_forces.data() + 3 * m);
+    reactions.insert(reactions.end(), s.reactions.data(), s.reactions.data() + 3 * n);
+  }
+  const py::ssize_t K = count(state_steps.size());
+  out["state_steps"] = array<int>({K}, state_steps);
+  out["displacements"] = array<double>({K, n, 3}, displacements);
+  out["element_forces"] = array<double>({K, m, 3}, forces);
+  out["reactions"] = array<double>({K, n, 3}, reactions);
+}
+
+/// Per converged step and contact: element id (0: none), the vertex's other element id, α, force.
+void add_contacts(py::dict& out, const Model& model, const solver::RunResult& result) {
+  const py::ssize_t c = count(model.contacts.size());
+  std::vector<int> element, also;
+  std::vector<double> alpha, force;
+  py::ssize_t C = 0;  // converged steps, where the model has contacts (else no rows)
+  for (const solver::StepRecord& s : result.steps) {
+    if (!s.converged || c == 0) continue;
+    ++C;
+    for (py::ssize_t k = 0; k < c; ++k) {
+      const solver::ContactPoint& p = s.contacts[k];
+      element.push_back(p.element >= 0 ? model.elements[p.element].id : 0);
+      also.push_back(p.partner >= 0 ? model.elements[p.partner].id : 0);
+      alpha.push_back(p.element >= 0 ? p.alpha : 0.0);
+      force.push_back(p.element >= 0 ? p.force : 0.0);
+    }
+  }
+  out["contact_element"] = array<int>({C, c}, element);
+  out["contact_also"] = array<int>({C, c}, also);
+  out["contact_alpha"] = array<double>({C, c}, alpha);
+  out["contact_force"] = array<double>({C, c}, force);
+}
+
+/// What `tsmframe run` writes: results.json and steps.csv.
+void add_texts(py::dict& out, const Model& model, const solver::RunResult& result) {
+  std::ostringstream json, csv;
+  io::write_results_json(json, model, result);
+  io::write_steps_csv(csv, model, result);
+  out["results_json"] = json.str();
+  out["steps_csv"] = csv.str();
+}
+
+}  // namespace
+
+py::dict results_dict(const std::shared_ptr<Model>& model, const solver::RunResult& result) {
+  py::dict out;
+  out["model"] = model;
+  add_outcome(out, result);
+  add_model(out, *model);
+  add_steps(out, result);
+  add_states(out, *model, result);
+  add_contacts(out, *model, result);
+  add_texts(out, *model, result);
+  return out;
+}
+
+}  // namespace tsm::python

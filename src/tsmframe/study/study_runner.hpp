@@ -1,0 +1,51 @@
+#pragma once
+// Running a study's cases (study.hpp): each case is the base model with its parameters'
+// assignments, run on its own, the cases in parallel over the machine's cores, one row each. A
+// case that fails — bad input after substitution, non-convergence, running out of memory — is a
+// row too, never a crash of the sweep.
+
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tsmframe/study/study.hpp"
+
+namespace tsm::study {
+
+/// One row of the study: how one case ended.
+struct CaseResult {
+  size_t index = 0;
+  std::vector<size_t> choice;       ///< value index per parameter
+  std::string status;               ///< status_name, or "bad-input"
+  bool converged = false;
+  int steps = 0;                    ///< converged steps
+  int iterations = 0;               ///< all Newton iterations, failed attempts included
+  int last_iterations = 0;          ///< iterations of the last attempt
+  double load_factor = 0.0;         ///< λ at the last converged step
+  double seconds = 0.0;
+  std::string message;
+  // The first contact's story (when the model has contacts):
+  int contact_first_element = 0;    ///< element id where it first touched (0: never)
+  double contact_max_alpha_first = 0.0;  ///< largest α reached there at a converged step
+  int contact_last_element = 0;     ///< element id at the last step in contact
+  int contact_elements_passed = 0;  ///< element ends passed after the first element
+  /// Per record: its value, NaN where the case has none (no converged step; a contact not
+  /// touching at its last step for contact_xi).
+  std::vector<double> recorded;
+};
+
+/// Runs every case on `threads` threads (0: all cores). `progress` is called after each case.
+/// Whatever a case throws is its row (status "bad-input", the reason in its message); what
+/// `progress` throws stops the cases and is rethrown here, after every thread has ended. With
+/// study.keep, each case's results.json and steps.csv go to `keep_directory`/cases/<case>/.
+std::vector<CaseResult> run_study(const Study& study, int threads, const std::string& keep_directory,
+                                  const std::function<void(const CaseResult&)>& progress = {});
+
+/// The value index per parameter of case `index` (from 0), the first parameter varying slowest.
+std::vector<size_t> case_choice(const Study& study, size_t index);
+/// The case's model JSON: the base model with the case's assignments, in order. Throws
+/// io::InputError where an assignment's pointer names no place in the model so far (assignment.hpp).
+nlohmann::json case_model(const Study& study, const std::vector<size_t>& choice);
+
+}  // namespace tsm::study
