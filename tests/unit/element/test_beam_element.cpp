@@ -92,35 +92,6 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{0.0, 0.4, 0.02, 2.5, -1.7, false, false, 0.3, 0.0}, Case{0.05, 3 * pi, 0.02, 2.5, -1.7, false, false, 0.3, 0.1},
                       Case{0.0, 0.4, 0.02, 2.5, -1.7, false, false, INFINITY, 0.2}));
 
-// A hinged element's kept end: k_jj − k_ij²/k_ii, the propped cantilever's end stiffness —
-// 3EI/l0 for Euler–Bernoulli, 12EI/(l0 (4 + q)) for Timoshenko; both ends hinged: a bar.
-TEST(BeamElement, AHingeLeavesTheOtherEndAProppedCantileversStiffness) {
-  const double l0 = 2.0, EI = 3.0;
-  for (const double psi : {0.0, 0.05}) {
-    const BasicStiffness k0 = basic_stiffness_terms({.EA = 200.0, .EI = EI, .shear_flexibility = psi}, l0);
-    const double q = 12.0 * psi / (l0 * l0), kept = 12.0 * EI / (l0 * (4.0 + q));
-    EXPECT_NEAR(released_stiffness(k0, true, false)(2, 2), kept, 1e-12);
-    EXPECT_NEAR(released_stiffness(k0, false, true)(1, 1), kept, 1e-12);
-    const Matrix3 bar = released_stiffness(k0, true, true);
-    EXPECT_EQ((bar.bottomRightCorner<2, 2>().norm()), 0.0);
-    EXPECT_EQ(bar(0, 0), k0.axial);
-  }
-}
-
-// End springs in series with the element: with node j held, the moment at node i per radian is
-// 1/(1/k + l0/4EI) (Euler–Bernoulli); no spring gives k0, an infinitely soft one the hinge.
-TEST(BeamElement, AnEndSpringActsInSeriesWithTheElement) {
-  const double l0 = 2.0, EI = 3.0, k = 5.0;
-  const BasicStiffness k0 = basic_stiffness_terms({.EA = 200.0, .EI = EI, .shear_flexibility = 0.0}, l0);
-  EXPECT_NEAR(connected_stiffness(k0, 1.0 / k, 0.0)(1, 1), 1.0 / (1.0 / k + l0 / (4.0 * EI)), 1e-12);
-  EXPECT_NEAR(connected_stiffness(k0, 0.0, 1.0 / k)(2, 2), 1.0 / (1.0 / k + l0 / (4.0 * EI)), 1e-12);
-  EXPECT_LE((connected_stiffness(k0, 0.0, 0.0) - k0.matrix()).norm(), 1e-12);
-  EXPECT_EQ(connected_stiffness(k0, INFINITY, 0.0), released_stiffness(k0, true, false));
-  // A hinge at i and a spring at j: the propped cantilever's 3EI/l0 in series with it.
-  EXPECT_NEAR(connected_stiffness(k0, INFINITY, 1.0 / k)(2, 2), 1.0 / (1.0 / k + l0 / (3.0 * EI)), 1e-12);
-  EXPECT_EQ(connected_stiffness(k0, 1.0 / k, 1.0 / k)(0, 0), k0.axial);
-}
-
 TEST(BeamElement, RigidMotionGivesNoForce) {
   const InitialChord chord = initial_chord({1.0, 2.0}, {4.0, -2.0});
   const SectionStiffness section{.EA = 2e11, .EI = 1e5, .shear_flexibility = 1e-6};

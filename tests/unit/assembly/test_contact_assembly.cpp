@@ -1,0 +1,98 @@
+// The assembled tangent with active contacts (assembly/contact_assembly.cpp through GlobalSystem)
+// against central finite differences of the internal forces: a contact inside an element, and a
+// vertex (two contact elements at one node).
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "support/contact_models.hpp"
+#include "support/dense.hpp"
+#include "tsmframe/assembly/dof_map.hpp"
+#include "tsmframe/assembly/global_system.hpp"
+#include "tsmframe/contact/contact_set.hpp"
+
+namespace {
+
+using namespace tsm::test;
+
+// ---- The assembled tangent with active contacts ----
+
+/// ∂F/∂D over the free dofs by central differences (h = 1e-7) at D, with these contacts.
+Eigen::MatrixXd finite_difference_tangent(tsm::assembly::GlobalSystem& system, const tsm::assembly::DofMap& dofs,
+                                          const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                          const std::vector<tsm::contact::ActiveContact>& active) {
+  const int n = dofs.free_count();
+  Eigen::MatrixXd fd(n, n);
+  for (int q = 0; q < n; ++q) {
+    Eigen::VectorXd plus = D, minus = D;
+    plus[dofs.dof(q)] += 1e-7;
+    minus[dofs.dof(q)] -= 1e-7;
+    tsm::assembly::Evaluation ep, em;
+    system.evaluate(plus, rotations, false, ep, active);
+    system.evaluate(minus, rotations, false, em, active);
+    for (int r = 0; r < n; ++r) fd(r, q) = (ep.internal_force[dofs.dof(r)] - em.internal_force[dofs.dof(r)]) / 2e-7;
+  }
+  return fd;
+}
+
+TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
+  for (const char* element : {"euler-bernoulli", "timoshenko"}) {
+    const tsm::Model model = tsm::io::read_model(post_on_cantilever(element, 0.45));
+    tsm::assembly::DofMap dofs(model);
+    tsm::assembly::GlobalSystem system(model, dofs);
+    tsm::contact::ContactSet tracker(model);
+    std::vector<tsm::contact::ContactState> states = tracker.initial_states();
+    // A bent, rotated state with the pusher pressed 0.02 into the beam near α = 0.7.
+    Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
+    for (int k = 0; k < model.node_count(); ++k) {
+      const double x = model.nodes[k].position.x();
+      D.segment<3>(3 * k) << -0.05 * x * x, 0.3 * x * x, 0.6 * x;
+    }
+    const int c = model.node_index(100);
+    const double x_c = 0.45;
+    D.segment<2>(3 * c) << -0.05 * x_c * x_c + 0.01, 0.3 * x_c * x_c + 0.02;
+    std::vector<double> rotations(model.elements.size(), 0.0);
+    tsm::assembly::Evaluation e;
+    system.evaluate(D, rotations, true, e);
+    tracker.update(D, e.chord_rotations, e.contacts, states, false);
+    ASSERT_TRUE(states[0].active);
+    const auto active = tracker.active_contacts(states);
+    system.evaluate(D, e.chord_rotations, true, e, active);
+    ASSERT_GT(std::abs(e.contacts[0].Y), 1.0);
+    // Dense K_ff: block part (mirrored; the contact element's symmetric part is in it, the post
+    // node joined to the beam's nodes by a pattern the contact added) plus the sliding term.
+    ASSERT_EQ(system.contact_rank_one().size(), 1u);  // the sliding term, kept apart for Woodbury
+    const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent(), system.contact_rank_one());
+    const Eigen::MatrixXd fd = finite_difference_tangent(system, dofs, D, e.chord_rotations, active);
+    EXPECT_LE((K - fd).norm(), 1e-6 * fd.norm()) << element;
+    EXPECT_GT((K - K.transpose()).norm(), 1e-8 * K.norm()) << "the sliding term makes it non-symmetric";
+  }
+}
+
+// ---- A vertex: two contact elements at one node ----
+
+TEST(ContactVertex, TheAssembledTangentMatchesFiniteDifferences) {
+  for (const char* element : {"euler-bernoulli", "timoshenko"}) {
+    VertexSetUp v = vertex_set_up(element);
+    ASSERT_GE(v.ending, 0);
+    ASSERT_GE(v.starting, 0);
+    tsm::assembly::DofMap dofs(v.model);
+    tsm::assembly::GlobalSystem system(v.model, dofs);
+    tsm::contact::ContactSet tracker(v.model);
+    const auto active = tracker.active_contacts(v.states);
+    ASSERT_EQ(active.size(), 2u);
+    std::vector<double> rotations(v.model.elements.size(), 0.0);
+    tsm::assembly::Evaluation e;
+    system.evaluate(v.D, rotations, true, e, active);
+    ASSERT_EQ(e.contacts.size(), 2u);
+    ASSERT_GT(std::abs(e.contacts[0].Y), 1.0);
+    ASSERT_GT(std::abs(e.contacts[1].Y), 1.0);
+    const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent(), system.contact_rank_one());
+    const Eigen::MatrixXd fd = finite_difference_tangent(system, dofs, v.D, e.chord_rotations, active);
+    EXPECT_LE((K - fd).norm(), 1e-6 * fd.norm()) << element;
+  }
+}
+
+}  // namespace

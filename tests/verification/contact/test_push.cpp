@@ -1,0 +1,178 @@
+// A cantilever pushed by a rigid point (issue 3): against the linear formula 3EIh/a³ (and its
+// Timoshenko counterpart) for a small push, with a gap, and against an exact elastica-with-contact
+// solution computed here by shooting for a large one, where the point slides along the beam.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "support/contact_models.hpp"
+#include "support/rk4.hpp"
+
+namespace {
+
+using namespace tsm::test;
+using tsm::solver::RunResult;
+using tsm::solver::StepRecord;
+
+// ---- Exact elastica with a frictionless point contact ----
+// Inextensible cantilever (EI = 1, clamped at the origin along x) pushed by a point fixed at
+// (a, h): the force is normal to the beam at the contact, P (−sin θc, cos θc); beyond the
+// contact the beam is straight. Shooting on (P, θc): integrate EI θ' = M(s) = (a − x) Fy − (h − y) Fx
+// from s = 0 until x = a, then y = h and θ = θc must hold.
+struct ElasticaContact {
+  double force;        // P / EI (for L = 1)
+  double arc_length;   // s_c of the contact point
+};
+
+std::array<double, 3> integrate_to(double a, double h, double P, double theta_c, double& s_end) {
+  const double Fx = -P * std::sin(theta_c), Fy = P * std::cos(theta_c);
+  auto f = [&](const std::array<double, 3>& q) {  // q = (x, y, θ)
+    return std::array<double, 3>{std::cos(q[2]), std::sin(q[2]), (a - q[0]) * Fy - (h - q[1]) * Fx};
+  };
+  auto rk4 = [&](const std::array<double, 3>& q, double ds) { return rk4_step(f, q, ds); };
+  const double ds = 1e-4;
+  std::array<double, 3> q = {0.0, 0.0, 0.0};
+  double s = 0.0;
+  while (true) {
+    const std::array<double, 3> next = rk4(q, ds);
+    if (next[0] >= a) {  // the contact lies within this step: bisect its length
+      double lo = 0.0, hi = ds;
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (rk4(q, mid)[0] < a ? lo : hi) = mid;
+      }
+      s_end = s + 0.5 * (lo + hi);
+      return rk4(q, 0.5 * (lo + hi));
+    }
+    q = next;
+    s += ds;
+    if (s > 10.0) {
+      s_end = s;
+      return q;
+    }
+  }
+}
+
+ElasticaContact elastica_with_contact(double a, double h) {
+  double P = 3.0 * h / (a * a * a), theta = 1.5 * h / a, s = 0.0;
+  for (int it = 0; it < 50; ++it) {
+    auto residual = [&](double p, double t) {
+      double s_end = 0.0;
+      const std::array<double, 3> q = integrate_to(a, h, p, t, s_end);
+      return Eigen::Vector2d(q[1] - h, q[2] - t);
+    };
+    const Eigen::Vector2d r = residual(P, theta);
+    if (r.norm() < 1e-12) break;
+    Eigen::Matrix2d J;
+    const double dp = 1e-7 * P, dt = 1e-7;
+    J.col(0) = (residual(P + dp, theta) - r) / dp;
+    J.col(1) = (residual(P, theta + dt) - r) / dt;
+    const Eigen::Vector2d step = J.colPivHouseholderQr().solve(-r);
+    P += step[0];
+    theta += step[1];
+  }
+  integrate_to(a, h, P, theta, s);
+  return {P, s};
+}
+
+TEST(ElasticaContactReference, TendsToTheLinearFormulaForATinyPush) {
+  const ElasticaContact e = elastica_with_contact(0.5, 1e-5);
+  EXPECT_NEAR(e.force, 3.0 * 1e-5 / 0.125, 1e-4 * e.force);
+  EXPECT_NEAR(e.arc_length, 0.5, 1e-6);
+}
+
+// ---- Small push: the linear formula, contact on a beam node and inside an element ----
+
+struct SmallPushCase {
+  const char* element;
+  double x;  // 0.5: exactly on node 21 (α = 1 | 0, the edge case); 0.5125: mid-element
+};
+
+class SmallPush : public ::testing::TestWithParam<SmallPushCase> {};
+
+TEST_P(SmallPush, ForceIsThreeEIhOverACubedPlusShear) {
+  const SmallPushCase& p = GetParam();
+  BeamSpec b;
+  b.divisions = 40;
+  b.A = 1e6;
+  b.element = p.element;  // G = 0.5, shear_area = 1e3: shear adds a/(G A_s) = 2.4 % of the compliance
+  const double h = 1e-6;
+  tsm::Model model;
+  const RunResult r = run(pusher_model(b, p.x, 0.0, 0.0, h, 1), model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const double a = p.x;
+  const bool timoshenko = std::string(p.element) == "timoshenko";
+  const double compliance = a * a * a / (3.0 * b.E * b.I) + (timoshenko ? a / (b.G * b.shear_area) : 0.0);
+  const StepRecord& last = r.steps.back();
+  ASSERT_GE(contact_of(last).element, 0);
+  EXPECT_NEAR(contact_of(last).force, h / compliance, 1e-4 * h / compliance);
+  EXPECT_NEAR(contact_arc_length(contact_of(last), 1.0, 40), a, 1e-9);
+  expect_equilibrium(model, last);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, SmallPush,
+                         ::testing::Values(SmallPushCase{"euler-bernoulli", 0.5}, SmallPushCase{"timoshenko", 0.5},
+                                           SmallPushCase{"euler-bernoulli", 0.5125},
+                                           SmallPushCase{"timoshenko", 0.5125}));
+
+TEST(ContactGap, ContactStartsAtTheGapAndTheForceFollowsTheClosing) {
+  // A pusher 10 mm below the beam with a 4 mm gap (say, the beam's half depth): it touches after
+  // 6 mm and then presses with 3EI(h − 6 mm)/a³.
+  BeamSpec b;
+  b.divisions = 40;
+  b.A = 1e6;
+  json m = pusher_model(b, 0.5125, -0.01, 0.0, 0.01 + 2e-6, 10);
+  m["contacts"][0]["gap"] = 0.004;
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  for (const StepRecord& s : r.steps) {
+    const double lift = -0.01 + s.load_factor * (0.01 + 2e-6) + 0.004;  // closing beyond the gap
+    const tsm::solver::ContactPoint& c = contact_of(s);
+    if (lift < 0.0) {
+      EXPECT_LT(c.element, 0) << "step " << s.step;
+    } else {
+      ASSERT_GE(c.element, 0) << "step " << s.step;
+      const double a = 0.5125;
+      EXPECT_NEAR(c.force, 3.0 * lift / (a * a * a), 2e-3 * 3.0 * lift / (a * a * a) + 1e-12) << "step " << s.step;
+    }
+  }
+  EXPECT_GE(contact_of(r.steps.back()).element, 0);
+}
+
+// ---- Large push against the exact elastica with contact ----
+
+class LargePush : public ::testing::TestWithParam<PushCase> {};
+
+TEST_P(LargePush, MatchesTheElasticaWithContact) {
+  BeamSpec b;
+  b.divisions = 40;
+  b.A = 1e7;  // inextensible
+  b.shear_area = 1e9;
+  b.element = GetParam().element;
+  const double a = 0.5, h = 0.3;
+  tsm::Model model;
+  json m = pusher_model(b, a, 0.0, 0.0, h, 30);
+  m["contacts"][0]["frame"] = GetParam().frame;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const ElasticaContact exact = elastica_with_contact(a, h);
+  const tsm::solver::ContactPoint& c = contact_of(r.steps.back());
+  ASSERT_GE(c.element, 0);
+  std::printf("[figure] %s %s: force %.6g exact %.6g (%.2e rel), s_c %.6f exact %.6f\n", GetParam().element, GetParam().frame, c.force, exact.force, c.force / exact.force - 1.0, contact_arc_length(c, 1.0, 40), exact.arc_length);
+  EXPECT_NEAR(c.force, exact.force, 0.01 * exact.force);                      // issue: within 1 %
+  EXPECT_NEAR(contact_arc_length(c, 1.0, 40), exact.arc_length, 0.005);       // within 0.5 % of L
+  EXPECT_GT(exact.arc_length - a, 0.02);  // the point has slid along the beam by more than an element
+  for (const StepRecord& s : r.steps) expect_equilibrium(model, s);
+}
+
+INSTANTIATE_TEST_SUITE_P(Formulations, LargePush,
+                         ::testing::Values(PushCase{"euler-bernoulli", "chord"}, PushCase{"timoshenko", "chord"},
+                                           PushCase{"euler-bernoulli", "cantilever"}, PushCase{"timoshenko", "cantilever"}));
+
+}  // namespace
