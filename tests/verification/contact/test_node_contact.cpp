@@ -13,7 +13,7 @@ using namespace tsm::test;
 using tsm::solver::RunResult;
 using tsm::solver::StepRecord;
 
-// ---- A point resting on a beam node (not supported yet: CHANGELOG) ----
+// ---- A point resting on a beam node: both elements hold it (contact/vertex.hpp) ----
 
 /// A pinned–pinned beam (10 m, steel) of `divisions` elements and a rigid pusher node 100 above
 /// mid-span at height y0, moved down by `push` (its x held).
