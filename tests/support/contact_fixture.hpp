@@ -11,6 +11,7 @@
 #include "support/models.hpp"
 #include "tsmframe/contact/contact_geometry.hpp"
 #include "tsmframe/contact/contact_state.hpp"
+#include "tsmframe/contact/sides.hpp"
 
 namespace tsm::test {
 
@@ -52,5 +53,25 @@ struct ContactFixture {
   /// The index of the beam's element whose span [x0, x1] holds x (beam elements come first).
   int beam_element(double x) const { return static_cast<int>(x * 4.0); }
 };
+
+/// The contact's state with its reference (sides, place, position) read at the fixture's
+/// displacements: inactive, as at a converged state.
+inline contact::ContactState reference_state(const contact::ContactGeometry& geometry, const ContactFixture& f) {
+  contact::ContactState state;
+  state.reference.side.assign(geometry.contact(0).candidates.size(), 0);
+  contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);
+  return state;
+}
+
+/// The same, active on `element` from `side`, at α where its node is.
+inline contact::ContactState active_state(const contact::ContactGeometry& geometry, const ContactFixture& f, int element,
+                                          int side = 1) {
+  contact::ContactState state = reference_state(geometry, f);
+  state.active = true;
+  state.element = element;
+  state.side = side;
+  state.alpha = geometry.locate(geometry.contact(0), element, f.D, f.rotations).alpha;
+  return state;
+}
 
 }  // namespace tsm::test

@@ -13,12 +13,7 @@ using tsm::contact::ContactState;
 using tsm::test::ContactFixture;
 
 /// The contact's state at the fixture as drawn (its reference sides read there).
-ContactState drawn(const ContactGeometry& geometry, const ContactFixture& f) {
-  ContactState state;
-  state.reference.side.assign(geometry.contact(0).candidates.size(), 0);
-  tsm::contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);
-  return state;
-}
+ContactState drawn(const ContactGeometry& geometry, const ContactFixture& f) { return tsm::test::reference_state(geometry, f); }
 
 std::optional<tsm::contact::HandOver> detect(const ContactGeometry& geometry, const ContactFixture& f,
                                              ContactState& state, std::vector<char>& occupied) {

@@ -14,13 +14,7 @@ using tsm::test::ContactFixture;
 
 /// The fixture's node pressing element `element` from above, on the centre line.
 ContactState pressing(const ContactGeometry& geometry, const ContactFixture& f, int element) {
-  ContactState state;
-  state.reference.side.assign(geometry.contact(0).candidates.size(), 0);
-  tsm::contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);
-  state.active = true;
-  state.element = element;
-  state.side = 1;
-  state.alpha = geometry.locate(geometry.contact(0), element, f.D, f.rotations).alpha;
+  ContactState state = tsm::test::active_state(geometry, f, element);
   state.Y = 5.0;  // pulling (side +1: compression −Y)
   state.force = -5.0;
   return state;
@@ -82,9 +76,7 @@ TEST(ContactRelease, OffAFreeEndTheNodeMayGoRoundIt) {
 TEST(ContactRelease, ANodeNotReleasedInTheStepIsNeverThrough) {
   ContactFixture f(0.3, -0.01);
   const ContactGeometry geometry(f.model);
-  ContactState state;
-  state.reference.side.assign(4, 0);
-  tsm::contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);
+  const ContactState state = tsm::test::reference_state(geometry, f);
   EXPECT_FALSE(tsm::contact::passed_through(geometry, geometry.contact(0), f.D, f.rotations, state));
 }
 

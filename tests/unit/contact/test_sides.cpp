@@ -12,12 +12,7 @@ using tsm::contact::no_side;
 using tsm::test::ContactFixture;
 using tsm::test::json;
 
-ContactState sides_at(const ContactGeometry& geometry, const ContactFixture& f) {
-  ContactState state;
-  state.reference.side.assign(geometry.contact(0).candidates.size(), 0);
-  tsm::contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);
-  return state;
-}
+ContactState sides_at(const ContactGeometry& geometry, const ContactFixture& f) { return tsm::test::reference_state(geometry, f); }
 
 TEST(ContactSides, ANodeAboveTheBeamIsOnTheNormalsSideOfEveryElement) {
   ContactFixture f(0.3, 0.1);  // elements run left to right: n = +y

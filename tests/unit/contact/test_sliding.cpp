@@ -14,13 +14,7 @@ using tsm::test::ContactFixture;
 
 /// The contact active on `element` from above, its node at the fixture's displacements.
 ContactState on(const ContactGeometry& geometry, const ContactFixture& f, int element, std::vector<char>& occupied) {
-  ContactState state;
-  state.reference.side.assign(geometry.contact(0).candidates.size(), 0);
-  tsm::contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);
-  state.active = true;
-  state.element = element;
-  state.side = 1;
-  state.alpha = geometry.locate(geometry.contact(0), element, f.D, f.rotations).alpha;
+  const ContactState state = tsm::test::active_state(geometry, f, element);
   occupied.assign(f.model.elements.size(), 0);
   occupied[element] = 1;
   return state;

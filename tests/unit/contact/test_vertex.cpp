@@ -16,12 +16,7 @@ using tsm::test::ContactFixture;
 /// The fixture's node on the beam node at x = 0.5 (elements 1 and 2 meet there), as a vertex
 /// reported on element 1 (which ends there), both sides pressed from above.
 ContactState at_vertex(const ContactGeometry& geometry, const ContactFixture& f) {
-  ContactState state;
-  state.reference.side.assign(geometry.contact(0).candidates.size(), 0);
-  tsm::contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);
-  state.active = true;
-  state.element = 1;
-  state.side = 1;
+  ContactState state = tsm::test::active_state(geometry, f, 1);
   state.alpha = 1.0;
   state.vertex = Vertex{2, 1, 0.0};
   return state;
@@ -121,12 +116,7 @@ TEST(ContactVertex, APointHoppingBackAndForthAcrossANodeComesToRestThere) {
   // back across the node it rests on both elements.
   ContactFixture f(0.45, 0.0);
   const ContactGeometry geometry(f.model);
-  ContactState state;
-  state.reference.side.assign(4, 0);
-  tsm::contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);
-  state.active = true;
-  state.element = 1;
-  state.side = 1;
+  ContactState state = tsm::test::active_state(geometry, f, 1);
   std::vector<char> occupied(f.model.elements.size(), 0);
   occupied[1] = 1;
   for (const double x : {0.52, 0.48, 0.52}) {
