@@ -1,5 +1,6 @@
 // The `tsmframe` command: a thin shell over the library (FORMAT.md, "Command line").
-// Exit status: 0 converged to the end; 1 ran but did not reach the end; 2 bad input or usage.
+// Exit status: 0 converged to the end; 1 ran but did not reach the end (results written); 2 bad
+// input or usage; 3 the system failed us (a file that cannot be written, memory run out).
 
 #include <omp.h>
 
@@ -12,6 +13,7 @@
 #include <sstream>
 
 #include "tsmframe/io/input_error.hpp"
+#include "tsmframe/io/system_error.hpp"
 #include "tsmframe/io/json_writer.hpp"
 #include "tsmframe/io/model_reader.hpp"
 #include "tsmframe/io/results_writer.hpp"
@@ -26,6 +28,7 @@ namespace {
 constexpr int exit_converged = 0;
 constexpr int exit_not_converged = 1;
 constexpr int exit_bad_input = 2;
+constexpr int exit_system = 3;
 
 struct RunOptions {
   std::string model;
@@ -227,6 +230,12 @@ int main(int argc, char** argv) {
   try {
     if (run_command->parsed()) return run(options);
     if (study_command->parsed()) return study(study_options);
+  } catch (const tsm::io::SystemError& e) {
+    std::cerr << "tsmframe: " << e.what() << '\n';
+    return exit_system;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "tsmframe: out of memory (the machine has less than this run needs)\n";
+    return exit_system;
   } catch (const std::exception& e) {
     std::cerr << "tsmframe: internal error: " << e.what() << '\n';
     return exit_not_converged;

@@ -1,0 +1,17 @@
+#pragma once
+// The system failed us, not the input: a file or directory that cannot be written (the disk
+// full, a path that cannot be made), memory the machine does not have. The command line exits
+// with 3 on it and prints the OS's reason (InputError is the input's fault: exit 2).
+
+#include <stdexcept>
+#include <string>
+
+namespace tsm::io {
+
+class SystemError : public std::runtime_error {
+ public:
+  /// `what`: the path or the resource; `reason`: the OS's words (strerror), or what ran out.
+  SystemError(const std::string& what, const std::string& reason) : std::runtime_error(what + ": " + reason) {}
+};
+
+}  // namespace tsm::io
