@@ -18,7 +18,7 @@
 
 namespace tsm::solver {
 
-RunResult run_analysis(const Model& model, const StepObserver& observer) {
+RunResult run_analysis(const Model& model, const StepObserver& observer, const StopRequest* stop) {
   const AnalysisSettings& settings = model.analysis;
   const Control& control = settings.control;
   assembly::DofMap dofs(model);
@@ -37,12 +37,14 @@ RunResult run_analysis(const Model& model, const StepObserver& observer) {
   util::assign_touched(zero_rotations, model.elements.size(), 0.0);
   State state{util::zeros_touched(model.dof_count()), 0.0, std::move(zero_rotations), contacts.initial_states()};
   newton.reset(state);
-  RunResult result = control.type == ControlType::arc_length ? run_arc_length_stepping(model, dofs, newton, problem, state, observer)
-                                                             : run_load_stepping(model, dofs, newton, problem, state, observer);
+  RunResult result = control.type == ControlType::arc_length
+                         ? run_arc_length_stepping(model, dofs, newton, problem, state, observer, stop)
+                         : run_load_stepping(model, dofs, newton, problem, state, observer, stop);
   // The newest converged step's inertia: each other step's came with the attempt that started
   // from it. `state` is that step's (every run ends there); the last evaluation was made there
-  // unless the run ended on a failed attempt.
-  close_stability(result, state, result.steps.back().converged, control.type == ControlType::load, newton, problem);
+  // unless the run ended on a failed attempt. (A run interrupted before its first step has none.)
+  const bool evaluated = result.steps.empty() || result.steps.back().converged;
+  close_stability(result, state, evaluated, control.type == ControlType::load, newton, problem);
   close_path(model, result, control.type);
   return result;
 }

@@ -5,11 +5,14 @@
 
 #include "tsmframe/model/model.hpp"
 #include "tsmframe/solver/step_record.hpp"
+#include "tsmframe/solver/stop_request.hpp"
 
 namespace tsm::solver {
 
 /// Runs the model's analysis from the unloaded state. The model must be valid and free of
-/// mechanisms (see find_mechanism); non-convergence is reported in the result's status.
-RunResult run_analysis(const Model& model, const StepObserver& observer = {});
+/// mechanisms (see find_mechanism); non-convergence is reported in the result's status. `stop`
+/// (null: none) is polled before each attempt: once requested, the run ends there, status
+/// `interrupted`, every converged step kept.
+RunResult run_analysis(const Model& model, const StepObserver& observer = {}, const StopRequest* stop = nullptr);
 
 }  // namespace tsm::solver

@@ -25,8 +25,8 @@ double watched(const Control& control, double load_factor, const Eigen::VectorXd
 class ArcLengthStepping {
  public:
   ArcLengthStepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, TsmProblem& problem,
-                    const StepObserver& observer)
-      : model_(model), settings_(model.analysis), control_(settings_.control), dofs_(dofs), newton_(newton),
+                    const StepObserver& observer, const StopRequest* stop)
+      : model_(model), stop_(stop), settings_(model.analysis), control_(settings_.control), dofs_(dofs), newton_(newton),
         recorder_(model, problem, observer, result_), arc_(control_.initial_increment),
         watching_(control_.until != Control::Until::steps) {
     constraint_.kind = PathConstraint::Kind::arc_length;
@@ -46,8 +46,11 @@ class ArcLengthStepping {
   bool jump_across(State& state);
   void give_up(StepRecord record, const NewtonOutcome& outcome);
   void stop_at_step_limit(const State& state);
+  /// The run stops on request before the next attempt, `state` the newest converged step's.
+  void interrupt(const State& state);
 
   const Model& model_;
+  const StopRequest* stop_;
   const AnalysisSettings& settings_;
   const Control& control_;
   const assembly::DofMap& dofs_;
@@ -63,6 +66,10 @@ class ArcLengthStepping {
 
 RunResult ArcLengthStepping::run(State& state) {
   while (converged_steps_ < control_.max_steps) {
+    if (stop_requested(stop_)) {
+      interrupt(state);
+      return std::move(result_);
+    }
     saved_.take(state, recorder_.newest_displacements());
     constraint_.arc_length = arc_;
     const bool tells_stability = inertia_tells_stability(state.contacts);
@@ -190,11 +197,17 @@ void ArcLengthStepping::stop_at_step_limit(const State& state) {
   result_.message = run_failure_text(failure, model_);
 }
 
+void ArcLengthStepping::interrupt(const State& state) {
+  result_.status = Status::interrupted;
+  result_.failure = interruption(recorder_.next_step(), state.load_factor);
+  result_.message = run_failure_text(result_.failure, model_);
+}
+
 }  // namespace
 
 RunResult run_arc_length_stepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton,
-                                  TsmProblem& problem, State& state, const StepObserver& observer) {
-  ArcLengthStepping stepping(model, dofs, newton, problem, observer);
+                                  TsmProblem& problem, State& state, const StepObserver& observer, const StopRequest* stop) {
+  ArcLengthStepping stepping(model, dofs, newton, problem, observer, stop);
   return stepping.run(state);
 }
 

@@ -9,13 +9,15 @@
 #include "tsmframe/solver/recorder.hpp"
 #include "tsmframe/solver/state.hpp"
 #include "tsmframe/solver/step_record.hpp"
+#include "tsmframe/solver/stop_request.hpp"
 #include "tsmframe/solver/tsm_problem.hpp"
 
 namespace tsm::solver {
 
 /// Runs the model's arc-length-controlled path from `state` (evaluated: newton.reset) and leaves
-/// `state` at the newest converged step. `newton` solves `problem`.
+/// `state` at the newest converged step. `newton` solves `problem`. A requested `stop` ends the
+/// run before the next attempt (status interrupted).
 RunResult run_arc_length_stepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton,
-                                  TsmProblem& problem, State& state, const StepObserver& observer);
+                                  TsmProblem& problem, State& state, const StepObserver& observer, const StopRequest* stop = nullptr);
 
 }  // namespace tsm::solver

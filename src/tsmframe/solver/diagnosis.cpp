@@ -255,6 +255,13 @@ std::string run_failure_text(const RunFailure& failure, const Model& model) {
          << " (now " << failure.until_now << ")";
       return os.str();
     }
+    case RunFailure::Kind::interrupted: {
+      if (failure.step <= 1) return "interrupted on request before the first step";
+      std::ostringstream os;
+      os << "interrupted on request before step " << failure.step << " (the last converged step at load factor "
+         << failure.from << ")";
+      return os.str();
+    }
     case RunFailure::Kind::step_failed:
       return failure.control == RunFailure::Control::arc_length ? arc_length_failure_text(failure, model)
                                                                 : stepped_failure_text(failure, model);

@@ -24,6 +24,14 @@ Status step_status(const StepFailure& failure) {
   return Status::diverged;
 }
 
+RunFailure interruption(int step, double load_factor) {
+  RunFailure failure;
+  failure.kind = RunFailure::Kind::interrupted;
+  failure.step = step;
+  failure.from = load_factor;
+  return failure;
+}
+
 bool independent_of_step_size(const StepFailure& failure) {
   // The tangent at the step's start: a smaller step meets it too.
   return failure.reason == StepFailure::Reason::controlled_dof_immobile && failure.iteration == 1;

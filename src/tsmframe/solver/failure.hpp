@@ -59,6 +59,7 @@ struct RunFailure {
     none,         ///< the run reached its end
     step_failed,  ///< a step failed at its smallest size (or without cutback)
     step_limit,   ///< arc-length control used max_steps before its `until`
+    interrupted,  ///< a stop request ended it before step `step`, `from` the newest converged λ
   } kind = Kind::none;
   /// What the step's size measures: λ, the controlled dof, or the arc length.
   enum class Control { load_factor, controlled_displacement, arc_length } control = Control::load_factor;
@@ -81,5 +82,9 @@ struct RunFailure {
   int max_steps = 0;
   double until_value = 0.0, until_now = 0.0;
 };
+
+/// The facts of a run a stop request ended before step `step`, its newest converged step at λ
+/// `load_factor`.
+RunFailure interruption(int step, double load_factor);
 
 }  // namespace tsm::solver

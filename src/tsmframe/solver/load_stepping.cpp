@@ -24,8 +24,8 @@ constexpr double limit_point_stiffness = 0.1;  // a current stiffness below this
 class LoadStepping {
  public:
   LoadStepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, TsmProblem& problem,
-               const StepObserver& observer)
-      : model_(model), settings_(model.analysis), control_(settings_.control), newton_(newton), problem_(problem),
+               const StepObserver& observer, const StopRequest* stop)
+      : model_(model), stop_(stop), settings_(model.analysis), control_(settings_.control), newton_(newton), problem_(problem),
         recorder_(model, problem, observer, result_, true), by_displacement_(control_.type == ControlType::displacement),
         nominal_(1.0 / control_.steps), increment_(nominal_) {
     if (by_displacement_) {
@@ -62,8 +62,11 @@ class LoadStepping {
   bool cut_back(const Attempt& attempt, const NewtonOutcome& outcome, State& state);
   /// The run stops at the failed attempt: its status, message and last record.
   void give_up(const Attempt& attempt, StepRecord record, const NewtonOutcome& outcome, const State& state);
+  /// The run stops on request before the next attempt, `state` the newest converged step's.
+  void interrupt(const State& state);
 
   const Model& model_;
+  const StopRequest* stop_;
   const AnalysisSettings& settings_;
   const Control& control_;
   NewtonSolver& newton_;
@@ -103,6 +106,10 @@ LoadStepping::Attempt LoadStepping::next_attempt() const {
 RunResult LoadStepping::run(State& state) {
   const int grid_steps = control_.steps * legs_;
   while (grid_index_ < grid_steps) {
+    if (stop_requested(stop_)) {
+      interrupt(state);
+      return std::move(result_);
+    }
     const Attempt attempt = next_attempt();
     if (by_displacement_) constraint_.target = value(attempt.t_end) * control_.target;
     else constraint_.load_increment = value(attempt.t_end) - state.load_factor;
@@ -208,11 +215,18 @@ void LoadStepping::give_up(const Attempt& attempt, StepRecord record, const Newt
   recorder_.failed(std::move(record), failed_step_text(failure, model_));
 }
 
+void LoadStepping::interrupt(const State& state) {
+  recorder_.finish(state);
+  result_.status = Status::interrupted;
+  result_.failure = interruption(recorder_.next_step(), state.load_factor);
+  result_.message = run_failure_text(result_.failure, model_);
+}
+
 }  // namespace
 
 RunResult run_load_stepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, TsmProblem& problem,
-                            State& state, const StepObserver& observer) {
-  LoadStepping stepping(model, dofs, newton, problem, observer);
+                            State& state, const StepObserver& observer, const StopRequest* stop) {
+  LoadStepping stepping(model, dofs, newton, problem, observer, stop);
   return stepping.run(state);
 }
 

@@ -9,6 +9,7 @@
 #include "tsmframe/solver/recorder.hpp"
 #include "tsmframe/solver/state.hpp"
 #include "tsmframe/solver/step_record.hpp"
+#include "tsmframe/solver/stop_request.hpp"
 #include "tsmframe/solver/tsm_problem.hpp"
 
 namespace tsm::solver {
@@ -16,6 +17,6 @@ namespace tsm::solver {
 /// Runs the model's load- or displacement-controlled path from `state` (evaluated: newton.reset)
 /// and leaves `state` at the newest converged step. `newton` solves `problem`.
 RunResult run_load_stepping(const Model& model, const assembly::DofMap& dofs, NewtonSolver& newton, TsmProblem& problem,
-                            State& state, const StepObserver& observer);
+                            State& state, const StepObserver& observer, const StopRequest* stop = nullptr);
 
 }  // namespace tsm::solver

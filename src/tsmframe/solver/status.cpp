@@ -11,6 +11,7 @@ const char* status_name(Status status) {
     case Status::cutback_limit: return "cutback-limit";
     case Status::contact_chatter: return "contact-chatter";
     case Status::step_limit: return "step-limit";
+    case Status::interrupted: return "interrupted";
   }
   return "unknown";
 }

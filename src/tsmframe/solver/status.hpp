@@ -11,6 +11,7 @@ enum class Status {
   cutback_limit,   ///< a step still failed after the allowed number of halvings
   contact_chatter, ///< contacts kept switching on and off within one step
   step_limit,      ///< arc-length control used max_steps before reaching its `until`
+  interrupted,     ///< stopped on request at a step boundary (Ctrl-C; stop_request.hpp)
 };
 
 /// The spelling used in results.json ("max-iterations", ...).
