@@ -1,6 +1,8 @@
 // The `tsmframe` command: a thin shell over the library (FORMAT.md, "Command line").
-// Exit status: 0 converged to the end; 1 ran but did not reach the end (results written); 2 bad
-// input or usage; 3 the system failed us (a file that cannot be written, memory run out).
+// Exit status: 0 converged to the end; 1 ran but did not reach the end (results written: a step
+// failed, or Ctrl-C / SIGTERM interrupted it); 2 bad input or usage; 3 the system failed us (a
+// file that cannot be written, memory run out). The outputs appear whole or not at all
+// (io/output_directory.hpp).
 
 #include <omp.h>
 
@@ -16,12 +18,15 @@
 #include "tsmframe/io/system_error.hpp"
 #include "tsmframe/io/json_writer.hpp"
 #include "tsmframe/io/model_reader.hpp"
+#include "tsmframe/io/output_directory.hpp"
+#include "tsmframe/io/output_file.hpp"
 #include "tsmframe/io/results_writer.hpp"
 #include "tsmframe/io/vtk_writer.hpp"
 #include "tsmframe/solver/analysis.hpp"
 #include "tsmframe/study/study_runner.hpp"
 #include "tsmframe/study/study_writer.hpp"
 #include "tsmframe/version.hpp"
+#include "stop_signals.hpp"
 
 namespace {
 
@@ -76,6 +81,42 @@ std::string progress_line(const tsm::Model& model, const tsm::solver::StepRecord
   return os.str();
 }
 
+/// --plot: the drawings into `directory`/plots (`shown`: the directory as the user named it);
+/// false, said on stderr, where they fail.
+bool draw_plots(const std::filesystem::path& directory, const RunOptions& options) {
+  const std::string command = std::string("/usr/bin/python3 \"") + TSMFRAME_SCRIPTS_DIR + "/plot_run.py\" \"" +
+                              directory.string() + "\" \"" + options.out + "\"" + (options.quiet ? " >/dev/null" : "");
+  if (std::system(command.c_str()) == 0) return true;
+  std::cerr << "tsmframe: --plot failed (it needs Debian's python3-matplotlib: bash scripts/setup.sh)\n";
+  return false;
+}
+
+/// The run's closing lines on stderr (its notes, how it ended); returns the exit code.
+int report_run(const RunOptions& options, const tsm::solver::RunResult& result) {
+  int converged_steps = 0, iterations = 0;
+  for (const auto& step : result.steps) {
+    converged_steps += step.converged ? 1 : 0;
+    iterations += step.iterations;
+  }
+  for (const std::string& note : result.notes) std::cerr << options.model << ": note: " << note << '\n';
+  const std::string written = "; " + std::to_string(converged_steps) + " converged steps written to " + options.out + "/results.json";
+  if (result.status == tsm::solver::Status::interrupted) {
+    const char* signal = tsm::app::stop_signal_name();
+    std::cerr << options.model << ": " << (signal ? signal : "stop request") << ": " << result.message << written
+              << (options.plot ? " (no plots drawn)" : "") << '\n';
+    return exit_not_converged;
+  }
+  if (result.status != tsm::solver::Status::converged) {
+    std::cerr << options.model << ": did not converge (" << tsm::solver::status_name(result.status)
+              << "): " << result.message << written << '\n';
+    return exit_not_converged;
+  }
+  if (!options.quiet)
+    std::cerr << "converged: " << converged_steps << " steps, " << iterations << " iterations; results in "
+              << options.out << "/\n";
+  return exit_converged;
+}
+
 int run(const RunOptions& options) {
   if (options.threads > 0) omp_set_num_threads(options.threads);
   tsm::Model model;
@@ -85,63 +126,29 @@ int run(const RunOptions& options) {
     std::cerr << options.model << ": " << e.what() << '\n';
     return exit_bad_input;
   }
+  const tsm::solver::StopRequest& stop = tsm::app::install_stop_signals();
+  // Every output goes into the temporary directory, made (and so checked) before the analysis;
+  // the commit puts it in place of --out in one step.
+  tsm::io::OutputDirectory output(options.out, {"results.json", "steps.csv", "vtk", "plots"});
   // ParaView files are written as the steps converge (each step's full state exists only then).
-  const std::filesystem::path vtk_dir = std::filesystem::path(options.out) / "vtk";
+  const std::filesystem::path vtk_dir = output.path() / "vtk";
+  if (options.vtk) tsm::io::make_directories(vtk_dir.string());
   std::vector<std::pair<double, std::string>> vtk_steps;
-  std::string vtk_error;
-  if (options.vtk) {
-    std::error_code error;
-    std::filesystem::create_directories(vtk_dir, error);
-    if (error) vtk_error = vtk_dir.string() + ": " + error.message();
-  }
   const auto observer = [&](const tsm::solver::StepRecord& step) {
     if (!options.quiet) std::cerr << progress_line(model, step, options.log_iterations) << std::endl;
-    if (!options.vtk || !vtk_error.empty() || !step.converged || !step.has_state) return;
+    if (!options.vtk || !step.converged || !step.has_state) return;
     char name[32];
     std::snprintf(name, sizeof name, "step-%05d.vtu", step.step);
-    try {
-      tsm::io::write_vtu((vtk_dir / name).string(), model, step);
-      vtk_steps.emplace_back(step.load_factor, name);
-    } catch (const std::exception& e) {
-      vtk_error = e.what();
-    }
+    tsm::io::write_vtu((vtk_dir / name).string(), model, step);
+    vtk_steps.emplace_back(step.load_factor, name);
   };
-  const tsm::solver::RunResult result = tsm::solver::run_analysis(model, observer);
-  try {
-    tsm::io::write_results(options.out, model, result, {.curves = options.curves || options.plot});
-    if (options.vtk && vtk_error.empty()) tsm::io::write_pvd((vtk_dir / "results.pvd").string(), vtk_steps);
-  } catch (const std::exception& e) {
-    std::cerr << "tsmframe: " << e.what() << '\n';
-    return exit_bad_input;
-  }
-  if (!vtk_error.empty()) {
-    std::cerr << "tsmframe: ParaView files not written: " << vtk_error << '\n';
-    return exit_not_converged;
-  }
-  if (options.plot) {
-    const std::string command = std::string("/usr/bin/python3 \"") + TSMFRAME_SCRIPTS_DIR + "/plot_run.py\" \"" +
-                                options.out + "\"" + (options.quiet ? " >/dev/null" : "");
-    if (std::system(command.c_str()) != 0) {
-      std::cerr << "tsmframe: --plot failed (it needs Debian's python3-matplotlib: bash scripts/setup.sh)\n";
-      return exit_not_converged;
-    }
-  }
-  int converged_steps = 0, iterations = 0;
-  for (const auto& step : result.steps) {
-    converged_steps += step.converged ? 1 : 0;
-    iterations += step.iterations;
-  }
-  for (const std::string& note : result.notes) std::cerr << options.model << ": note: " << note << '\n';
-  if (result.status != tsm::solver::Status::converged) {
-    std::cerr << options.model << ": did not converge (" << tsm::solver::status_name(result.status)
-              << "): " << result.message << "; " << converged_steps << " converged steps written to "
-              << options.out << "/results.json\n";
-    return exit_not_converged;
-  }
-  if (!options.quiet)
-    std::cerr << "converged: " << converged_steps << " steps, " << iterations << " iterations; results in "
-              << options.out << "/\n";
-  return exit_converged;
+  const tsm::solver::RunResult result = tsm::solver::run_analysis(model, observer, &stop);
+  tsm::io::write_results(output.path().string(), model, result, {.curves = options.curves || options.plot});
+  if (options.vtk) tsm::io::write_pvd((vtk_dir / "results.pvd").string(), vtk_steps);
+  // An interrupted run is asked to end: no plots.
+  const bool plotted = !options.plot || result.status == tsm::solver::Status::interrupted || draw_plots(output.path(), options);
+  output.commit();
+  return plotted ? report_run(options, result) : exit_not_converged;
 }
 
 struct StudyOptions {
@@ -150,6 +157,33 @@ struct StudyOptions {
   bool quiet = false;
   int jobs = 0;  // 0: all cores
 };
+
+/// The study's closing line on stderr; returns the exit code.
+int report_study(const StudyOptions& options, size_t total, const std::vector<tsm::study::CaseResult>& rows) {
+  const auto bad = [](const tsm::study::CaseResult& r) { return r.status == "bad-input"; };
+  const auto stopped = [](const tsm::study::CaseResult& r) { return r.status == "interrupted"; };
+  const size_t failed = std::count_if(rows.begin(), rows.end(), [](const auto& r) { return !r.converged; });
+  const size_t invalid = std::count_if(rows.begin(), rows.end(), bad);
+  const size_t interrupted = std::count_if(rows.begin(), rows.end(), stopped);
+  std::cerr << options.study << ": ";
+  if (rows.size() < total || interrupted > 0) {
+    const char* signal = tsm::app::stop_signal_name();
+    std::cerr << (signal ? signal : "stop request") << ": interrupted after " << rows.size() << " of " << total
+              << " cases (" << interrupted << " of them stopped at a step boundary, status interrupted), ";
+  } else {
+    std::cerr << rows.size() << " cases, ";
+  }
+  std::cerr << failed - invalid - interrupted << " did not converge";
+  // A model the sweep made invalid is most often a typo in the study (a path to a key the model
+  // does not have): the first such case's reason, on the terminal, not only in the rows.
+  if (invalid > 0) {
+    const auto first = std::find_if(rows.begin(), rows.end(), bad);
+    std::cerr << ", " << invalid << " had a model the sweep made invalid (bad-input; case " << first->index + 1 << ": "
+              << first->message << ")";
+  }
+  std::cerr << "; rows in " << options.out << "/study.csv and study.json\n";
+  return failed == 0 && rows.size() == total ? exit_converged : exit_not_converged;
+}
 
 int study(const StudyOptions& options) {
   omp_set_num_threads(1);  // the cases run in parallel; each one on one thread
@@ -160,6 +194,8 @@ int study(const StudyOptions& options) {
     std::cerr << options.study << ": " << e.what() << '\n';
     return exit_bad_input;
   }
+  const tsm::solver::StopRequest& stop = tsm::app::install_stop_signals();
+  tsm::io::OutputDirectory output(options.out, {"study.csv", "study.json", "cases"});  // as a run's (run above)
   const size_t total = definition.case_count();
   size_t done = 0;
   const auto progress = [&](const tsm::study::CaseResult& row) {
@@ -171,26 +207,12 @@ int study(const StudyOptions& options) {
     std::cerr << "  " << row.status << "  " << row.steps << " steps, " << row.iterations << " iterations  [" << done
               << " done]\n";
   };
-  const std::vector<tsm::study::CaseResult> rows = tsm::study::run_study(definition, options.jobs, options.out, progress);
-  try {
-    tsm::study::write_study(options.out, definition, rows);
-  } catch (const std::exception& e) {
-    std::cerr << "tsmframe: " << e.what() << '\n';
-    return exit_bad_input;
-  }
-  const auto bad = [](const tsm::study::CaseResult& r) { return r.status == "bad-input"; };
-  const size_t failed = std::count_if(rows.begin(), rows.end(), [](const auto& r) { return !r.converged; });
-  const size_t invalid = std::count_if(rows.begin(), rows.end(), bad);
-  std::cerr << options.study << ": " << rows.size() << " cases, " << failed - invalid << " did not converge";
-  // A model the sweep made invalid is most often a typo in the study (a path to a key the model
-  // does not have): the first such case's reason, on the terminal, not only in the rows.
-  if (invalid > 0) {
-    const auto first = std::find_if(rows.begin(), rows.end(), bad);
-    std::cerr << ", " << invalid << " had a model the sweep made invalid (bad-input; case " << first->index + 1 << ": "
-              << first->message << ")";
-  }
-  std::cerr << "; rows in " << options.out << "/study.csv and study.json\n";
-  return failed == 0 ? exit_converged : exit_not_converged;
+  // Ctrl-C: no new case starts, the running ones stop at their next step; the rows of the cases run are written.
+  const std::vector<tsm::study::CaseResult> rows =
+      tsm::study::run_study(definition, options.jobs, output.path().string(), progress, &stop);
+  tsm::study::write_study(output.path().string(), definition, rows);
+  output.commit();
+  return report_study(options, total, rows);
 }
 
 }  // namespace
@@ -233,6 +255,9 @@ int main(int argc, char** argv) {
   } catch (const tsm::io::SystemError& e) {
     std::cerr << "tsmframe: " << e.what() << '\n';
     return exit_system;
+  } catch (const tsm::io::InputError& e) {  // an --out that may not be replaced (the inputs' own: above)
+    std::cerr << "tsmframe: " << e.what() << '\n';
+    return exit_bad_input;
   } catch (const std::bad_alloc&) {
     std::cerr << "tsmframe: out of memory (the machine has less than this run needs)\n";
     return exit_system;

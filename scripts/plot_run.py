@@ -1,14 +1,15 @@
 #!/usr/bin/python3
 """Plots for one `tsmframe run` (called by `tsmframe run … --plot`; Debian python3-matplotlib).
 
-    /usr/bin/python3 scripts/plot_run.py DIR
+    /usr/bin/python3 scripts/plot_run.py DIR [SHOWN]
 
 Reads DIR/results.json and DIR/steps.csv; writes DIR/plots/deformed.png|svg (the steps that
 carry full state, up to 12 of them, elements drawn as the deflected curves results.json carries
 — straight chords, and the legend says so, where it has none) and
 DIR/plots/load-displacement.png|svg (λ against ux, uy, rz of every monitored node, but those that
 only carry rounding noise) and, where prescribed displacements drive the model,
-DIR/plots/force-displacement.png|svg (the reactions there against those displacements).
+DIR/plots/force-displacement.png|svg (the reactions there against those displacements). SHOWN:
+the directory as the closing line names it (`tsmframe run` plots into its temporary directory).
 """
 import csv
 import json
@@ -90,7 +91,7 @@ def force_displacement(results, rows, plots):
     return True
 
 
-def main(directory):
+def main(directory, shown=None):
     with open(os.path.join(directory, "results.json")) as f:
         results = json.load(f)
     plots = os.path.join(directory, "plots")
@@ -149,8 +150,8 @@ def main(directory):
     written = ["deformed.png", "load-displacement.png"]
     if force_displacement(results, rows, plots):
         written.append("force-displacement.png")
-    print(f"plots: {plots}/{', '.join(written)} (and .svg)")
+    print(f"plots: {os.path.join(shown or directory, 'plots')}/{', '.join(written)} (and .svg)")
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "out")
+    main(sys.argv[1] if len(sys.argv) > 1 else "out", sys.argv[2] if len(sys.argv) > 2 else None)

@@ -3,9 +3,9 @@
 #include <array>
 #include <filesystem>
 
-#include "tsmframe/io/atomic_file.hpp"
 #include "tsmframe/io/element_curves.hpp"
 #include "tsmframe/io/json_writer.hpp"
+#include "tsmframe/io/output_file.hpp"
 #include "tsmframe/model/hinges.hpp"
 #include "tsmframe/version.hpp"
 
@@ -197,14 +197,10 @@ void write_steps_csv(std::ostream& out, const Model& model, const solver::RunRes
 
 void write_results(const std::string& directory, const Model& model, const solver::RunResult& result,
                    const ResultsOptions& options) {
-  std::error_code error;
-  std::filesystem::create_directories(directory, error);
-  if (error) throw std::runtime_error(directory + ": cannot create the output directory: " + error.message());
+  make_directories(directory);
   const std::filesystem::path dir(directory);
-  write_files_atomically({
-      {(dir / "results.json").string(), [&](std::ostream& out) { write_results_json(out, model, result, options); }},
-      {(dir / "steps.csv").string(), [&](std::ostream& out) { write_steps_csv(out, model, result); }},
-  });
+  write_output_file((dir / "results.json").string(), [&](std::ostream& out) { write_results_json(out, model, result, options); });
+  write_output_file((dir / "steps.csv").string(), [&](std::ostream& out) { write_steps_csv(out, model, result); });
 }
 
 }  // namespace tsm::io

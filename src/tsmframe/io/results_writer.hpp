@@ -20,8 +20,9 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
                         const ResultsOptions& options = {});
 void write_steps_csv(std::ostream& out, const Model& model, const solver::RunResult& result);
 
-/// Writes DIR/results.json and DIR/steps.csv atomically, creating DIR if needed.
-/// Throws std::runtime_error with the path on failure.
+/// Writes DIR/results.json and DIR/steps.csv, creating DIR if needed (a run's DIR is the
+/// temporary directory of an OutputDirectory: the files appear with the commit). Throws
+/// SystemError (the path, the OS's reason) where the system fails.
 void write_results(const std::string& directory, const Model& model, const solver::RunResult& result,
                    const ResultsOptions& options = {});
 

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "tsmframe/io/atomic_file.hpp"
 #include "tsmframe/io/element_curves.hpp"
 #include "tsmframe/io/json_writer.hpp"
+#include "tsmframe/io/output_file.hpp"
 
 namespace tsm::io {
 namespace {
@@ -67,7 +67,7 @@ void write_vtu(const std::string& path, const Model& model, const solver::StepRe
   }
   const size_t per = curve_segments + 1, n_points = curves.size() * per + contacts.size();
   const size_t n_cells = curves.size() + contacts.size();
-  write_files_atomically({{path, [&](std::ostream& out) {
+  write_output_file(path, [&](std::ostream& out) {
     auto num = [](double x) { return format_number(std::isfinite(x) ? x : 0.0); };
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
         << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << n_points << "\" NumberOfCells=\"" << n_cells << "\">\n";
@@ -114,18 +114,18 @@ void write_vtu(const std::string& path, const Model& model, const solver::StepRe
     for (const Element& e : model.elements) out << e.id << '\n';
     for (size_t k = 0; k < contacts.size(); ++k) out << "0\n";
     out << "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-  }}});
+  });
 }
 
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& steps) {
-  write_files_atomically({{path, [&](std::ostream& out) {
+  write_output_file(path, [&](std::ostream& out) {
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n<Collection>\n";
     // ParaView needs increasing times: the step number, with the load factor in the name.
     for (size_t k = 0; k < steps.size(); ++k)
       out << "<DataSet timestep=\"" << k + 1 << "\" part=\"0\" file=\"" << steps[k].second << "\" name=\"load factor "
           << format_number(steps[k].first) << "\"/>\n";
     out << "</Collection>\n</VTKFile>\n";
-  }}});
+  });
 }
 
 }  // namespace tsm::io

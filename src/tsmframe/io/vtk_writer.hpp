@@ -18,7 +18,8 @@
 
 namespace tsm::io {
 
-/// Writes the .vtu of one converged step that carries state (atomically).
+/// Writes the .vtu of one converged step that carries state. Throws SystemError where the
+/// system fails (output_file.hpp).
 void write_vtu(const std::string& path, const Model& model, const solver::StepRecord& step);
 
 /// Writes the .pvd series: (load factor, .vtu file name relative to the .pvd) per step.

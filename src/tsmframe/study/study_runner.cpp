@@ -15,6 +15,7 @@
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/io/model_reader.hpp"
 #include "tsmframe/io/results_writer.hpp"
+#include "tsmframe/io/system_error.hpp"
 #include "tsmframe/solver/analysis.hpp"
 
 namespace tsm::study {
@@ -155,17 +156,13 @@ CaseResult bad_input_row(const Study& study, size_t index, const std::string& me
   return row;
 }
 
-/// The case's results.json and steps.csv under `directory`/cases/<case>/; a failure to write
-/// them is said in the row's message.
-void keep_results(const std::string& directory, const Model& model, const solver::RunResult& result, CaseResult& row) {
-  try {
-    io::write_results((std::filesystem::path(directory) / "cases" / std::to_string(row.index + 1)).string(), model, result);
-  } catch (const std::exception& e) {
-    row.message += std::string(row.message.empty() ? "" : "; ") + "results not kept: " + e.what();
-  }
+/// The case's results.json and steps.csv under `directory`/cases/<case>/ (io::SystemError where
+/// the system fails: the study stops).
+void keep_results(const std::string& directory, const Model& model, const solver::RunResult& result, const CaseResult& row) {
+  io::write_results((std::filesystem::path(directory) / "cases" / std::to_string(row.index + 1)).string(), model, result);
 }
 
-CaseResult run_case(const Study& study, size_t index, const std::string& keep_directory) {
+CaseResult run_case(const Study& study, size_t index, const std::string& keep_directory, const solver::StopRequest* stop) {
   const auto start = std::chrono::steady_clock::now();
   Model model;
   std::vector<ResolvedRecord> resolved;
@@ -178,7 +175,7 @@ CaseResult run_case(const Study& study, size_t index, const std::string& keep_di
     return bad_input_row(study, index, e.what());
   }
   std::vector<StepValues> values(study.records.size());
-  const solver::RunResult result = solver::run_analysis(model, record_observer(study, resolved, values));
+  const solver::RunResult result = solver::run_analysis(model, record_observer(study, resolved, values), stop);
   CaseResult row;
   row.index = index;
   row.choice = case_choice(study, index);
@@ -191,10 +188,14 @@ CaseResult run_case(const Study& study, size_t index, const std::string& keep_di
 
 /// run_case, with whatever else it throws made the case's row: a case that runs out of memory
 /// (std::bad_alloc in its reader or its analysis) must neither end the sweep nor escape its
-/// thread, where it ends the program (std::terminate).
-CaseResult run_case_caught(const Study& study, size_t index, const std::string& keep_directory) {
+/// thread, where it ends the program (std::terminate). A SystemError (its results cannot be kept)
+/// is no fault of the case: it goes on, to end the study.
+CaseResult run_case_caught(const Study& study, size_t index, const std::string& keep_directory,
+                           const solver::StopRequest* stop) {
   try {
-    return run_case(study, index, keep_directory);
+    return run_case(study, index, keep_directory, stop);
+  } catch (const io::SystemError&) {
+    throw;
   } catch (const std::bad_alloc& e) {
     return bad_input_row(study, index, std::string("the case ran out of memory (") + e.what() + ")");
   } catch (const std::exception& e) {
@@ -211,9 +212,10 @@ int thread_count(int threads, size_t cases) {
 }  // namespace
 
 std::vector<CaseResult> run_study(const Study& study, int threads, const std::string& keep_directory,
-                                  const std::function<void(const CaseResult&)>& progress) {
+                                  const std::function<void(const CaseResult&)>& progress, const solver::StopRequest* stop) {
   const size_t n = study.case_count();
   std::vector<CaseResult> rows(n);
+  std::vector<char> ran(n, 0);
   const std::string keep = study.keep ? keep_directory : std::string();
   // Big cases first would balance better; cases are independent, so a shared counter suffices.
   std::atomic<size_t> next{0};
@@ -224,8 +226,9 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
     // the caller's omp_set_num_threads does not reach the pool's threads.)
     omp_set_num_threads(1);
     try {
-      for (size_t k; (k = next.fetch_add(1)) < n;) {
-        rows[k] = run_case_caught(study, k, keep);
+      for (size_t k; !solver::stop_requested(stop) && (k = next.fetch_add(1)) < n;) {
+        rows[k] = run_case_caught(study, k, keep, stop);
+        ran[k] = 1;
         if (!progress) continue;
         std::lock_guard<std::mutex> lock(report);
         progress(rows[k]);
@@ -243,7 +246,11 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
   omp_set_num_threads(callers);
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
-  return rows;
+  if (std::find(ran.begin(), ran.end(), 0) == ran.end()) return rows;
+  std::vector<CaseResult> done;  // stopped on request: the rows of the cases run
+  for (size_t k = 0; k < n; ++k)
+    if (ran[k]) done.push_back(std::move(rows[k]));
+  return done;
 }
 
 }  // namespace tsm::study

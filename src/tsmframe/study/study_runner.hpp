@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tsmframe/solver/stop_request.hpp"
 #include "tsmframe/study/study.hpp"
 
 namespace tsm::study {
@@ -36,11 +37,15 @@ struct CaseResult {
 };
 
 /// Runs every case on `threads` threads (0: all cores). `progress` is called after each case.
-/// Whatever a case throws is its row (status "bad-input", the reason in its message); what
-/// `progress` throws stops the cases and is rethrown here, after every thread has ended. With
-/// study.keep, each case's results.json and steps.csv go to `keep_directory`/cases/<case>/.
+/// Whatever a case throws is its row (status "bad-input", the reason in its message) but
+/// io::SystemError (the system failed, not the case); that and what `progress` throws stop the
+/// cases and are rethrown here, after every thread has ended. With study.keep, each case's
+/// results.json and steps.csv go to `keep_directory`/cases/<case>/. A requested `stop` starts
+/// no new case and ends the running ones at their next step (status "interrupted"). Returns
+/// the rows of the cases run, in case order.
 std::vector<CaseResult> run_study(const Study& study, int threads, const std::string& keep_directory,
-                                  const std::function<void(const CaseResult&)>& progress = {});
+                                  const std::function<void(const CaseResult&)>& progress = {},
+                                  const solver::StopRequest* stop = nullptr);
 
 /// The value index per parameter of case `index` (from 0), the first parameter varying slowest.
 std::vector<size_t> case_choice(const Study& study, size_t index);

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "tsmframe/io/atomic_file.hpp"
+#include "tsmframe/io/output_file.hpp"
 #include "tsmframe/io/json_writer.hpp"
 
 namespace tsm::study {
@@ -133,12 +133,10 @@ void write_study_json(std::ostream& out, const Study& study, const std::vector<C
 }
 
 void write_study(const std::string& directory, const Study& study, const std::vector<CaseResult>& rows) {
-  std::error_code error;
-  std::filesystem::create_directories(directory, error);
-  if (error) throw std::runtime_error(directory + ": cannot create the output directory: " + error.message());
+  io::make_directories(directory);
   const std::filesystem::path dir(directory);
-  io::write_files_atomically({{(dir / "study.csv").string(), [&](std::ostream& out) { write_study_csv(out, study, rows); }},
-                              {(dir / "study.json").string(), [&](std::ostream& out) { write_study_json(out, study, rows); }}});
+  io::write_output_file((dir / "study.csv").string(), [&](std::ostream& out) { write_study_csv(out, study, rows); });
+  io::write_output_file((dir / "study.json").string(), [&](std::ostream& out) { write_study_json(out, study, rows); });
 }
 
 }  // namespace tsm::study

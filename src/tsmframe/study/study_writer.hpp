@@ -36,8 +36,8 @@ void write_study_csv(std::ostream& out, const Study& study, const std::vector<Ca
 /// study.json's text (the parameters and their values, the rows as its "cases"), to `out`.
 void write_study_json(std::ostream& out, const Study& study, const std::vector<CaseResult>& rows);
 
-/// study.csv and study.json into `directory` (atomically); throws std::runtime_error where it
-/// cannot be made.
+/// study.csv and study.json into `directory` (the temporary directory of an io::OutputDirectory:
+/// they appear with its commit); throws io::SystemError (the OS's reason) where the system fails.
 void write_study(const std::string& directory, const Study& study, const std::vector<CaseResult>& rows);
 
 }  // namespace tsm::study
