@@ -22,6 +22,7 @@ using nlohmann::json;
 using tsm::test::Outcome;
 using tsm::test::run_cli;
 using tsm::test::run_cli_bounded;
+using tsm::test::run_command;
 
 constexpr long test_memory_kb = 2'000'000;  // what a study run by these tests may take: 2 GB …
 constexpr int test_seconds = 60;            // … and a minute (each takes well under a second)
@@ -354,6 +355,59 @@ TEST_F(Study, Fig7ContactPointPassesAnElementEndForBothFormulations) {
   for (const char* f : {"chord euler-bernoulli", "chord timoshenko", "cantilever euler-bernoulli", "cantilever timoshenko"})
     EXPECT_EQ(passed[f], 6) << f;  // every position, all four formulations
   EXPECT_TRUE(fs::exists(dir_ / "fig7" / "cases" / "1" / "steps.csv"));  // "keep": every case's results
+}
+
+/// A study of `cases` cases of a 400-element cantilever rolled up in 3,000 load steps each (a few
+/// tenths of a second a case), its cases' results kept.
+json slow_study(int cases) {
+  json m = json::parse(R"({
+    "materials": {"steel": {"E": 2.05e11, "G": 7.9e10}},
+    "sections": {"s": {"A": 0.01, "I": 8.333333333333335e-06, "shear_area": 0.008333333333333335}},
+    "nodes": [{"id": 1, "x": 0.0, "y": 0.0}, {"id": 2, "x": 10.0, "y": 0.0}],
+    "members": [{"from": 1, "to": 2, "divisions": 400, "element": "timoshenko", "material": "steel", "section": "s"}],
+    "supports": [{"node": 1, "type": "fixed"}],
+    "loads": [{"node": 2, "mz": 1073377.489976513}],
+    "analysis": {"control": {"type": "load", "steps": 3000}, "output": "last"}})");
+  json steps = json::array();
+  for (int k = 0; k < cases; ++k) steps.push_back(3000 + k);
+  return {{"model", m}, {"keep", true}, {"sweep", json::array({{{"name", "load_steps"}, {"path", "/analysis/control/steps"}, {"values", steps}}})}};
+}
+
+TEST_F(Study, CtrlCStartsNoNewCaseAndWritesTheRowsOfTheCasesRun) {
+  const fs::path out = dir_ / "out";
+  const Outcome o = run_command("timeout --preserve-status -s INT 1.5 " + std::string(TSMFRAME_CLI) + " study " +
+                                write("study.json", slow_study(40)) + " -q --jobs 1 --out " + out.string() + " 2>&1");
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  const json r = read_json(out / "study.json");
+  const size_t rows = r["cases"].size();
+  EXPECT_GT(rows, 0u);
+  EXPECT_LT(rows, 40u);
+  EXPECT_NE(o.output.find("SIGINT: interrupted after " + std::to_string(rows) + " of 40 cases"), std::string::npos) << o.output;
+  for (size_t k = 0; k < rows; ++k) {  // the cases run, in order: converged, or stopped at a step (the last one)
+    EXPECT_EQ(r["cases"][k]["case"], k + 1);
+    const std::string status = r["cases"][k]["status"];
+    EXPECT_TRUE(status == "converged" || (k + 1 == rows && status == "interrupted")) << k << ": " << status;
+    EXPECT_TRUE(fs::exists(out / "cases" / std::to_string(k + 1) / "results.json"));
+  }
+  std::ifstream csv(out / "study.csv");
+  size_t lines = 0;
+  for (std::string line; std::getline(csv, line);) ++lines;
+  EXPECT_EQ(lines, rows + 1);
+  for (const auto& entry : fs::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().filename().string().find(".tsmframe-"), std::string::npos) << "temporary left: " << entry.path();
+}
+
+TEST_F(Study, ACaseWhoseResultsCannotBeKeptEndsTheStudyWithExitThree) {
+  // The size limit (RLIMIT_FSIZE) below a kept case's results.json: the system fails us, no
+  // case's fault — exit 3 with the OS's reason, not a row, and no output directory.
+  const Outcome o = run_command("prlimit --fsize=20000 " + std::string(TSMFRAME_CLI) + " study " +
+                                write("study.json", slow_study(2)) + " -q --jobs 1 --out " + (dir_ / "out").string() + " 2>&1");
+  EXPECT_EQ(o.exit_code, 3) << o.output;
+  EXPECT_NE(o.output.find("File too large\n"), std::string::npos) << o.output;
+  EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  for (const auto& entry : fs::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().filename().string().find(".tsmframe-"), std::string::npos) << "temporary left: " << entry.path();
 }
 
 }  // namespace
