@@ -1,20 +1,22 @@
-// Running: a model given as FORMAT.md JSON text, run on `threads` threads with the GIL released;
-// its results as numpy arrays (results.cpp).
+// Running: a model given as FORMAT.md JSON text, run on `threads` threads with the GIL released
+// (Ctrl-C ends it at the next step and raises KeyboardInterrupt: interruptible.hpp); its results
+// as numpy arrays (results.cpp).
 #include <omp.h>
 
 #include "src/bindings.hpp"
+#include "src/interruptible.hpp"
 #include "src/results.hpp"
 
 namespace tsm::python {
 namespace {
 
-/// The run on `threads` threads (0: as set), for this run only: the caller's setting is restored.
+/// The run on `threads` threads (0: as set), on a thread of its own: the caller's setting stays.
 solver::RunResult run(const Model& model, int threads) {
-  py::gil_scoped_release release;
-  const int callers = omp_get_max_threads();
-  if (threads > 0) omp_set_num_threads(threads);
-  solver::RunResult result = solver::run_analysis(model);
-  omp_set_num_threads(callers);
+  solver::RunResult result;
+  run_interruptible([&](const solver::StopRequest* stop) {
+    if (threads > 0) omp_set_num_threads(threads);
+    result = solver::run_analysis(model, {}, stop);
+  });
   return result;
 }
 

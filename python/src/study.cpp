@@ -8,6 +8,7 @@
 #include "tsmframe/study/study_runner.hpp"
 #include "tsmframe/study/study_writer.hpp"
 #include "src/bindings.hpp"
+#include "src/interruptible.hpp"
 
 namespace tsm::python {
 namespace {
@@ -24,10 +25,7 @@ study::Study read_study(const std::string& text, const std::string& directory) {
 std::string study_json(const std::string& text, const std::string& directory, int jobs) {
   const study::Study definition = read_study(text, directory);
   std::vector<study::CaseResult> rows;
-  {
-    py::gil_scoped_release release;
-    rows = study::run_study(definition, jobs, "");
-  }
+  run_interruptible([&](const solver::StopRequest* stop) { rows = study::run_study(definition, jobs, "", {}, stop); });
   std::ostringstream out;  // the CLI's study.json
   study::write_study_json(out, definition, rows);
   return out.str();
