@@ -2,7 +2,7 @@
 // and SIGTERM keep every converged step (exit 1); a file beyond the size limit, a directory that
 // cannot be made and a full disk are exit 3 with the OS's reason, the previous outputs untouched
 // and no temporaries left; dead runs' temporaries are removed, a live run's are not; a directory
-// holding what tsmframe does not write is not replaced. (SIGKILL at random moments:
+// holding what tsmframe does not write, or a mount point, is not replaced. (SIGKILL at random moments:
 // tests/robustness/kill_at_random.py.)
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -172,12 +172,15 @@ TEST_F(OutputCommit, AFullDiskIsExitThreeWithTheReasonAndKeepsThePreviousOutputs
                              small + " -q --out " + disk.string() + "/out || exit 98; cp -r " + disk.string() + "/out " +
                              saved.string() + "; " + cli + " run " + big + " -q --out " + disk.string() +
                              "/out; echo \"exit $?\"; ls -A " + disk.string() + "; diff -r " + disk.string() + "/out " +
-                             saved.string() + " && echo unchanged";
+                             saved.string() + " && echo unchanged; " + cli + " run " + small + " -q --out " + disk.string() +
+                             " 2>/dev/null; echo \"mount point $?\"";
   const Outcome o = run_command("unshare --user --map-root-user --mount sh -c '" + script + "' 2>&1");
   if (o.exit_code == 99 || o.output.find("unshare: ") != std::string::npos)
     GTEST_SKIP() << "no tmpfs can be mounted here (user namespaces not allowed?): " << o.output;
   EXPECT_NE(o.output.find("No space left on device\nexit 3\nout\nunchanged\n"), std::string::npos) << o.output;
-  EXPECT_EQ(lines(o.output), 4u) << o.output;  // one line from tsmframe; nothing but `out` on the disk
+  EXPECT_EQ(lines(o.output), 5u) << o.output;  // one line from tsmframe; nothing but `out` on the disk
+  // The disk's mount point itself cannot be replaced by a rename: refused before the analysis.
+  EXPECT_NE(o.output.find("\nmount point 2\n"), std::string::npos) << o.output;
 }
 
 TEST_F(OutputCommit, DeadRunsTemporariesAreRemovedALiveRunsAreNot) {

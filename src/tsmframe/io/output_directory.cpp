@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <system_error>
@@ -68,6 +69,19 @@ std::vector<std::string> foreign_entries(const fs::path& final, const std::vecto
   return foreign;
 }
 
+/// Whether `directory` is where a filesystem is mounted (a bind mount of a container included):
+/// no rename can move it.
+bool mount_root(const fs::path& directory) {
+#ifdef STATX_ATTR_MOUNT_ROOT
+  struct statx x;
+  if (::statx(AT_FDCWD, directory.c_str(), AT_SYMLINK_NOFOLLOW, 0, &x) == 0 && (x.stx_attributes_mask & STATX_ATTR_MOUNT_ROOT))
+    return (x.stx_attributes & STATX_ATTR_MOUNT_ROOT) != 0;
+#endif
+  struct stat self, parent;
+  return ::stat(directory.c_str(), &self) == 0 && ::stat(directory.parent_path().c_str(), &parent) == 0 &&
+         self.st_dev != parent.st_dev;
+}
+
 /// Refuses an existing `final` that the commit may not replace: not a directory, or holding
 /// what the command does not write (`shown`: the directory as the user named it).
 void check_replaceable(const fs::path& final, const std::string& shown, const std::vector<std::string>& own) {
@@ -77,6 +91,8 @@ void check_replaceable(const fs::path& final, const std::string& shown, const st
     throw SystemError(shown, reason(errno));
   }
   if (!S_ISDIR(status.st_mode)) throw InputError(shown, "exists and is not a directory: the outputs need a directory of their own");
+  if (mount_root(final))
+    throw InputError(shown, "is a mount point, which the outputs cannot replace whole: give a directory inside it");
   const std::vector<std::string> foreign = foreign_entries(final, own);
   if (foreign.empty()) return;
   std::string names;

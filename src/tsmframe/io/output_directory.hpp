@@ -17,7 +17,8 @@ class OutputDirectory {
   /// Prepares to write `directory`: makes its missing parents and the temporary directory, and
   /// removes the temporaries of dead runs beside it (never a live run's). An existing
   /// `directory` must be a directory holding nothing but `own` entries (what the command writes
-  /// there): the commit replaces it whole, and anything else in it would be lost. Throws
+  /// there), and no mount point: the commit replaces it whole, and anything else in it would be
+  /// lost. Throws
   /// SystemError (the OS's reason) where the directory cannot be made, InputError (path: the
   /// directory) where an existing one may not be replaced.
   OutputDirectory(const std::string& directory, const std::vector<std::string>& own);
