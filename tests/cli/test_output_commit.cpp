@@ -216,6 +216,12 @@ TEST_F(OutputCommit, ADirectoryHoldingWhatTsmframeDoesNotWriteIsNotReplaced) {
   EXPECT_NE(o.output.find("holds notes.txt, which tsmframe does not write there"), std::string::npos) << o.output;
   EXPECT_TRUE(contents(out) == before) << "the previous outputs changed";
   EXPECT_TRUE(temporaries().empty());
+  // The working directory (or one holding it) cannot be replaced from within: refused.
+  const Outcome here = run_command("cd " + out.string() + " && " + TSMFRAME_CLI + " run " + (dir_ / "m.json").string() +
+                                   " -q --out . 2>&1");
+  EXPECT_EQ(here.exit_code, 2) << here.output;
+  EXPECT_NE(here.output.find("tsmframe: .: is (or holds) the working directory"), std::string::npos) << here.output;
+  EXPECT_TRUE(contents(out) == before) << "the previous outputs changed";
   // A file where the directory should be is refused as well; the outputs of an older version
   // with their leftovers (results.json.tmp-PID) are replaced whole.
   EXPECT_EQ(run_cli("run " + (dir_ / "m.json").string() + " -q --out " + (out / "notes.txt").string()).exit_code, 2);

@@ -201,8 +201,11 @@ OutputDirectory::OutputDirectory(const std::string& directory, const std::vector
   std::error_code error;
   final_ = fs::weakly_canonical(fs::absolute(directory, error), error);
   if (error) throw SystemError(directory, error.message());
-  if (!final_.has_filename() || final_ == final_.root_path())
-    throw InputError(directory, "cannot be an output directory: the outputs replace it whole");
+  if (!final_.has_filename()) final_ = final_.parent_path();  // "out/" where out does not exist yet
+  const fs::path working = fs::current_path(error);
+  const auto [inside, rest] = std::mismatch(final_.begin(), final_.end(), working.begin(), working.end());
+  if (final_ == final_.root_path() || (!error && inside == final_.end()))
+    throw InputError(directory, "is (or holds) the working directory, which the outputs cannot replace whole: give another directory");
   check_replaceable(final_, directory, own);
   const fs::path parent = final_.parent_path();
   made_parents_ = make_parents(parent);
