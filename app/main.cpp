@@ -81,12 +81,14 @@ std::string progress_line(const tsm::Model& model, const tsm::solver::StepRecord
   return os.str();
 }
 
-/// --plot: the drawings into `directory`/plots (`shown`: the directory as the user named it);
-/// false, said on stderr, where they fail.
+/// --plot: the drawings into `directory`/plots (named as the user named the directory); false,
+/// said on stderr, where they fail (then no plots/: none half drawn).
 bool draw_plots(const std::filesystem::path& directory, const RunOptions& options) {
   const std::string command = std::string("/usr/bin/python3 \"") + TSMFRAME_SCRIPTS_DIR + "/plot_run.py\" \"" +
                               directory.string() + "\" \"" + options.out + "\"" + (options.quiet ? " >/dev/null" : "");
   if (std::system(command.c_str()) == 0) return true;
+  std::error_code ignored;
+  std::filesystem::remove_all(directory / "plots", ignored);
   std::cerr << "tsmframe: --plot failed (it needs Debian's python3-matplotlib: bash scripts/setup.sh)\n";
   return false;
 }
