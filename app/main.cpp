@@ -155,7 +155,7 @@ int run(const RunOptions& options) {
 
 struct StudyOptions {
   std::string study;
-  std::string out = "out/study";
+  std::string out = "out-study";  // beside a run's `out`, not in it: a run replaces its directory whole
   bool quiet = false;
   int jobs = 0;  // 0: all cores
 };
@@ -240,7 +240,7 @@ int main(int argc, char** argv) {
   StudyOptions study_options;
   CLI::App* study_command = app.add_subcommand("study", "Run a parameter study: one row per case in study.csv and study.json");
   study_command->add_option("study", study_options.study, "study file (tsmframe-study/1, see README)")->required();
-  study_command->add_option("-o,--out", study_options.out, "output directory (default: out/study)");
+  study_command->add_option("-o,--out", study_options.out, "output directory (default: out-study)");
   study_command->add_flag("-q,--quiet", study_options.quiet, "no progress lines");
   study_command->add_option("-j,--jobs", study_options.jobs, "cases run at once (default: all cores)")->check(CLI::Range(1, 1024));
 
