@@ -19,6 +19,7 @@ constexpr int path_rows_per_thread = 8;      // a thread's run of consecutive pa
 // on x86-64 they are also compiled for AVX2 + FMA, picked at load time where the CPU has them
 // (GCC function multi-versioning; the baseline build still runs anywhere). Results then depend on
 // the CPU's instruction set in their last bits (FMA rounds once), never on the number of threads.
+// Clang builds the baseline only.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
 #define TSM_BLOCK_KERNEL __attribute__((target_clones("default", "arch=x86-64-v3")))
 #else
@@ -34,7 +35,13 @@ constexpr int path_rows_per_thread = 8;      // a thread's run of consecutive pa
 class RankThreeUpdate {
  public:
   using Lanes = double __attribute__((vector_size(32), aligned(8)));
+#if defined(__clang__)
+// Lanes a, b, c, d of v, in that order: GCC's __builtin_shuffle is clang's __builtin_shufflevector.
+#define TSM_PICK(v, a, b, c, d) __builtin_shufflevector(v, v, a, b, c, d)
+#else
   using Picks = long __attribute__((vector_size(32)));
+#define TSM_PICK(v, a, b, c, d) __builtin_shuffle(v, Picks{a, b, c, d})
+#endif
   explicit RankThreeUpdate(const Block& z) {
     const double* v = z.data();  // Z(r, t) at v[r + 3t]
     for (int t = 0; t < 3; ++t) {
@@ -53,10 +60,8 @@ class RankThreeUpdate {
     // Entries 0-3 are C(0,0) C(1,0) C(2,0) C(0,1): columns 0 0 0 1; entries 4-7 C(1,1) C(2,1) C(0,2) C(1,2).
     __builtin_memcpy(&low, c, sizeof low);
     __builtin_memcpy(&high, c + 4, sizeof high);
-    low -= first_[0] * __builtin_shuffle(b0, Picks{0, 0, 0, 1}) + first_[1] * __builtin_shuffle(b1, Picks{0, 0, 0, 1}) +
-           first_[2] * __builtin_shuffle(b2, Picks{1, 1, 1, 2});
-    high -= second_[0] * __builtin_shuffle(b0, Picks{1, 1, 2, 2}) + second_[1] * __builtin_shuffle(b1, Picks{1, 1, 2, 2}) +
-            second_[2] * __builtin_shuffle(b2, Picks{2, 2, 3, 3});
+    low -= first_[0] * TSM_PICK(b0, 0, 0, 0, 1) + first_[1] * TSM_PICK(b1, 0, 0, 0, 1) + first_[2] * TSM_PICK(b2, 1, 1, 1, 2);
+    high -= second_[0] * TSM_PICK(b0, 1, 1, 2, 2) + second_[1] * TSM_PICK(b1, 1, 1, 2, 2) + second_[2] * TSM_PICK(b2, 2, 2, 3, 3);
     c[8] -= last_[0] * b[2] + last_[1] * b[5] + last_[2] * b[8];
     __builtin_memcpy(c, &low, sizeof low);
     __builtin_memcpy(c + 4, &high, sizeof high);
@@ -66,6 +71,7 @@ class RankThreeUpdate {
   Lanes first_[3], second_[3];
   double last_[3];
 };
+#undef TSM_PICK
 
 }  // namespace
 

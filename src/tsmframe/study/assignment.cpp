@@ -43,6 +43,22 @@ std::string prefix_text(const std::vector<std::string>& path, size_t count) {
   return io::quote_text(p.to_string());
 }
 
+/// Why the places a pointer makes below a new key (path[k]) would be more than one value each:
+/// nlohmann makes a missing value an object where the next token is a key, and a list where it
+/// is a number or "-" — holding the entries up to that index (4·10⁹ nulls for "4000000000";
+/// none past what 64 bits hold, an exception) — so a new list may only be given its first
+/// entry ("0" or "-").
+std::optional<std::string> new_places(const std::vector<std::string>& path, size_t k) {
+  for (size_t j = k + 1; j < path.size(); ++j) {
+    const std::string& token = path[j];
+    const bool makes_list = token == "-" || std::all_of(token.begin(), token.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (makes_list && token != "0" && token != "-")
+      return prefix_text(path, j) + " is new: it would be made a list, where " + (token.empty() ? "\"\"" : token) +
+             " is past the end of its one entry (0 or \"-\" makes it)";
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<std::string> unassignable(const json& model, const std::string& pointer) {
@@ -52,9 +68,7 @@ std::optional<std::string> unassignable(const json& model, const std::string& po
     const bool last = k + 1 == path.size();
     const std::string& token = path[k];
     if (at->is_object()) {
-      // A new key, and under it new objects holding the rest: one value a token, nothing large
-      // (nlohmann makes a missing value an object, or a one-entry list for the token "0").
-      if (!at->contains(token)) return std::nullopt;
+      if (!at->contains(token)) return new_places(path, k);
       at = &(*at)[token];
       continue;
     }

@@ -3,7 +3,9 @@
 //
 // Through an object a pointer may name a key the model has or a new one — at any depth: an
 // optional object the base model leaves out ("analysis", a member's "load") is made, holding the
-// key (a misspelt key is then the model reader's to refuse, in each case). Through a list it
+// key (a misspelt key is then the model reader's to refuse, in each case); below a new key a
+// list is made only with its first entry (`/extra/a/0` or `/extra/a/-`, not `/extra/a/7`: a
+// list of 7 nulls and the value, or of 4·10⁹ for `/extra/a/4000000000`). Through a list it
 // must name an entry the list has, or, as its last token, the place one past the end
 // (`/loads/1` on a model with one load, or `/loads/-`: appends one entry, as a variant adding a
 // load does). Anything else is refused: assigning there would build what it names —

@@ -70,7 +70,7 @@ TEST(DeflectedShape, EulerBernoulliEndRotationsGiveTheHermiteCubics) {
 TEST(DeflectedShape, EulerBernoulliIsTheSimplySupportedBeamUnderItsEndMoments) {
   // M given; the element is handed the end rotations F M of beam theory. Tolerance 1e-14 of the
   // largest deflection (a dozen roundings).
-  for (const Eigen::Vector2d M : {Eigen::Vector2d(-1.0, 1.0), Eigen::Vector2d(0.7, 0.0), Eigen::Vector2d(0.3, 2.0)}) {
+  for (const Eigen::Vector2d& M : {Eigen::Vector2d(-1.0, 1.0), Eigen::Vector2d(0.7, 0.0), Eigen::Vector2d(0.3, 2.0)}) {
     const Eigen::Vector2d theta = beam_flexibility(euler_bernoulli) * M;
     const DeflectedShape shape = shape_of(euler_bernoulli, theta[0], theta[1]);
     EXPECT_LT(largest_difference(shape, M), 1e-14 * l0 * l0 / EI * M.cwiseAbs().maxCoeff()) << M.transpose();
@@ -83,7 +83,7 @@ TEST(DeflectedShape, EulerBernoulliIsTheSimplySupportedBeamUnderItsEndMoments) {
 TEST(DeflectedShape, TimoshenkoIsTheSimplySupportedBeamWithTheShearInItsEndRotations) {
   // The same deflection for the same moments, reached by end rotations that carry the shear
   // strain; the Euler–Bernoulli shape of those rotations is measurably off (so the test can fail).
-  for (const Eigen::Vector2d M : {Eigen::Vector2d(0.7, 0.0), Eigen::Vector2d(0.3, 2.0), Eigen::Vector2d(1.0, 1.0)}) {
+  for (const Eigen::Vector2d& M : {Eigen::Vector2d(0.7, 0.0), Eigen::Vector2d(0.3, 2.0), Eigen::Vector2d(1.0, 1.0)}) {
     const Eigen::Vector2d theta = beam_flexibility(timoshenko) * M;
     const double scale = l0 * l0 / EI * M.cwiseAbs().maxCoeff();
     EXPECT_LT(largest_difference(shape_of(timoshenko, theta[0], theta[1]), M), 1e-14 * scale) << M.transpose();
