@@ -12,6 +12,7 @@
 #include "tsmframe/io/analysis_reader.hpp"
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/io/json_input.hpp"
+#include "tsmframe/io/section_table.hpp"
 #include "tsmframe/model/hinges.hpp"
 #include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/model/mesh.hpp"
@@ -24,16 +25,6 @@ using nlohmann::json;
 
 constexpr long max_divisions = 10'000'000;        // per member: a typo must not exhaust memory
 constexpr long max_elements = 20'000'000;         // per model
-
-struct Material {
-  double E = 0.0;
-  std::optional<double> G;
-};
-
-struct Section {
-  double A = 0.0, I = 0.0;
-  std::optional<double> shear_area;
-};
 
 /// Where a member's value that meshing refused is written.
 std::string mesh_error_path(const std::string& member_path, MeshError::Value value) {
@@ -55,8 +46,7 @@ class Reader {
     check_keys(doc_, "", {"format", "title", "units", "materials", "sections", "nodes", "members", "supports",
                           "loads", "prescribed", "contacts", "analysis"});
     read_header();
-    read_materials();
-    read_sections();
+    sections_.emplace(doc_);
     read_nodes();
     MemberMesh mesh(model_);
     read_members(mesh);
@@ -85,42 +75,6 @@ class Reader {
       expect_object(doc_["units"], "units");
       for (const auto& item : doc_["units"].items())
         model_.units[item.key()] = string(item.value(), child("units", item.key()));
-    }
-  }
-
-  void read_materials() {
-    if (!doc_.contains("materials")) fail("materials", "missing (required)");
-    expect_object(doc_["materials"], "materials");
-    for (const auto& item : doc_["materials"].items()) {
-      const std::string path = child("materials", item.key());
-      const json& m = item.value();
-      expect_object(m, path);
-      check_keys(m, path, {"E", "G", "nu"});
-      Material material;
-      material.E = positive(required_number(m, "E", path), child(path, "E"));
-      if (m.contains("G") && m.contains("nu")) fail(path, "give G or nu, not both");
-      if (auto G = optional_number(m, "G", path)) material.G = positive(*G, child(path, "G"));
-      if (auto nu = optional_number(m, "nu", path)) {
-        if (!(*nu > -1.0 && *nu < 0.5)) fail(child(path, "nu"), "Poisson's ratio must lie in (-1, 0.5)");
-        material.G = material.E / (2.0 * (1.0 + *nu));
-      }
-      materials_[item.key()] = material;
-    }
-  }
-
-  void read_sections() {
-    if (!doc_.contains("sections")) fail("sections", "missing (required)");
-    expect_object(doc_["sections"], "sections");
-    for (const auto& item : doc_["sections"].items()) {
-      const std::string path = child("sections", item.key());
-      const json& s = item.value();
-      expect_object(s, path);
-      check_keys(s, path, {"A", "I", "shear_area"});
-      Section section;
-      section.A = positive(required_number(s, "A", path), child(path, "A"));
-      section.I = positive(required_number(s, "I", path), child(path, "I"));
-      if (auto shear = optional_number(s, "shear_area", path)) section.shear_area = positive(*shear, child(path, "shear_area"));
-      sections_[item.key()] = section;
     }
   }
 
@@ -205,7 +159,7 @@ class Reader {
       if (kind == "timoshenko") member.theory = BeamTheory::timoshenko;
       else if (kind != "euler-bernoulli") fail(child(path, "element"), "unknown element " + quote_text(kind) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
     }
-    member.section = section_stiffness(m, path, member.theory);
+    member.section = sections_->stiffness(m, path, member.theory);
     if (m.contains("load")) read_member_load(m["load"], child(path, "load"), member);
     if (m.contains("release")) {
       const std::string where = string(m["release"], child(path, "release"));
@@ -262,26 +216,6 @@ class Reader {
     if (out.sweep == 0.0 || std::abs(out.sweep) > 2.0 * std::numbers::pi * (1 + 1e-12))
       fail(child(path, "sweep"), "must be non-zero and at most 2π in size");
     return out;
-  }
-
-  element::SectionStiffness section_stiffness(const json& m, const std::string& path, BeamTheory theory) const {
-    if (!m.contains("material")) fail(child(path, "material"), "missing (required)");
-    if (!m.contains("section")) fail(child(path, "section"), "missing (required)");
-    const std::string material_name = string(m["material"], child(path, "material"));
-    const std::string section_name = string(m["section"], child(path, "section"));
-    const auto material = materials_.find(material_name);
-    if (material == materials_.end()) fail(child(path, "material"), "unknown material " + quote_text(material_name));
-    const auto section = sections_.find(section_name);
-    if (section == sections_.end()) fail(child(path, "section"), "unknown section " + quote_text(section_name));
-    element::SectionStiffness s;
-    s.EA = material->second.E * section->second.A;
-    s.EI = material->second.E * section->second.I;
-    if (theory == BeamTheory::timoshenko) {
-      if (!material->second.G) fail(child(path, "material"), "material " + quote_text(material_name) + " has no G (or nu), which Timoshenko elements need");
-      if (!section->second.shear_area) fail(child(path, "section"), "section " + quote_text(section_name) + " has no shear_area, which Timoshenko elements need");
-      s.shear_flexibility = s.EI / (*material->second.G * *section->second.shear_area);  // Ψ = EI/(G A_s), Eq. 8
-    }
-    return s;
   }
 
   void read_supports() {
@@ -464,7 +398,7 @@ class Reader {
         spec.member_shear_flexibility.assign(model_.member_count, 0.0);
         for (int m : spec.members) {
           try {
-            spec.member_shear_flexibility[m] = section_stiffness(doc_["members"][m], child("members", m), BeamTheory::timoshenko).shear_flexibility;
+            spec.member_shear_flexibility[m] = sections_->stiffness(doc_["members"][m], child("members", m), BeamTheory::timoshenko).shear_flexibility;
           } catch (const InputError& e) {
             fail(child(path, "element"), "a Timoshenko contact on member " + std::to_string(m) + " needs its shear data: " + e.reason());
           }
@@ -505,8 +439,7 @@ class Reader {
 
   const json& doc_;
   Model model_;
-  std::map<std::string, Material> materials_;
-  std::map<std::string, Section> sections_;
+  std::optional<SectionTable> sections_;  ///< read after the header
   std::set<int> connected_members_;  ///< members with a moment release or an end spring ("release", "end_springs")
   std::set<int> nodally_loaded_;     ///< nodes a "loads" entry names with a nonzero value
   std::unordered_map<int, int> ids_;
