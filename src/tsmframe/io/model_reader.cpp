@@ -1,16 +1,15 @@
 #include "tsmframe/io/model_reader.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <unordered_map>
 
 #include "tsmframe/io/analysis_reader.hpp"
 #include "tsmframe/io/input_error.hpp"
+#include "tsmframe/io/input_file.hpp"
 #include "tsmframe/io/json_input.hpp"
 #include "tsmframe/io/section_table.hpp"
 #include "tsmframe/model/hinges.hpp"
@@ -451,13 +450,6 @@ Model read_model(const json& document) { return Reader(document).read(); }
 
 Model read_model_text(const std::string& text) { return read_model(parse_json(text)); }
 
-Model read_model_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("", "cannot open the file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) fail("", "cannot read the file");
-  return read_model_text(buffer.str());
-}
+Model read_model_file(const std::string& path) { return read_model_text(read_input_file(path)); }
 
 }  // namespace tsm::io

@@ -17,7 +17,8 @@ Model read_model(const nlohmann::json& document);
 /// Parses `text` (errors name line and column) and builds the model. Throws InputError.
 Model read_model_text(const std::string& text);
 
-/// Reads the file at `path`. Throws InputError (a missing file too).
+/// Reads the file at `path` (io/input_file.hpp: at most 1 GiB, no directory, no NUL byte). Throws
+/// InputError (a missing file too).
 Model read_model_file(const std::string& path);
 
 }  // namespace tsm::io

@@ -1,0 +1,81 @@
+// The command line against inputs that would take more than a machine has, or than any sane
+// model needs: each is refused up front with one line and exit 2 (past a limit every model is
+// held to) or 3 (more memory than this machine has: README, "Memory"), never read without end,
+// never an abort. Each runs within an address-space limit and a time limit, so that a regression
+// fails its test instead of exhausting the machine.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/cli.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using tsm::test::Outcome;
+using tsm::test::run_cli_bounded;
+
+constexpr long gigabyte = 1'000'000;  // ulimit -v counts kilobytes
+constexpr int seconds = 20;
+
+class Limits : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("tsmframe-limits-" + std::to_string(::getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const json& document) {
+    const fs::path path = dir_ / name;
+    std::ofstream(path) << document.dump();
+    return path.string();
+  }
+  std::string out() const { return (dir_ / "out").string(); }
+
+  fs::path dir_;
+};
+
+/// One line on stderr, and nothing written.
+void expect_one_line(const Outcome& o, const std::string& line) {
+  EXPECT_EQ(o.output, line + "\n");
+}
+
+TEST_F(Limits, DevZeroAsTheModelIsRefusedAtItsFirstByte) {
+  // It was read until memory ran out (a NUL byte is no JSON text: nothing after it can make one).
+  const Outcome o = run_cli_bounded("run /dev/zero --out " + out(), gigabyte, seconds);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  expect_one_line(o, "/dev/zero: holds a NUL byte (byte 1): not JSON text");
+  EXPECT_FALSE(fs::exists(out()));
+  const Outcome s = run_cli_bounded("study /dev/zero --out " + out(), gigabyte, seconds);
+  EXPECT_EQ(s.exit_code, 2) << s.output;
+  expect_one_line(s, "/dev/zero: holds a NUL byte (byte 1): not JSON text");
+}
+
+TEST_F(Limits, ADirectoryAsTheModelIsADirectory) {
+  // It was "invalid JSON at line 1, column 1: … unexpected end of input".
+  const Outcome o = run_cli_bounded("run " + dir_.string() + " --out " + out(), gigabyte, seconds);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  expect_one_line(o, dir_.string() + ": is a directory");
+  const Outcome s = run_cli_bounded("study " + dir_.string() + " --out " + out(), gigabyte, seconds);
+  EXPECT_EQ(s.exit_code, 2) << s.output;
+  expect_one_line(s, dir_.string() + ": is a directory");
+}
+
+TEST_F(Limits, AModelFileBeyondOneGibibyteIsNotRead) {
+  // A sparse file: its size is known without reading it (and it takes no disk).
+  const fs::path huge = dir_ / "huge.json";
+  std::ofstream(huge) << "{";
+  fs::resize_file(huge, (1ull << 30) + 1);
+  const Outcome o = run_cli_bounded("run " + huge.string() + " --out " + out(), gigabyte, seconds);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find(huge.string() + ": larger than 1 GiB"), std::string::npos) << o.output;
+}
+
+}  // namespace
