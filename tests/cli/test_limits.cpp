@@ -78,4 +78,53 @@ TEST_F(Limits, AModelFileBeyondOneGibibyteIsNotRead) {
   EXPECT_NE(o.output.find(huge.string() + ": larger than 1 GiB"), std::string::npos) << o.output;
 }
 
+/// A cantilever of `members` members of `divisions` elements each, end to end along x.
+json members_of(int members, long divisions) {
+  json m = {{"materials", {{"steel", {{"E", 2e11}}}}},
+            {"sections", {{"s", {{"A", 1e-2}, {"I", 1e-4}}}}},
+            {"nodes", json::array()},
+            {"members", json::array()},
+            {"supports", {{{"node", 0}, {"type", "fixed"}}}},
+            {"loads", {{{"node", members}, {"fy", -1e3}}}}};
+  for (int k = 0; k <= members; ++k) m["nodes"].push_back({{"id", k}, {"x", 10.0 * k}, {"y", 0.0}});
+  for (int k = 0; k < members; ++k)
+    m["members"].push_back({{"from", k}, {"to", k + 1}, {"divisions", divisions}, {"material", "steel"}, {"section", "s"}});
+  return m;
+}
+
+/// A beam of `divisions` elements under `contacts` contact nodes standing pinned above it, each
+/// a contact that may touch it.
+json beam_under_contact_nodes(long divisions, int contacts) {
+  json m = members_of(1, divisions);
+  m["supports"].push_back({{"node", 1}, {"type", "roller-x"}});
+  json nodes = json::array();
+  for (int k = 0; k < contacts; ++k) {
+    m["nodes"].push_back({{"id", 10 + k}, {"x", 10.0 * (k + 0.5) / contacts}, {"y", 1.0}});
+    m["supports"].push_back({{"node", 10 + k}, {"type", "pinned"}});
+    nodes.push_back(10 + k);
+  }
+  m["contacts"] = {{{"nodes", nodes}, {"members", "all"}}};
+  return m;
+}
+
+TEST_F(Limits, TheElementCapIsCountedBeforeAnyNodeIsMade) {
+  // 3 × 10⁷ divisions: the first two members were meshed (7.7 s, 3 GB) before the third passed the cap.
+  const std::string model = write("three.json", members_of(3, 10'000'000));
+  const Outcome o = run_cli_bounded("run " + model + " --out " + out(), gigabyte, seconds);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  expect_one_line(o, model + ": members[2].divisions: the model would have more than 20000000 elements");
+}
+
+TEST_F(Limits, ContactsAreReadInTimeLinearInTheirNumber) {
+  // 200,001 contact nodes: each was compared with every contact before it and every element
+  // searched for the members holding it (quadratic: minutes). The analysis is refused right
+  // after the contacts, so that this times the reading alone.
+  json m = beam_under_contact_nodes(1, 200'001);
+  m["analysis"] = {{"control", {{"type", "force"}}}};
+  const std::string model = write("contacts.json", m);
+  const Outcome o = run_cli_bounded("run " + model + " --out " + out(), gigabyte, seconds);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("analysis.control.type: unknown control"), std::string::npos) << o.output;
+}
+
 }  // namespace

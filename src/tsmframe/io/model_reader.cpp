@@ -47,6 +47,7 @@ class Reader {
     read_header();
     sections_.emplace(doc_);
     read_nodes();
+    count_elements();  // before any node is made
     MemberMesh mesh(model_);
     read_members(mesh);
     mesh.finish();
@@ -123,14 +124,33 @@ class Reader {
     return node_ref(object["node"], child(path, "node"));
   }
 
+  /// The elements the members make, counted before any is made: the element cap, at the member
+  /// whose divisions pass it. A divisions value that is no count of elements is left to
+  /// read_member, which says why, member by member.
+  void count_elements() const {
+    if (!doc_.contains("members") || !doc_["members"].is_array()) return;
+    const json& members = doc_["members"];
+    double elements = 0.0;
+    for (size_t k = 0; k < members.size(); ++k) {
+      const json& m = members[k];
+      double divisions = 1.0;
+      if (m.is_object() && m.contains("divisions") && m["divisions"].is_number()) {
+        const double d = m["divisions"].get<double>();
+        if (d >= 1.0 && d <= max_divisions) divisions = std::floor(d);
+      }
+      elements += divisions;
+      if (elements > max_elements)
+        fail(child(child("members", k), "divisions"), "the model would have more than " + std::to_string(max_elements) + " elements");
+    }
+  }
+
   void read_members(MemberMesh& mesh) {
     if (!doc_.contains("members")) fail("members", "missing (required)");
     const json& members = doc_["members"];
     expect_array(members, "members");
-    long element_count = 0;
     for (size_t k = 0; k < members.size(); ++k) {
       const std::string path = child("members", k);
-      const MemberInput member = read_member(members[k], path, k, element_count);
+      const MemberInput member = read_member(members[k], path, k);
       try {
         mesh.add(member);
       } catch (const MeshError& e) {
@@ -140,9 +160,8 @@ class Reader {
     }
   }
 
-  /// Member k's values, in the order they are checked; `element_count` counts the elements of
-  /// the members so far.
-  MemberInput read_member(const json& m, const std::string& path, size_t k, long& element_count) {
+  /// Member k's values, in the order they are checked.
+  MemberInput read_member(const json& m, const std::string& path, size_t k) {
     expect_object(m, path);
     check_keys(m, path, {"from", "to", "divisions", "element", "material", "section", "arc", "release", "end_springs", "load"});
     MemberInput member;
@@ -151,8 +170,6 @@ class Reader {
     member.from = node_ref(m["from"], child(path, "from"));
     member.to = node_ref(m["to"], child(path, "to"));
     if (m.contains("divisions")) member.divisions = bounded_integer(m["divisions"], child(path, "divisions"), 1, max_divisions);
-    element_count += member.divisions;
-    if (element_count > max_elements) fail(child(path, "divisions"), "the model would have more than " + std::to_string(max_elements) + " elements");
     if (m.contains("element")) {
       const std::string kind = string(m["element"], child(path, "element"));
       if (kind == "timoshenko") member.theory = BeamTheory::timoshenko;
@@ -312,10 +329,34 @@ class Reader {
     }
   }
 
+  /// What the contacts look up, in time linear in the model: each member's first element (a
+  /// member's elements are consecutive) and the members whose elements end at each node (CSR).
+  void index_members() {
+    member_first_.assign(model_.member_count + 1, 0);
+    for (const Element& e : model_.elements) ++member_first_[e.member + 1];
+    for (int m = 0; m < model_.member_count; ++m) member_first_[m + 1] += member_first_[m];
+    members_at_start_.assign(model_.node_count() + 1, 0);
+    for (const Element& e : model_.elements) ++members_at_start_[e.start + 1], ++members_at_start_[e.end + 1];
+    for (int k = 0; k < model_.node_count(); ++k) members_at_start_[k + 1] += members_at_start_[k];
+    members_at_.resize(members_at_start_.back());
+    std::vector<int> fill(members_at_start_.begin(), members_at_start_.end() - 1);
+    for (const Element& e : model_.elements) {
+      members_at_[fill[e.start]++] = e.member;
+      members_at_[fill[e.end]++] = e.member;
+    }
+    has_contact_.assign(model_.node_count(), 0);
+  }
+
+  /// The members whose elements hold `node`.
+  std::set<int> holding_members(int node) const {
+    return {members_at_.begin() + members_at_start_[node], members_at_.begin() + members_at_start_[node + 1]};
+  }
+
   void read_contacts() {
     if (!doc_.contains("contacts")) return;
     const json& contacts = doc_["contacts"];
     expect_array(contacts, "contacts");
+    index_members();
     for (size_t k = 0; k < contacts.size(); ++k) {
       const std::string path = child("contacts", k);
       const json& c = contacts[k];
@@ -341,10 +382,9 @@ class Reader {
         for (size_t m = 0; m < nodes["members"].size(); ++m) {
           const long index = integer(nodes["members"][m], child(mpath, m));
           if (index < 0 || index >= model_.member_count) fail(child(mpath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
-          for (const Element& e : model_.elements)
-            if (e.member == index)
-              for (const int node : {e.start, e.end})
-                if (seen.insert(node).second) listed.emplace_back(node, child(mpath, m));
+          for (int e = member_first_[index]; e < member_first_[index + 1]; ++e)
+            for (const int node : {model_.elements[e].start, model_.elements[e].end})
+              if (seen.insert(node).second) listed.emplace_back(node, child(mpath, m));
         }
       } else {
         expect_array(nodes, npath);
@@ -364,9 +404,7 @@ class Reader {
     if (!c.contains("members")) fail(child(path, "members"), "missing (required)");
     const json& members = c["members"];
     const std::string mpath = child(path, "members");
-    std::set<int> holding;
-    for (const Element& e : model_.elements)
-      if (e.start == spec.node || e.end == spec.node) holding.insert(e.member);
+    const std::set<int> holding = holding_members(spec.node);
     // Hinged or sprung members carry contacts in the chord frame (their ends condensed out of
     // the contact element's law); the cantilever-coordinate element has no such form.
     const bool cantilever = c.contains("frame") && c["frame"].is_string() && c["frame"].get<std::string>() == "cantilever";
@@ -422,11 +460,11 @@ class Reader {
       if (*gap < 0.0) fail(child(path, "gap"), "must not be negative");
       spec.gap = *gap;
     }
-    for (const ContactSpec& other : model_.contacts)
-      if (other.node == spec.node)
-        fail(node_path, (named ? "node " + std::to_string(model_.nodes[node].id) + " already has" : std::string("this node already has")) +
-                            " a contact entry: list all its members in one entry");
-    model_.contacts.push_back(spec);
+    if (has_contact_[spec.node])
+      fail(node_path, (named ? "node " + std::to_string(model_.nodes[node].id) + " already has" : std::string("this node already has")) +
+                          " a contact entry: list all its members in one entry");
+    has_contact_[spec.node] = 1;
+    model_.contacts.push_back(std::move(spec));
   }
 
   void read_analysis(const std::vector<int>& loaded_middles) {
@@ -442,6 +480,10 @@ class Reader {
   std::set<int> connected_members_;  ///< members with a moment release or an end spring ("release", "end_springs")
   std::set<int> nodally_loaded_;     ///< nodes a "loads" entry names with a nonzero value
   std::unordered_map<int, int> ids_;
+  // The contacts' look-ups (index_members): each member's first element, the members at each
+  // node (CSR), and the nodes that have a contact entry already.
+  std::vector<int> member_first_, members_at_start_, members_at_;
+  std::vector<char> has_contact_;
 };
 
 }  // namespace
