@@ -127,4 +127,48 @@ TEST_F(Limits, ContactsAreReadInTimeLinearInTheirNumber) {
   EXPECT_NE(o.output.find("analysis.control.type: unknown control"), std::string::npos) << o.output;
 }
 
+/// The refusal of a run beyond the memory budget: exit 3, one line naming the file, the JSON
+/// path, the estimate and the address-space limit the test runs it under.
+void expect_over_budget(const Outcome& o, const std::string& model, const std::string& path_and_estimate) {
+  EXPECT_EQ(o.exit_code, 3) << o.output;
+  EXPECT_EQ(o.output.rfind("tsmframe: " + model + ": " + path_and_estimate, 0), 0u) << o.output;
+  EXPECT_NE(o.output.find("left by the address-space limit (ulimit -v)\n"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find('\n'), o.output.size() - 1) << o.output;  // one line
+}
+
+TEST_F(Limits, TenMillionElementsAreRefusedBeforeTheyAreMadeWhereTheMachineLacksTheMemory) {
+  // 10⁷ divisions in one member (within the caps) were meshed and run until memory ran out.
+  const std::string model = write("one.json", members_of(1, 10'000'000));
+  const Outcome o = run_cli_bounded("run " + model + " --out " + out(), 2 * gigabyte, seconds);
+  expect_over_budget(o, model, "members: the run needs ~5.5 GB of memory (10,000,000 elements and 10,000,001 nodes 4.8 GB,");
+  EXPECT_FALSE(fs::exists(out()));
+}
+
+TEST_F(Limits, ContactsWhoseCandidatesWouldTakeMoreThanTheMachineHasAreRefusedUpFront) {
+  // 80,001 contact nodes on a beam of 80,000 elements: ~50 bytes per contact and candidate element,
+  // 6.4·10⁹ of them; reading them took minutes, and the run would then have taken 320 GB.
+  const std::string model = write("contacts.json", beam_under_contact_nodes(80'000, 80'001));
+  const Outcome o = run_cli_bounded("run " + model + " --out " + out(), 2 * gigabyte, seconds);
+  expect_over_budget(o, model, "contacts: the run needs ~321.6 GB of memory (80,001 contacts with 6,400,080,000 candidate elements 321.5 GB,");
+}
+
+TEST_F(Limits, TheStatesTheOutputKeepsCountAgainstTheMachine) {
+  // Every state of 1,000 steps of 10⁴ elements: 720 MB (below the 8 GB every model is held to).
+  json m = members_of(1, 10'000);
+  m["analysis"] = {{"control", {{"type", "load"}, {"steps", 1000}}}, {"output", "all"}};
+  const std::string model = write("all.json", m);
+  const Outcome o = run_cli_bounded("run " + model + " --out " + out(), 500'000, seconds);
+  expect_over_budget(o, model, "analysis.output: the run needs ~731 MB of memory (the state of 1,000 steps 720 MB,");
+}
+
+TEST_F(Limits, AModelFileIsHeldToTheMachineBeforeItIsParsed) {
+  // 40 MB of nodes parse into ~340 MB of document: held to what ulimit -v leaves before parsing.
+  json m = members_of(1, 1);
+  for (int k = 0; k < 1'000'000; ++k) m["nodes"].push_back({{"id", 10 + k}, {"x", 1.0 + k}, {"y", 2.5}});
+  const std::string model = write("nodes.json", m);
+  const Outcome o = run_cli_bounded("run " + model + " --out " + out(), 300'000, seconds);
+  expect_over_budget(o, model, "(document): the run needs ~");
+  EXPECT_NE(o.output.find("(the model file "), std::string::npos) << o.output;
+}
+
 }  // namespace

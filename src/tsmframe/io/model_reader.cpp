@@ -12,8 +12,10 @@
 #include "tsmframe/io/input_file.hpp"
 #include "tsmframe/io/json_input.hpp"
 #include "tsmframe/io/section_table.hpp"
+#include "tsmframe/io/system_error.hpp"
 #include "tsmframe/model/hinges.hpp"
 #include "tsmframe/model/mechanism.hpp"
+#include "tsmframe/model/memory_estimate.hpp"
 #include "tsmframe/model/mesh.hpp"
 #include "tsmframe/model/resting_contact.hpp"
 
@@ -36,9 +38,21 @@ std::string mesh_error_path(const std::string& member_path, MeshError::Value val
   return member_path;
 }
 
+/// Where in a model most of an estimate's memory goes: the members (elements), the contacts,
+/// the output selection (kept states) or the control (steps).
+std::string largest_part_path(const MemoryEstimate& e) {
+  const std::pair<double, const char*> parts[] = {{e.elements.bytes, "members"},
+                                                  {e.contacts.bytes, "contacts"},
+                                                  {e.kept_states.bytes, "analysis.output"},
+                                                  {e.steps.bytes, "analysis.control.steps"}};
+  return std::max_element(std::begin(parts), std::end(parts))->second;
+}
+
 class Reader {
  public:
-  explicit Reader(const json& document) : doc_(document) {}
+  /// `input_bytes`: the text `document` was parsed from (0: given in memory).
+  Reader(const json& document, const MemoryBudget& budget, double input_bytes)
+      : doc_(document), budget_(budget), input_bytes_(input_bytes) {}
 
   Model read() {
     expect_object(doc_, "(document)");
@@ -56,9 +70,13 @@ class Reader {
     read_prescribed();
     fix_free_rotations(model_);  // a moment on a hinge was refused with its load
     read_contacts();
-    check_resting_contacts();
     read_analysis(mesh.loaded_middles());
     check_kept_states(model_);
+    // The whole run's memory, before the run spends it (and before the checks below, which take
+    // time in proportion to contacts × candidate elements).
+    const MemoryEstimate estimate = estimate_memory(model_counts(model_, input_bytes_));
+    check_memory(estimate, budget_, largest_part_path(estimate));
+    check_resting_contacts();
     if (auto mechanism = find_mechanism(model_)) fail("supports", *mechanism);
     if (!model_.reference_prescribed.any()) model_.reference_prescribed.resize(0);  // nothing prescribed moves
     return std::move(model_);
@@ -124,9 +142,9 @@ class Reader {
     return node_ref(object["node"], child(path, "node"));
   }
 
-  /// The elements the members make, counted before any is made: the element cap, at the member
-  /// whose divisions pass it. A divisions value that is no count of elements is left to
-  /// read_member, which says why, member by member.
+  /// The elements and nodes the members make, counted before any is made: the element cap (at
+  /// the member whose divisions pass it) and the memory budget. A divisions value that is no
+  /// count of elements is left to read_member, which says why, member by member.
   void count_elements() const {
     if (!doc_.contains("members") || !doc_["members"].is_array()) return;
     const json& members = doc_["members"];
@@ -142,6 +160,12 @@ class Reader {
       if (elements > max_elements)
         fail(child(child("members", k), "divisions"), "the model would have more than " + std::to_string(max_elements) + " elements");
     }
+    ModelCounts counts;
+    counts.input_bytes = input_bytes_;
+    counts.elements = elements;
+    counts.nodes = model_.node_count() + elements - static_cast<double>(members.size());  // each member's interior nodes
+    counts.free_dofs = dofs_per_node * counts.nodes;
+    check_memory(estimate_memory(counts), budget_, "members");
   }
 
   void read_members(MemberMesh& mesh) {
@@ -475,6 +499,8 @@ class Reader {
   }
 
   const json& doc_;
+  const MemoryBudget& budget_;
+  double input_bytes_ = 0.0;
   Model model_;
   std::optional<SectionTable> sections_;  ///< read after the header
   std::set<int> connected_members_;  ///< members with a moment release or an end spring ("release", "end_springs")
@@ -488,10 +514,34 @@ class Reader {
 
 }  // namespace
 
-Model read_model(const json& document) { return Reader(document).read(); }
+Model read_model(const json& document, const MemoryBudget& budget, double input_bytes) {
+  return Reader(document, budget, input_bytes).read();
+}
 
-Model read_model_text(const std::string& text) { return read_model(parse_json(text)); }
+Model read_model(const json& document) { return read_model(document, memory_budget()); }
 
-Model read_model_file(const std::string& path) { return read_model_text(read_input_file(path)); }
+Model read_model_text(const std::string& text) {
+  const MemoryBudget budget = memory_budget();
+  const double bytes = static_cast<double>(text.size());
+  check_memory(estimate_memory({.input_bytes = bytes}), budget, "(document)");  // before the document is parsed
+  return read_model(parse_json(text), budget, bytes);
+}
+
+Model read_model_file(const std::string& path) {
+  try {
+    const MemoryBudget budget = memory_budget();
+    json document;
+    double bytes = 0.0;
+    {
+      const std::string text = read_input_file(path);
+      bytes = static_cast<double>(text.size());
+      check_memory(estimate_memory({.input_bytes = bytes}), budget, "(document)");
+      document = parse_json(text);
+    }
+    return read_model(document, budget, bytes);
+  } catch (const SystemError& e) {
+    throw SystemError(path, e.what());
+  }
+}
 
 }  // namespace tsm::io
