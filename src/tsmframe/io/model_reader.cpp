@@ -1,19 +1,21 @@
 #include "tsmframe/io/model_reader.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <unordered_map>
 
 #include "tsmframe/io/analysis_reader.hpp"
 #include "tsmframe/io/input_error.hpp"
+#include "tsmframe/io/input_file.hpp"
 #include "tsmframe/io/json_input.hpp"
+#include "tsmframe/io/section_table.hpp"
+#include "tsmframe/io/system_error.hpp"
 #include "tsmframe/model/hinges.hpp"
 #include "tsmframe/model/mechanism.hpp"
+#include "tsmframe/model/memory_estimate.hpp"
 #include "tsmframe/model/mesh.hpp"
 #include "tsmframe/model/resting_contact.hpp"
 
@@ -24,16 +26,6 @@ using nlohmann::json;
 
 constexpr long max_divisions = 10'000'000;        // per member: a typo must not exhaust memory
 constexpr long max_elements = 20'000'000;         // per model
-
-struct Material {
-  double E = 0.0;
-  std::optional<double> G;
-};
-
-struct Section {
-  double A = 0.0, I = 0.0;
-  std::optional<double> shear_area;
-};
 
 /// Where a member's value that meshing refused is written.
 std::string mesh_error_path(const std::string& member_path, MeshError::Value value) {
@@ -46,18 +38,30 @@ std::string mesh_error_path(const std::string& member_path, MeshError::Value val
   return member_path;
 }
 
+/// Where in a model most of an estimate's memory goes: the members (elements), the contacts,
+/// the output selection (kept states) or the control (steps).
+std::string largest_part_path(const MemoryEstimate& e) {
+  const std::pair<double, const char*> parts[] = {{e.elements.bytes, "members"},
+                                                  {e.contacts.bytes, "contacts"},
+                                                  {e.kept_states.bytes, "analysis.output"},
+                                                  {e.steps.bytes, "analysis.control.steps"}};
+  return std::max_element(std::begin(parts), std::end(parts))->second;
+}
+
 class Reader {
  public:
-  explicit Reader(const json& document) : doc_(document) {}
+  /// `input_bytes`: the text `document` was parsed from (0: given in memory).
+  Reader(const json& document, const MemoryBudget& budget, double input_bytes)
+      : doc_(document), budget_(budget), input_bytes_(input_bytes) {}
 
   Model read() {
     expect_object(doc_, "(document)");
     check_keys(doc_, "", {"format", "title", "units", "materials", "sections", "nodes", "members", "supports",
                           "loads", "prescribed", "contacts", "analysis"});
     read_header();
-    read_materials();
-    read_sections();
+    sections_.emplace(doc_);
     read_nodes();
+    count_elements();  // before any node is made
     MemberMesh mesh(model_);
     read_members(mesh);
     mesh.finish();
@@ -66,9 +70,13 @@ class Reader {
     read_prescribed();
     fix_free_rotations(model_);  // a moment on a hinge was refused with its load
     read_contacts();
-    check_resting_contacts();
     read_analysis(mesh.loaded_middles());
     check_kept_states(model_);
+    // The whole run's memory, before the run spends it (and before the checks below, which take
+    // time in proportion to contacts × candidate elements).
+    const MemoryEstimate estimate = estimate_memory(model_counts(model_, input_bytes_));
+    check_memory(estimate, budget_, largest_part_path(estimate));
+    check_resting_contacts();
     if (auto mechanism = find_mechanism(model_)) fail("supports", *mechanism);
     if (!model_.reference_prescribed.any()) model_.reference_prescribed.resize(0);  // nothing prescribed moves
     return std::move(model_);
@@ -85,42 +93,6 @@ class Reader {
       expect_object(doc_["units"], "units");
       for (const auto& item : doc_["units"].items())
         model_.units[item.key()] = string(item.value(), child("units", item.key()));
-    }
-  }
-
-  void read_materials() {
-    if (!doc_.contains("materials")) fail("materials", "missing (required)");
-    expect_object(doc_["materials"], "materials");
-    for (const auto& item : doc_["materials"].items()) {
-      const std::string path = child("materials", item.key());
-      const json& m = item.value();
-      expect_object(m, path);
-      check_keys(m, path, {"E", "G", "nu"});
-      Material material;
-      material.E = positive(required_number(m, "E", path), child(path, "E"));
-      if (m.contains("G") && m.contains("nu")) fail(path, "give G or nu, not both");
-      if (auto G = optional_number(m, "G", path)) material.G = positive(*G, child(path, "G"));
-      if (auto nu = optional_number(m, "nu", path)) {
-        if (!(*nu > -1.0 && *nu < 0.5)) fail(child(path, "nu"), "Poisson's ratio must lie in (-1, 0.5)");
-        material.G = material.E / (2.0 * (1.0 + *nu));
-      }
-      materials_[item.key()] = material;
-    }
-  }
-
-  void read_sections() {
-    if (!doc_.contains("sections")) fail("sections", "missing (required)");
-    expect_object(doc_["sections"], "sections");
-    for (const auto& item : doc_["sections"].items()) {
-      const std::string path = child("sections", item.key());
-      const json& s = item.value();
-      expect_object(s, path);
-      check_keys(s, path, {"A", "I", "shear_area"});
-      Section section;
-      section.A = positive(required_number(s, "A", path), child(path, "A"));
-      section.I = positive(required_number(s, "I", path), child(path, "I"));
-      if (auto shear = optional_number(s, "shear_area", path)) section.shear_area = positive(*shear, child(path, "shear_area"));
-      sections_[item.key()] = section;
     }
   }
 
@@ -170,14 +142,39 @@ class Reader {
     return node_ref(object["node"], child(path, "node"));
   }
 
+  /// The elements and nodes the members make, counted before any is made: the element cap (at
+  /// the member whose divisions pass it) and the memory budget. A divisions value that is no
+  /// count of elements is left to read_member, which says why, member by member.
+  void count_elements() const {
+    if (!doc_.contains("members") || !doc_["members"].is_array()) return;
+    const json& members = doc_["members"];
+    double elements = 0.0;
+    for (size_t k = 0; k < members.size(); ++k) {
+      const json& m = members[k];
+      double divisions = 1.0;
+      if (m.is_object() && m.contains("divisions") && m["divisions"].is_number()) {
+        const double d = m["divisions"].get<double>();
+        if (d >= 1.0 && d <= max_divisions) divisions = std::floor(d);
+      }
+      elements += divisions;
+      if (elements > max_elements)
+        fail(child(child("members", k), "divisions"), "the model would have more than " + std::to_string(max_elements) + " elements");
+    }
+    ModelCounts counts;
+    counts.input_bytes = input_bytes_;
+    counts.elements = elements;
+    counts.nodes = model_.node_count() + elements - static_cast<double>(members.size());  // each member's interior nodes
+    counts.free_dofs = dofs_per_node * counts.nodes;
+    check_memory(estimate_memory(counts), budget_, "members");
+  }
+
   void read_members(MemberMesh& mesh) {
     if (!doc_.contains("members")) fail("members", "missing (required)");
     const json& members = doc_["members"];
     expect_array(members, "members");
-    long element_count = 0;
     for (size_t k = 0; k < members.size(); ++k) {
       const std::string path = child("members", k);
-      const MemberInput member = read_member(members[k], path, k, element_count);
+      const MemberInput member = read_member(members[k], path, k);
       try {
         mesh.add(member);
       } catch (const MeshError& e) {
@@ -187,9 +184,8 @@ class Reader {
     }
   }
 
-  /// Member k's values, in the order they are checked; `element_count` counts the elements of
-  /// the members so far.
-  MemberInput read_member(const json& m, const std::string& path, size_t k, long& element_count) {
+  /// Member k's values, in the order they are checked.
+  MemberInput read_member(const json& m, const std::string& path, size_t k) {
     expect_object(m, path);
     check_keys(m, path, {"from", "to", "divisions", "element", "material", "section", "arc", "release", "end_springs", "load"});
     MemberInput member;
@@ -198,14 +194,12 @@ class Reader {
     member.from = node_ref(m["from"], child(path, "from"));
     member.to = node_ref(m["to"], child(path, "to"));
     if (m.contains("divisions")) member.divisions = bounded_integer(m["divisions"], child(path, "divisions"), 1, max_divisions);
-    element_count += member.divisions;
-    if (element_count > max_elements) fail(child(path, "divisions"), "the model would have more than " + std::to_string(max_elements) + " elements");
     if (m.contains("element")) {
       const std::string kind = string(m["element"], child(path, "element"));
       if (kind == "timoshenko") member.theory = BeamTheory::timoshenko;
       else if (kind != "euler-bernoulli") fail(child(path, "element"), "unknown element " + quote_text(kind) + " (expected \"euler-bernoulli\" or \"timoshenko\")");
     }
-    member.section = section_stiffness(m, path, member.theory);
+    member.section = sections_->stiffness(m, path, member.theory);
     if (m.contains("load")) read_member_load(m["load"], child(path, "load"), member);
     if (m.contains("release")) {
       const std::string where = string(m["release"], child(path, "release"));
@@ -262,26 +256,6 @@ class Reader {
     if (out.sweep == 0.0 || std::abs(out.sweep) > 2.0 * std::numbers::pi * (1 + 1e-12))
       fail(child(path, "sweep"), "must be non-zero and at most 2π in size");
     return out;
-  }
-
-  element::SectionStiffness section_stiffness(const json& m, const std::string& path, BeamTheory theory) const {
-    if (!m.contains("material")) fail(child(path, "material"), "missing (required)");
-    if (!m.contains("section")) fail(child(path, "section"), "missing (required)");
-    const std::string material_name = string(m["material"], child(path, "material"));
-    const std::string section_name = string(m["section"], child(path, "section"));
-    const auto material = materials_.find(material_name);
-    if (material == materials_.end()) fail(child(path, "material"), "unknown material " + quote_text(material_name));
-    const auto section = sections_.find(section_name);
-    if (section == sections_.end()) fail(child(path, "section"), "unknown section " + quote_text(section_name));
-    element::SectionStiffness s;
-    s.EA = material->second.E * section->second.A;
-    s.EI = material->second.E * section->second.I;
-    if (theory == BeamTheory::timoshenko) {
-      if (!material->second.G) fail(child(path, "material"), "material " + quote_text(material_name) + " has no G (or nu), which Timoshenko elements need");
-      if (!section->second.shear_area) fail(child(path, "section"), "section " + quote_text(section_name) + " has no shear_area, which Timoshenko elements need");
-      s.shear_flexibility = s.EI / (*material->second.G * *section->second.shear_area);  // Ψ = EI/(G A_s), Eq. 8
-    }
-    return s;
   }
 
   void read_supports() {
@@ -379,10 +353,34 @@ class Reader {
     }
   }
 
+  /// What the contacts look up, in time linear in the model: each member's first element (a
+  /// member's elements are consecutive) and the members whose elements end at each node (CSR).
+  void index_members() {
+    member_first_.assign(model_.member_count + 1, 0);
+    for (const Element& e : model_.elements) ++member_first_[e.member + 1];
+    for (int m = 0; m < model_.member_count; ++m) member_first_[m + 1] += member_first_[m];
+    members_at_start_.assign(model_.node_count() + 1, 0);
+    for (const Element& e : model_.elements) ++members_at_start_[e.start + 1], ++members_at_start_[e.end + 1];
+    for (int k = 0; k < model_.node_count(); ++k) members_at_start_[k + 1] += members_at_start_[k];
+    members_at_.resize(members_at_start_.back());
+    std::vector<int> fill(members_at_start_.begin(), members_at_start_.end() - 1);
+    for (const Element& e : model_.elements) {
+      members_at_[fill[e.start]++] = e.member;
+      members_at_[fill[e.end]++] = e.member;
+    }
+    has_contact_.assign(model_.node_count(), 0);
+  }
+
+  /// The members whose elements hold `node`.
+  std::set<int> holding_members(int node) const {
+    return {members_at_.begin() + members_at_start_[node], members_at_.begin() + members_at_start_[node + 1]};
+  }
+
   void read_contacts() {
     if (!doc_.contains("contacts")) return;
     const json& contacts = doc_["contacts"];
     expect_array(contacts, "contacts");
+    index_members();
     for (size_t k = 0; k < contacts.size(); ++k) {
       const std::string path = child("contacts", k);
       const json& c = contacts[k];
@@ -408,10 +406,9 @@ class Reader {
         for (size_t m = 0; m < nodes["members"].size(); ++m) {
           const long index = integer(nodes["members"][m], child(mpath, m));
           if (index < 0 || index >= model_.member_count) fail(child(mpath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
-          for (const Element& e : model_.elements)
-            if (e.member == index)
-              for (const int node : {e.start, e.end})
-                if (seen.insert(node).second) listed.emplace_back(node, child(mpath, m));
+          for (int e = member_first_[index]; e < member_first_[index + 1]; ++e)
+            for (const int node : {model_.elements[e].start, model_.elements[e].end})
+              if (seen.insert(node).second) listed.emplace_back(node, child(mpath, m));
         }
       } else {
         expect_array(nodes, npath);
@@ -431,9 +428,7 @@ class Reader {
     if (!c.contains("members")) fail(child(path, "members"), "missing (required)");
     const json& members = c["members"];
     const std::string mpath = child(path, "members");
-    std::set<int> holding;
-    for (const Element& e : model_.elements)
-      if (e.start == spec.node || e.end == spec.node) holding.insert(e.member);
+    const std::set<int> holding = holding_members(spec.node);
     // Hinged or sprung members carry contacts in the chord frame (their ends condensed out of
     // the contact element's law); the cantilever-coordinate element has no such form.
     const bool cantilever = c.contains("frame") && c["frame"].is_string() && c["frame"].get<std::string>() == "cantilever";
@@ -464,7 +459,7 @@ class Reader {
         spec.member_shear_flexibility.assign(model_.member_count, 0.0);
         for (int m : spec.members) {
           try {
-            spec.member_shear_flexibility[m] = section_stiffness(doc_["members"][m], child("members", m), BeamTheory::timoshenko).shear_flexibility;
+            spec.member_shear_flexibility[m] = sections_->stiffness(doc_["members"][m], child("members", m), BeamTheory::timoshenko).shear_flexibility;
           } catch (const InputError& e) {
             fail(child(path, "element"), "a Timoshenko contact on member " + std::to_string(m) + " needs its shear data: " + e.reason());
           }
@@ -489,11 +484,11 @@ class Reader {
       if (*gap < 0.0) fail(child(path, "gap"), "must not be negative");
       spec.gap = *gap;
     }
-    for (const ContactSpec& other : model_.contacts)
-      if (other.node == spec.node)
-        fail(node_path, (named ? "node " + std::to_string(model_.nodes[node].id) + " already has" : std::string("this node already has")) +
-                            " a contact entry: list all its members in one entry");
-    model_.contacts.push_back(spec);
+    if (has_contact_[spec.node])
+      fail(node_path, (named ? "node " + std::to_string(model_.nodes[node].id) + " already has" : std::string("this node already has")) +
+                          " a contact entry: list all its members in one entry");
+    has_contact_[spec.node] = 1;
+    model_.contacts.push_back(std::move(spec));
   }
 
   void read_analysis(const std::vector<int>& loaded_middles) {
@@ -504,27 +499,49 @@ class Reader {
   }
 
   const json& doc_;
+  const MemoryBudget& budget_;
+  double input_bytes_ = 0.0;
   Model model_;
-  std::map<std::string, Material> materials_;
-  std::map<std::string, Section> sections_;
+  std::optional<SectionTable> sections_;  ///< read after the header
   std::set<int> connected_members_;  ///< members with a moment release or an end spring ("release", "end_springs")
   std::set<int> nodally_loaded_;     ///< nodes a "loads" entry names with a nonzero value
   std::unordered_map<int, int> ids_;
+  // The contacts' look-ups (index_members): each member's first element, the members at each
+  // node (CSR), and the nodes that have a contact entry already.
+  std::vector<int> member_first_, members_at_start_, members_at_;
+  std::vector<char> has_contact_;
 };
 
 }  // namespace
 
-Model read_model(const json& document) { return Reader(document).read(); }
+Model read_model(const json& document, const MemoryBudget& budget, double input_bytes) {
+  return Reader(document, budget, input_bytes).read();
+}
 
-Model read_model_text(const std::string& text) { return read_model(parse_json(text)); }
+Model read_model(const json& document) { return read_model(document, memory_budget()); }
+
+Model read_model_text(const std::string& text) {
+  const MemoryBudget budget = memory_budget();
+  const double bytes = static_cast<double>(text.size());
+  check_memory(estimate_memory({.input_bytes = bytes}), budget, "(document)");  // before the document is parsed
+  return read_model(parse_json(text), budget, bytes);
+}
 
 Model read_model_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("", "cannot open the file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) fail("", "cannot read the file");
-  return read_model_text(buffer.str());
+  try {
+    const MemoryBudget budget = memory_budget();
+    json document;
+    double bytes = 0.0;
+    {
+      const std::string text = read_input_file(path);
+      bytes = static_cast<double>(text.size());
+      check_memory(estimate_memory({.input_bytes = bytes}), budget, "(document)");
+      document = parse_json(text);
+    }
+    return read_model(document, budget, bytes);
+  } catch (const SystemError& e) {
+    throw SystemError(path, e.what());
+  }
 }
 
 }  // namespace tsm::io

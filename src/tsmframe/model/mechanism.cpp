@@ -92,10 +92,12 @@ void members_by_root(Parts& parts) {
 /// if that is its one free translation's direction, in part (a load riding on a beam: ux
 /// prescribed, uy free).
 std::optional<std::string> unheld_node(const Model& model, const std::vector<bool>& held, bool resting_contacts_hold) {
+  std::vector<const ContactSpec*> contact_of(model.node_count(), nullptr);  // a look-up, not a search per node
+  for (const ContactSpec& c : model.contacts) contact_of[c.node] = &c;
   for (int k = 0; k < model.node_count(); ++k) {
     if (held[k]) continue;
-    const auto spec = std::find_if(model.contacts.begin(), model.contacts.end(), [&](const ContactSpec& c) { return c.node == k; });
-    const bool contact_node = spec != model.contacts.end();
+    const ContactSpec* spec = contact_of[k];
+    const bool contact_node = spec != nullptr;
     int free_translations = 0, free_dof = -1;
     for (const int dof : {ux, uy})
       if (!model.constrained[dofs_per_node * k + dof]) ++free_translations, free_dof = dof;

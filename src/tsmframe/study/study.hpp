@@ -65,7 +65,8 @@ struct Study {
   size_t case_count() const;
 };
 
-/// Reads a study file; throws io::InputError with the JSON path.
+/// Reads a study file (io/input_file.hpp: at most 1 GiB, no directory); throws io::InputError with
+/// the JSON path.
 Study read_study_file(const std::string& path);
 Study read_study(const nlohmann::json& document, const std::string& directory);
 

@@ -2,12 +2,12 @@
 // model reader's JSON paths and helpers (io/json_input.hpp).
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
+#include "tsmframe/io/input_file.hpp"
 #include "tsmframe/io/json_input.hpp"
 #include "tsmframe/study/study.hpp"
 #include "tsmframe/study/study_writer.hpp"
@@ -169,13 +169,8 @@ json read_base_model(const json& doc, const std::string& directory) {
     return doc["model"];
   }
   const std::filesystem::path file = std::filesystem::path(directory) / io::string(doc["model_file"], "model_file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail("model_file", "cannot read " + file.string());
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) fail("model_file", "cannot read " + file.string());
   try {
-    return io::parse_json(text.str());
+    return io::parse_json(io::read_input_file(file.string()));
   } catch (const io::InputError& e) {
     fail("model_file", file.string() + ": " + e.reason());
   }
@@ -245,12 +240,7 @@ Study read_study(const json& doc, const std::string& directory) {
 }
 
 Study read_study_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("", "cannot open the study file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) fail("", "cannot read the study file");
-  return read_study(io::parse_json(text.str()), std::filesystem::path(path).parent_path().string());
+  return read_study(io::parse_json(io::read_input_file(path, "the study file")), std::filesystem::path(path).parent_path().string());
 }
 
 }  // namespace tsm::study

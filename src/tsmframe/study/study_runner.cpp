@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "tsmframe/io/input_error.hpp"
+#include "tsmframe/io/memory_budget.hpp"
 #include "tsmframe/io/model_reader.hpp"
 #include "tsmframe/io/results_writer.hpp"
 #include "tsmframe/io/system_error.hpp"
@@ -162,14 +163,18 @@ void keep_results(const std::string& directory, const Model& model, const solver
   io::write_results((std::filesystem::path(directory) / "cases" / std::to_string(row.index + 1)).string(), model, result);
 }
 
-CaseResult run_case(const Study& study, size_t index, const std::string& keep_directory, const solver::StopRequest* stop) {
+/// Case `index`, its model held to `budget` (the case's share of the machine's memory).
+CaseResult run_case(const Study& study, size_t index, const std::string& keep_directory, const solver::StopRequest* stop,
+                    const io::MemoryBudget& budget) {
   const auto start = std::chrono::steady_clock::now();
   Model model;
   std::vector<ResolvedRecord> resolved;
   try {
-    model = io::read_model(case_model(study, case_choice(study, index)));
+    model = io::read_model(case_model(study, case_choice(study, index)), budget);
     resolved = resolve_records(study, model);
   } catch (const io::InputError& e) {
+    return bad_input_row(study, index, e.what());
+  } catch (const io::SystemError& e) {  // a case whose run would not fit its share: a row, as running out of memory is
     return bad_input_row(study, index, e.what());
   } catch (const json::exception& e) {
     return bad_input_row(study, index, e.what());
@@ -191,9 +196,9 @@ CaseResult run_case(const Study& study, size_t index, const std::string& keep_di
 /// thread, where it ends the program (std::terminate). A SystemError (its results cannot be kept)
 /// is no fault of the case: it goes on, to end the study.
 CaseResult run_case_caught(const Study& study, size_t index, const std::string& keep_directory,
-                           const solver::StopRequest* stop) {
+                           const solver::StopRequest* stop, const io::MemoryBudget& budget) {
   try {
-    return run_case(study, index, keep_directory, stop);
+    return run_case(study, index, keep_directory, stop, budget);
   } catch (const io::SystemError&) {
     throw;
   } catch (const std::bad_alloc& e) {
@@ -217,6 +222,8 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
   std::vector<CaseResult> rows(n);
   std::vector<char> ran(n, 0);
   const std::string keep = study.keep ? keep_directory : std::string();
+  // The machine's memory as the study starts, shared by the cases run at once.
+  const io::MemoryBudget budget = io::memory_budget(thread_count(threads, n));
   // Big cases first would balance better; cases are independent, so a shared counter suffices.
   std::atomic<size_t> next{0};
   std::mutex report;
@@ -227,7 +234,7 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
     omp_set_num_threads(1);
     try {
       for (size_t k; !solver::stop_requested(stop) && (k = next.fetch_add(1)) < n;) {
-        rows[k] = run_case_caught(study, k, keep, stop);
+        rows[k] = run_case_caught(study, k, keep, stop, budget);
         ran[k] = 1;
         if (!progress) continue;
         std::lock_guard<std::mutex> lock(report);

@@ -39,7 +39,9 @@ struct CaseResult {
 /// Runs every case on `threads` threads (0: all cores). `progress` is called after each case.
 /// Whatever a case throws is its row (status "bad-input", the reason in its message) but
 /// io::SystemError (the system failed, not the case); that and what `progress` throws stop the
-/// cases and are rethrown here, after every thread has ended. With study.keep, each case's
+/// cases and are rethrown here, after every thread has ended. Each case's run is held to its
+/// share of the machine's memory as the study starts (io::memory_budget(cases run at once)): a
+/// case beyond it is a row too, refused before its memory is spent. With study.keep, each case's
 /// results.json and steps.csv go to `keep_directory`/cases/<case>/. A requested `stop` starts
 /// no new case and ends the running ones at their next step (status "interrupted"). Returns
 /// the rows of the cases run, in case order.
