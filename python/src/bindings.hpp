@@ -14,6 +14,8 @@ namespace tsm::python {
 
 namespace py = pybind11;
 
+/// MemoryError and OSError for what the system could not give a run (errors.cpp).
+void define_errors(py::module_& module);
 /// MeshedModel and read_model: a model from its FORMAT.md JSON text (model.cpp).
 void define_model(py::module_& module);
 /// run_json: a model run, its results as numpy arrays and the CLI's texts (run.cpp, results.cpp).

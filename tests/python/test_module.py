@@ -388,3 +388,17 @@ def test_ctrl_c_ends_a_run_at_its_next_step_with_keyboard_interrupt():
         tf.run(m)
     assert time.monotonic() - start < 10.0
     assert tf.run(os.path.join(SOURCE, "examples", "portal-frame.json")).status == "converged"  # the next run as ever
+
+
+def test_a_run_the_machine_has_no_memory_for_is_a_memory_error_before_it_is_spent():
+    # 80,001 contact nodes over a beam of 80,000 elements: every contact may touch every element,
+    # 6.4·10⁹ candidates at ~46 bytes each (~300 GB), more than any machine this runs on. Refused
+    # with the estimate, as the command line's exit 3, before the memory is spent.
+    m = tf.Model("too many candidates").material("m", E=2e11).section("s", A=1e-2, I=1e-4)
+    m.node(1, 0, 0).node(2, 10, 0).member(1, 2, "m", "s", divisions=80_000).support(1, "fixed")
+    nodes = list(range(10, 80_011))
+    for k, node in enumerate(nodes):
+        m.node(node, 10.0 * (k + 0.5) / len(nodes), 1.0).support(node, "pinned")
+    m.load(2, fy=-1.0).contact(members="all", nodes=nodes)
+    with pytest.raises(MemoryError, match=r"^contacts: the run needs ~\d+(\.\d)? GB of memory \(80,001 contacts with 6,400,080,000 candidate elements"):
+        tf.run(m)

@@ -33,7 +33,7 @@ void check_memory(std::vector<MemoryPart> parts, const MemoryBudget& budget, con
   std::string list;
   for (const MemoryPart& part : parts)
     if (part.bytes > 0.0) list += (list.empty() ? "" : ", ") + part.name + " " + bytes_text(part.bytes);
-  throw SystemError(path, subject + " needs ~" + bytes_text(total) + " of memory (" + list + "), more than " + budget.description);
+  throw MemoryShortage(path, subject + " needs ~" + bytes_text(total) + " of memory (" + list + "), more than " + budget.description);
 }
 
 }  // namespace tsm::io

@@ -1,7 +1,7 @@
 #pragma once
 // The memory a run may take, and the refusal of a model whose estimate (model/memory_estimate)
 // exceeds it, before the memory is spent: one line with the estimate, what it is made of and what
-// the machine has — a SystemError (exit 3: it would run on a bigger machine), unlike the caps
+// the machine has — a MemoryShortage, a SystemError (exit 3: it would run on a bigger machine), unlike the caps
 // the readers hold every model to (InputError, exit 2).
 
 #include <string>
@@ -20,7 +20,7 @@ struct MemoryBudget {
 /// The machine's memory now (machine_memory), shared by `share` runs at once (a study's jobs).
 MemoryBudget memory_budget(int share = 1);
 
-/// Refuses an estimate beyond the budget: throws SystemError(path, "the run needs ~… of memory (…),
+/// Refuses an estimate beyond the budget: throws MemoryShortage(path, "the run needs ~… of memory (…),
 /// more than …"), the parts largest first; `path` names where in the input most of it goes, `subject`
 /// what needs it.
 void check_memory(std::vector<MemoryPart> parts, const MemoryBudget& budget, const std::string& path,

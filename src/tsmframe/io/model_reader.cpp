@@ -539,6 +539,8 @@ Model read_model_file(const std::string& path) {
       document = parse_json(text);
     }
     return read_model(document, budget, bytes);
+  } catch (const MemoryShortage& e) {
+    throw MemoryShortage(path, e.what());
   } catch (const SystemError& e) {
     throw SystemError(path, e.what());
   }

@@ -14,4 +14,10 @@ class SystemError : public std::runtime_error {
   SystemError(const std::string& what, const std::string& reason) : std::runtime_error(what + ": " + reason) {}
 };
 
+/// The memory a run needs and the machine does not have (io/memory_budget): Python's MemoryError.
+class MemoryShortage : public SystemError {
+ public:
+  using SystemError::SystemError;
+};
+
 }  // namespace tsm::io

@@ -174,7 +174,7 @@ CaseResult run_case(const Study& study, size_t index, const std::string& keep_di
     resolved = resolve_records(study, model);
   } catch (const io::InputError& e) {
     return bad_input_row(study, index, e.what());
-  } catch (const io::SystemError& e) {  // a case whose run would not fit its share: a row, as running out of memory is
+  } catch (const io::MemoryShortage& e) {  // a case whose run would not fit its share: a row, as running out of memory is
     return bad_input_row(study, index, e.what());
   } catch (const json::exception& e) {
     return bad_input_row(study, index, e.what());
