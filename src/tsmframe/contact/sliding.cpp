@@ -11,12 +11,15 @@ HandOver hand_over(const ContactGeometry& geometry, const ContactCandidates& con
                    std::vector<char>& occupied) {
   // The point has left its element: hand it on to the neighbour at that end, and on while it
   // is still beyond, but not farther than max(one element, 5 % of the model's size) per
-  // iterate (coarse meshes: one element; fine meshes slide many elements per iterate).
+  // iterate (coarse meshes: one element; fine meshes slide many elements per iterate), and over
+  // no more hand-overs than the model has elements: where the model's size is set by a node far
+  // from the beam, or the point sits in the outer corner of a kink and is beyond both elements,
+  // the reach alone would let it hop to and fro for minutes.
   const Model& model = geometry.model();
   const double reach = 0.05 * model.size;
   HandOver changes;
   double travelled = 0.0;
-  while (state.alpha < 0.0 || state.alpha > 1.0) {
+  for (size_t hops = 0; (state.alpha < 0.0 || state.alpha > 1.0) && hops < model.elements.size(); ++hops) {
     const Element& from = model.elements[state.element];
     const int end = state.alpha > 1.0 ? from.end : from.start;
     // The beam goes on across that node: the next element on the side the node presses

@@ -1,6 +1,8 @@
 // A contact point handed on through element ends (contact/sliding.hpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "support/contact_fixture.hpp"
 #include "tsmframe/contact/sides.hpp"
 #include "tsmframe/contact/sliding.hpp"
@@ -101,6 +103,27 @@ TEST(ContactSliding, APointComingBackTheWayItWentCountsAReversalAtThatNode) {
   EXPECT_EQ(state.element, 1);
   EXPECT_EQ(state.step.hop_node, f.model.elements[1].end);
   EXPECT_EQ(state.step.handover_direction, -1);
+}
+
+TEST(ContactSliding, APointBeyondBothElementsOfAPeakIsHandedOverNoMoreTimesThanThereAreElements) {
+  // The beam's middle node lifted 0.5 into a peak, the post's foot 10 above it: beyond the end of
+  // element 1 (α = 17) and before the start of element 2 (α = −16), so each hands the point back
+  // to the other. The post drawn 1,000 up makes the model's size ~1,000, and 5 % of it is 200
+  // elements' lengths: the point went to and fro 200 times per iterate (a fuzzed model with a node
+  // at y = 10⁹ took minutes) — now at most once per element of the model.
+  ContactFixture f(0.5, 1000.0);
+  const ContactGeometry geometry(f.model);
+  f.D.segment<2>(tsm::dofs_per_node * f.model.elements[1].end) << 0.0, 0.5;
+  f.move_foot(0.0, 10.5 - 1000.0);
+  std::vector<char> occupied;
+  ContactState state = on(geometry, f, 1, occupied);
+  ASSERT_NEAR(state.alpha, 17.0, 1e-9);
+  ASSERT_NEAR(geometry.locate(geometry.contact(0), 2, f.D, f.rotations).alpha, -16.0, 1e-9);
+  const HandOver h = tsm::contact::hand_over(geometry, geometry.contact(0), f.D, f.rotations, false, state, occupied);
+  EXPECT_GE(h.handed_over, 1);
+  EXPECT_LE(h.handed_over, static_cast<int>(f.model.elements.size()));
+  EXPECT_TRUE(state.element == 1 || state.element == 2) << state.element;
+  EXPECT_EQ(std::count(occupied.begin(), occupied.end(), 1), 1);  // still one element holds it
 }
 
 }  // namespace
