@@ -16,7 +16,8 @@ namespace {
 // arc length (cutback) until min_increment.
 constexpr double aim_iterations = 6.0;
 
-/// The quantity `until` watches at a state (FORMAT.md `until`): λ or one dof.
+/// The quantity `until` watches at a state (FORMAT.md `until`): λ or one dof. Only for a control
+/// that has an `until` (Until::steps names no dof).
 double watched(const Control& control, double load_factor, const Eigen::VectorXd& displacements) {
   if (control.until == Control::Until::load_factor) return load_factor;
   return displacements[dofs_per_node * control.until_node + control.until_dof];
@@ -41,6 +42,12 @@ class ArcLengthStepping {
   /// Redoes the step that passed the `until` target from its start `landed` under load or
   /// displacement control, to land on the target exactly; keeps the arc-length step if that fails.
   void land(State landed, State& state);
+  /// Whether the step from `start` to `state` passed (or reached) the `until` target.
+  bool crosses_until(const Eigen::VectorXd& start, const State& state) const {
+    const double before = watched(control_, saved_.load_factor(), start);
+    const double after = watched(control_, state.load_factor, state.displacements);
+    return (before - control_.until_value) * (after - control_.until_value) <= 0.0 && after != before;
+  }
   /// No arc reaches the path from the step's start (restored in `state`): one load-controlled
   /// step of the last Δλ across the jump. Returns whether it converged.
   bool jump_across(State& state);
@@ -109,9 +116,7 @@ bool ArcLengthStepping::converged(StepRecord record, const NewtonOutcome& outcom
   halvings_ = 0;
   const double factor = std::clamp(std::sqrt(aim_iterations / std::max(1, outcome.iterations)), 0.5, 2.0);
   arc_ = std::clamp(arc_ * factor, control_.min_increment, control_.max_increment);
-  const double before = watched(control_, saved_.load_factor(), start);
-  const double after = watched(control_, state.load_factor, state.displacements);
-  const bool reached = watching_ && (before - control_.until_value) * (after - control_.until_value) <= 0.0 && after != before;
+  const bool reached = watching_ && crosses_until(start, state);
   State landed;  // the step's start, taken before recording lets its displacements go
   if (reached) saved_.restore(landed);
   recorder_.converged(std::move(record), outcome, state);
