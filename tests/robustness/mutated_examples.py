@@ -18,6 +18,9 @@ import subprocess
 import sys
 import tempfile
 
+# Seconds a mutant may run; TSMFRAME_TEST_TIME_SCALE (scripts/sanitize.sh: an instrumented build
+# runs 5–10 times slower) stretches it.
+LIMIT = 60 * int(os.environ.get("TSMFRAME_TEST_TIME_SCALE", "1"))
 VALUES = [0, -1, 1e-30, 1e30, 2.5, -0.0, "", "x", None, [], {}, True, [0, 0], 10**9, 0.5, -1e-9]
 
 
@@ -92,9 +95,9 @@ def main():
                 json.dump(model, f)
             out = os.path.join(d, f"out{n}")
             try:
-                r = subprocess.run([binary, "run", path, "--out", out, "-q", "--threads", "1"], capture_output=True, text=True, timeout=60)
+                r = subprocess.run([binary, "run", path, "--out", out, "-q", "--threads", "1"], capture_output=True, text=True, timeout=LIMIT)
             except subprocess.TimeoutExpired:
-                failures.append(f"{n} ({os.path.basename(name)}): no end within 60 s")
+                failures.append(f"{n} ({os.path.basename(name)}): no end within {LIMIT} s")
                 continue
             err = r.stderr.strip()
             exits[r.returncode] = exits.get(r.returncode, 0) + 1
