@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,9 @@ std::string describe(const MultiSpec& p) {
   return "psi " + std::to_string(p.psi) + " angle " + std::to_string(p.angle) + " k " + std::to_string(p.alpha0.size()) +
          " ends " + std::to_string(p.ends.i) + " " + std::to_string(p.ends.j);
 }
+
+/// What gtest prints for a case (its own dump would show the vectors' addresses).
+void PrintTo(const MultiSpec& p, std::ostream* os) { *os << describe(p); }
 
 // ---- k = 1 is today's element ----
 
@@ -182,7 +186,11 @@ INSTANTIATE_TEST_SUITE_P(
         MultiSpec{.psi = 0.0, .angle = -1.4, .theta_i = -0.2, .theta_j = 0.3, .alpha0 = {0.1, 0.3, 0.5, 0.7, 0.9},
                   .push = {1e-2, 2e-2, 3e-2, 2e-2, 1e-2}, .slide = {0.01, 0.02, -0.01, 0.0, -0.02}},
         MultiSpec{.psi = 0.02, .angle = 2.0, .theta_i = 0.25, .theta_j = 0.2, .alpha0 = {0.1, 0.3, 0.5, 0.7, 0.9},
-                  .push = {-2e-2, -1e-2, -3e-2, -1e-2, -2e-2}, .slide = {0.03, -0.02, 0.0, 0.02, -0.03}}));
+                  .push = {-2e-2, -1e-2, -3e-2, -1e-2, -2e-2}, .slide = {0.03, -0.02, 0.0, 0.02, -0.03}}),
+    [](const ::testing::TestParamInfo<MultiSpec>& info) {
+      return "k" + std::to_string(info.param.alpha0.size()) + (info.param.psi > 0.0 ? "Timoshenko" : "EulerBernoulli") +
+             std::to_string(info.index);
+    });
 
 TEST(MultiPointElement, TangentWithAPairOnTheFloorMatchesFiniteDifferences) {
   for (double psi : {0.0, 1e-6}) {
