@@ -204,6 +204,19 @@ TEST(MultiPointElement, TangentWithAPairOnTheFloorMatchesFiniteDifferences) {
   }
 }
 
+TEST(MultiPointElement, NoPointsIsThePlainElement) {
+  for (double psi : {0.0, 0.01}) {
+    const MultiTrial s = multi_trial({.psi = psi, .angle = 1.6, .theta_i = 0.2, .theta_j = -0.3});
+    const MultiPointResponse r = multi_point_response(s.data, s.d, s.previous);
+    ASSERT_EQ(r.nodal_forces.size(), 6);
+    const Eigen::Vector3d S = s.data.k0 * r.deformations;  // Eq. 3 / 4
+    EXPECT_LE((r.forces - S).norm(), 1e-14 * S.norm());
+    EXPECT_LE((r.nodal_forces - tsm::element::equilibrium_matrix(r.chord) * S).norm(), 1e-14 * S.norm());
+    const Eigen::MatrixXd fd = finite_difference_tangent(s);
+    EXPECT_LE((r.tangent - fd).norm(), 1e-6 * fd.norm());
+  }
+}
+
 // ---- Statics ----
 
 TEST(MultiPointElement, ForcesAreSelfEquilibratedAndRigidMotionMakesNone) {
