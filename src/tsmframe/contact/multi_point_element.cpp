@@ -1,0 +1,114 @@
+#include "tsmframe/contact/multi_point_element.hpp"
+
+#include <utility>
+
+#include <Eigen/Cholesky>
+
+namespace tsm::contact {
+namespace {
+
+/// A 3(2+k)-vector with plane vectors on the translations of nodes i, j and contact node p.
+Eigen::VectorXd spread(int size, int point, const Eigen::Vector2d& at_i, const Eigen::Vector2d& at_j,
+                       const Eigen::Vector2d& at_point) {
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(size);
+  v.segment<2>(0) = at_i;
+  v.segment<2>(3) = at_j;
+  v.segment<2>(6 + 3 * point) += at_point;
+  return v;
+}
+
+/// ∂²(δy_p)/∂x² on the translations of i, j, c_p (FORMULATION §2's K_G term, for point p).
+Eigen::MatrixXd point_hessian(int size, int point, const element::Chord& chord, double alpha, double rho) {
+  const Eigen::Vector2d e(chord.cos, chord.sin), n(-chord.sin, chord.cos), zero = Eigen::Vector2d::Zero();
+  const double l = chord.length;
+  const Eigen::VectorXd a1 = spread(size, point, -n, n, zero);  // n · dΔ
+  const Eigen::VectorXd a2 = spread(size, point, -e, zero, e);  // e · dr_p
+  const Eigen::VectorXd a3 = spread(size, point, -e, e, zero);  // e · dΔ
+  return (-(a1 * a2.transpose() + a2 * a1.transpose()) - (rho / l) * a1 * a1.transpose() +
+          alpha * (a1 * a3.transpose() + a3 * a1.transpose())) / l;
+}
+
+}  // namespace
+
+Eigen::MatrixXd multi_point_equilibrium_matrix(const element::Chord& chord, const Eigen::VectorXd& alpha) {
+  const int k = static_cast<int>(alpha.size()), size = 3 * (2 + k);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(size, 3 + k);
+  J.topLeftCorner<6, 3>() = element::equilibrium_matrix(chord);
+  const Eigen::Vector2d n(-chord.sin, chord.cos);
+  for (int p = 0; p < k; ++p) J.col(3 + p) = spread(size, p, -(1.0 - alpha[p]) * n, -alpha[p] * n, n);  // K15
+  return J;
+}
+
+MultiPointResponse multi_point_response(const MultiPointElementData& data, const Eigen::VectorXd& d,
+                                        double previous_rotation, bool with_tangent) {
+  const int k = data.size(), size = 3 * (2 + k);
+  MultiPointResponse r;
+  r.chord = element::current_chord(data.initial, d.head<6>(), previous_rotation);
+  const double l = r.chord.length, l0 = data.initial.length;
+  const Eigen::Vector2d e(r.chord.cos, r.chord.sin), n(-r.chord.sin, r.chord.cos);
+  const double theta_i = d[2] - r.chord.rotation, theta_j = d[5] - r.chord.rotation;
+  r.alpha.resize(k);
+  r.normal.resize(k);
+  r.deformations.resize(3 + k);
+  r.deformations.head<3>() << r.chord.elongation, theta_i, theta_j;
+  for (int p = 0; p < k; ++p) {
+    // r_p = x_c − x_i formed as (X_c − X_i) + (u_c − u_i): no large coordinates cancel.
+    const Eigen::Vector2d rel = (data.points[p].start - data.initial.start) +
+                                Eigen::Vector2d(d[6 + 3 * p] - d[0], d[7 + 3 * p] - d[1]);
+    r.alpha[p] = rel.dot(e) / l;
+    r.normal[p] = rel.dot(n);
+    r.deformations[3 + p] = r.normal[p] - data.points[p].offset;
+  }
+
+  MultiPointLaw law = multi_point_law(data.section, l0, r.alpha, data.edge, data.min_compliance);  // K2–K11
+  Eigen::Matrix2d k_plain = data.k0.bottomRightCorner<2, 2>();
+  if (data.connected()) {  // a hinge or a spring between an end and its node: condensed out (K12)
+    ConnectedMultiPointLaw connected = connected_multi_point_law(law, k_plain, data.flexibility_i, data.flexibility_j);
+    law = std::move(connected.law);
+    k_plain = connected.k_plain;
+  }
+  const Eigen::Vector2d theta(theta_i, theta_j);
+  const MultiPointForces f = multi_point_forces(law, k_plain, theta, r.deformations.tail(k));
+  r.forces.resize(3 + k);
+  r.forces << data.k0(0, 0) * r.chord.elongation, f.moments, f.point_forces;
+
+  const Eigen::MatrixXd J = multi_point_equilibrium_matrix(r.chord, r.alpha);
+  r.nodal_forces = J * r.forces;
+  // P = [0; H; I] maps the point forces into S (K14).
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(3 + k, k);
+  P.middleRows(1, 2) = law.h;
+  P.bottomRows(k).setIdentity();
+  r.point_u = J * P;
+  r.point_stiffness = k > 0 ? Eigen::MatrixXd(law.compliance.llt().solve(Eigen::MatrixXd::Identity(k, k)))
+                            : Eigen::MatrixXd(0, 0);
+  r.point_stiffness = 0.5 * (r.point_stiffness + r.point_stiffness.transpose()).eval();
+  r.sliding_u = Eigen::MatrixXd::Zero(size, k);
+  r.sliding_v = Eigen::MatrixXd::Zero(size, k);
+  if (!with_tangent) return r;
+
+  // ∂S/∂d (K14): the plain element's k0 plus the points' P C⁻¹ Pᵀ.
+  Eigen::MatrixXd D = P * r.point_stiffness * P.transpose();
+  D(0, 0) += data.k0(0, 0);
+  D.block<2, 2>(1, 1) += k_plain;
+  r.tangent = J * D * J.transpose();
+  // K_G (K15): N ∂²l + (M_i + M_j) ∂²(−β) on i, j, and Y_p ∂²δy_p on the translations of i, j, c_p.
+  r.tangent.topLeftCorner<6, 6>() += element::geometric_stiffness(r.chord, r.forces.head<3>());
+  for (int p = 0; p < k; ++p) r.tangent += f.point_forces[p] * point_hessian(size, p, r.chord, r.alpha[p], r.normal[p]);
+  r.symmetric_tangent = r.tangent;
+
+  if (data.sliding_term) {
+    // a_p, b_p follow the geometry: J (∂S/∂α_p)(∂α_p/∂x)ᵀ for each point (K13, K15).
+    for (int p = 0; p < k; ++p) {
+      Eigen::VectorXd dS = Eigen::VectorXd::Zero(3 + k);
+      dS.segment<2>(1) = f.dmoments.col(p);
+      dS.tail(k) = f.dpoint_forces.col(p);
+      const double rho = r.normal[p], a = r.alpha[p];
+      r.sliding_u.col(p) = J * dS;
+      r.sliding_v.col(p) = spread(size, p, ((a - 1.0) / l) * e - (rho / (l * l)) * n, (rho / (l * l)) * n - (a / l) * e, e / l);
+    }
+    r.tangent += r.sliding_u * r.sliding_v.transpose();
+  }
+  return r;
+}
+
+}  // namespace tsm::contact

@@ -1,0 +1,300 @@
+// The contact element with k interior points (docs/contact-k-points.md §7, multi_point_element):
+// k = 1 is chord_frame_response in every field; the whole tangent (sliding terms included)
+// against central finite differences at large chord rotations, k = 2, 3, 5, both theories, rigid,
+// hinged and sprung ends; self-equilibrium and rigid motion; a beam pressed by k rigid points
+// against the textbook beam under k point loads.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+#include "support/contact_trial.hpp"
+#include "support/end_connections.hpp"
+#include "tsmframe/contact/contact_element.hpp"
+#include "tsmframe/contact/multi_point_element.hpp"
+
+namespace {
+
+using namespace tsm::contact;
+using tsm::test::connections;
+using tsm::test::Ends;
+
+/// The element of tests/support/contact_trial.hpp with k contact nodes: the beam element from
+/// (0.3, −0.2) to (1.3, 0.4), turned rigidly by `angle` about node i, stretched by 0.2 %, bent
+/// (θ_i, θ_j); contact node p drawn on the axis at alpha0[p], then moved by push[p] along n and by
+/// slide[p] (in α) along e, its own rotation 0.7 + p.
+struct MultiTrial {
+  MultiPointElementData data;
+  Eigen::VectorXd d;
+  double previous = 0.0;
+};
+
+struct MultiSpec {
+  double psi = 0.0, angle = 0.0, theta_i = 0.0, theta_j = 0.0;
+  std::vector<double> alpha0, push, slide;
+  Ends ends{0.0, 0.0};
+  bool sliding_term = true;
+};
+
+MultiTrial multi_trial(const MultiSpec& p) {
+  MultiTrial s;
+  s.data.initial = tsm::element::initial_chord({0.3, -0.2}, {1.3, 0.4});
+  s.data.section = {.EA = 400.0, .EI = 3.0, .shear_flexibility = p.psi};
+  s.data.k0 = tsm::element::basic_stiffness(s.data.section, s.data.initial.length);
+  s.data.edge = 1e-3;
+  s.data.sliding_term = p.sliding_term;
+  s.data.flexibility_i = p.ends.i;
+  s.data.flexibility_j = p.ends.j;
+  const int k = static_cast<int>(p.alpha0.size());
+  const Eigen::Vector2d chord = s.data.initial.end - s.data.initial.start;
+  const Eigen::Rotation2Dd R(p.angle);
+  const Eigen::Vector2d end = s.data.initial.start + 1.002 * (R * chord);
+  const Eigen::Vector2d e = (R * chord).normalized(), n(-e.y(), e.x());
+  s.d.resize(3 * (2 + k));
+  s.d.head<6>() << 0.0, 0.0, p.angle + p.theta_i, end.x() - s.data.initial.end.x(), end.y() - s.data.initial.end.y(),
+      p.angle + p.theta_j;
+  for (int q = 0; q < k; ++q) {
+    const Eigen::Vector2d start = s.data.initial.start + p.alpha0[q] * chord;
+    s.data.points.push_back({start, 0.0});
+    const Eigen::Vector2d at = s.data.initial.start + (p.alpha0[q] + p.slide[q]) * 1.002 * (R * chord) + p.push[q] * n;
+    s.d.segment<3>(6 + 3 * q) << at.x() - start.x(), at.y() - start.y(), 0.7 + q;
+  }
+  s.previous = p.angle + 0.02;
+  return s;
+}
+
+Eigen::MatrixXd finite_difference_tangent(const MultiTrial& s) {
+  const int size = static_cast<int>(s.d.size());
+  Eigen::MatrixXd K(size, size);
+  for (int b = 0; b < size; ++b) {
+    const double h = 1e-6;
+    Eigen::VectorXd plus = s.d, minus = s.d;
+    plus[b] += h;
+    minus[b] -= h;
+    K.col(b) = (multi_point_response(s.data, plus, s.previous).nodal_forces -
+                multi_point_response(s.data, minus, s.previous).nodal_forces) / (2 * h);
+  }
+  return K;
+}
+
+std::string describe(const MultiSpec& p) {
+  return "psi " + std::to_string(p.psi) + " angle " + std::to_string(p.angle) + " k " + std::to_string(p.alpha0.size()) +
+         " ends " + std::to_string(p.ends.i) + " " + std::to_string(p.ends.j);
+}
+
+/// What gtest prints for a case (its own dump would show the vectors' addresses).
+void PrintTo(const MultiSpec& p, std::ostream* os) { *os << describe(p); }
+
+// ---- k = 1 is today's element ----
+
+/// |a − b| ≤ 1e-12 ‖b‖ (the whole field's scale), entry by entry.
+template <class A, class B>
+void expect_field(const A& a, const B& b, const char* name, double& worst) {
+  ASSERT_EQ(a.rows(), b.rows()) << name;
+  ASSERT_EQ(a.cols(), b.cols()) << name;
+  const double scale = std::max(Eigen::MatrixXd(b).norm(), 1e-300);
+  const double error = (Eigen::MatrixXd(a) - Eigen::MatrixXd(b)).cwiseAbs().maxCoeff() / scale;
+  worst = std::max(worst, error);
+  EXPECT_LE(error, 1e-12) << name << "\n" << a << "\nexpected\n" << b;
+}
+
+TEST(MultiPointElement, OnePointIsTodaysContactElementInEveryField) {
+  double worst = 0.0;
+  for (double psi : {0.0, 0.01})
+    for (double angle : {0.0, 1.2, -2.6, 7.0})
+      for (double alpha0 : {0.05, 0.3, 0.62, 0.97})
+        for (const Ends f : {Ends{0.0, 0.0}, connections[0], connections[1], connections[2], connections[4], connections[5]})
+          for (bool sliding : {true, false}) {
+            tsm::test::ContactTrial t = tsm::test::contact_trial(
+                {.psi = psi, .angle = angle, .theta_i = 0.25, .theta_j = -0.15, .alpha0 = alpha0, .push = 1.5e-2,
+                 .slide = 0.01, .sliding_term = sliding});
+            t.data.flexibility_i = f.i;
+            t.data.flexibility_j = f.j;
+            const ContactResponse today = chord_frame_response(t.data, t.d, t.previous);
+            MultiPointElementData data{.initial = t.data.initial, .section = t.data.section, .k0 = t.data.k0,
+                                       .points = {{t.data.contact_start, t.data.offset}}, .edge = t.data.edge,
+                                       .min_compliance = t.data.min_compliance, .sliding_term = sliding,
+                                       .flexibility_i = f.i, .flexibility_j = f.j};
+            const MultiPointResponse r = multi_point_response(data, t.d, t.previous);
+            SCOPED_TRACE("psi " + std::to_string(psi) + " angle " + std::to_string(angle) + " alpha " +
+                         std::to_string(alpha0) + " ends " + std::to_string(f.i) + " " + std::to_string(f.j));
+            EXPECT_EQ(r.chord.rotation, today.chord.rotation);
+            EXPECT_EQ(r.chord.length, today.chord.length);
+            EXPECT_EQ(r.alpha[0], today.alpha);
+            EXPECT_EQ(r.normal[0], today.normal);
+            EXPECT_EQ(r.deformations, Eigen::VectorXd(today.deformations));
+            expect_field(r.forces, today.forces, "forces", worst);
+            expect_field(r.nodal_forces, today.nodal_forces, "nodal_forces", worst);
+            expect_field(r.point_u, today.point_u, "point_u", worst);
+            expect_field(r.point_stiffness, Eigen::Matrix<double, 1, 1>(today.point_stiffness), "point_stiffness", worst);
+            expect_field(r.tangent, today.tangent, "tangent", worst);
+            expect_field(r.symmetric_tangent, today.symmetric_tangent, "symmetric_tangent", worst);
+            expect_field(r.sliding_u, today.sliding_u, "sliding_u", worst);
+            expect_field(r.sliding_v, today.sliding_v, "sliding_v", worst);
+          }
+  std::printf("k = 1 against chord_frame_response: worst relative difference %.2e\n", worst);
+}
+
+// ---- The whole tangent against finite differences ----
+
+class MultiPointTangent : public ::testing::TestWithParam<MultiSpec> {};
+
+TEST_P(MultiPointTangent, MatchesFiniteDifferencesWithTheSlidingTerms) {
+  double worst = 0.0;
+  for (const Ends f : {Ends{0.0, 0.0}, connections[0], connections[2], connections[4], connections[5]}) {
+    MultiSpec p = GetParam();
+    p.ends = f;
+    const MultiTrial s = multi_trial(p);
+    const MultiPointResponse r = multi_point_response(s.data, s.d, s.previous);
+    for (int q = 0; q < s.data.size(); ++q) {
+      ASSERT_GT(r.alpha[q], 0.0);
+      ASSERT_LT(r.alpha[q], 1.0);
+    }
+    ASSERT_GT(r.forces.tail(s.data.size()).cwiseAbs().minCoeff(), 0.1) << "every point loaded";
+    const Eigen::MatrixXd fd = finite_difference_tangent(s);
+    EXPECT_LE((r.tangent - fd).norm(), 1e-6 * fd.norm()) << describe(p) << "\nanalytic\n" << r.tangent << "\nfd\n" << fd;
+    worst = std::max(worst, (r.tangent - fd).norm() / fd.norm());
+    // Without the sliding terms: symmetric, and measurably off.
+    p.sliding_term = false;
+    const MultiTrial without = multi_trial(p);
+    const Eigen::MatrixXd Kq = multi_point_response(without.data, without.d, without.previous).tangent;
+    EXPECT_LE((Kq - Kq.transpose()).norm(), 1e-12 * Kq.norm()) << describe(p);
+    EXPECT_EQ((Kq - r.symmetric_tangent).norm(), 0.0) << describe(p);
+    EXPECT_GT((r.tangent - Kq).norm(), 1e-4 * r.tangent.norm()) << describe(p);
+  }
+  std::printf("tangent against central differences: worst ‖K − K_fd‖/‖K_fd‖ %.2e\n", worst);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, MultiPointTangent,
+    ::testing::Values(
+        MultiSpec{.psi = 0.0, .angle = 1.2, .theta_i = 0.2, .theta_j = -0.1, .alpha0 = {0.3, 0.65},
+                  .push = {2e-2, 1e-2}, .slide = {0.05, -0.02}},
+        MultiSpec{.psi = 0.01, .angle = -2.0, .theta_i = -0.3, .theta_j = 0.25, .alpha0 = {0.2, 0.7},
+                  .push = {-1e-2, -2e-2}, .slide = {0.1, 0.0}},
+        MultiSpec{.psi = 0.0, .angle = 1.7, .theta_i = 0.3, .theta_j = 0.1, .alpha0 = {0.15, 0.45, 0.8},
+                  .push = {1e-2, 3e-2, 1.5e-2}, .slide = {0.02, -0.05, 0.03}},
+        MultiSpec{.psi = 0.005, .angle = 1.0, .theta_i = 0.15, .theta_j = -0.25, .alpha0 = {0.8, 0.2, 0.5},
+                  .push = {2e-2, 1e-2, 2e-2}, .slide = {0.0, 0.05, -0.1}},
+        MultiSpec{.psi = 0.0, .angle = -1.4, .theta_i = -0.2, .theta_j = 0.3, .alpha0 = {0.1, 0.3, 0.5, 0.7, 0.9},
+                  .push = {1e-2, 2e-2, 3e-2, 2e-2, 1e-2}, .slide = {0.01, 0.02, -0.01, 0.0, -0.02}},
+        MultiSpec{.psi = 0.02, .angle = 2.0, .theta_i = 0.25, .theta_j = 0.2, .alpha0 = {0.1, 0.3, 0.5, 0.7, 0.9},
+                  .push = {-2e-2, -1e-2, -3e-2, -1e-2, -2e-2}, .slide = {0.03, -0.02, 0.0, 0.02, -0.03}}),
+    [](const ::testing::TestParamInfo<MultiSpec>& info) {
+      return "k" + std::to_string(info.param.alpha0.size()) + (info.param.psi > 0.0 ? "Timoshenko" : "EulerBernoulli") +
+             std::to_string(info.index);
+    });
+
+TEST(MultiPointElement, TangentWithAPairOnTheFloorMatchesFiniteDifferences) {
+  for (double psi : {0.0, 1e-6}) {
+    MultiSpec p{.psi = psi, .angle = 1.3, .theta_i = 0.2, .theta_j = -0.1, .alpha0 = {0.4, 0.4005, 0.7},
+                .push = {2e-2, 2.1e-2, 1e-2}, .slide = {0.0, 0.0, 0.0}};
+    MultiTrial s = multi_trial(p);
+    s.data.edge = 1e-2;
+    const MultiPointResponse r = multi_point_response(s.data, s.d, s.previous);
+    const Eigen::MatrixXd fd = finite_difference_tangent(s);
+    EXPECT_LE((r.tangent - fd).norm(), 1e-6 * fd.norm()) << "psi " << psi;
+  }
+}
+
+TEST(MultiPointElement, NoPointsIsThePlainElement) {
+  for (double psi : {0.0, 0.01}) {
+    const MultiTrial s = multi_trial({.psi = psi, .angle = 1.6, .theta_i = 0.2, .theta_j = -0.3});
+    const MultiPointResponse r = multi_point_response(s.data, s.d, s.previous);
+    ASSERT_EQ(r.nodal_forces.size(), 6);
+    const Eigen::Vector3d S = s.data.k0 * r.deformations;  // Eq. 3 / 4
+    EXPECT_LE((r.forces - S).norm(), 1e-14 * S.norm());
+    EXPECT_LE((r.nodal_forces - tsm::element::equilibrium_matrix(r.chord) * S).norm(), 1e-14 * S.norm());
+    const Eigen::MatrixXd fd = finite_difference_tangent(s);
+    EXPECT_LE((r.tangent - fd).norm(), 1e-6 * fd.norm());
+  }
+}
+
+// ---- Statics ----
+
+TEST(MultiPointElement, ForcesAreSelfEquilibratedAndRigidMotionMakesNone) {
+  for (double psi : {0.0, 0.01}) {
+    const MultiTrial s = multi_trial({.psi = psi, .angle = 1.3, .theta_i = 0.2, .theta_j = -0.15,
+                                      .alpha0 = {0.2, 0.5, 0.75}, .push = {0.03, 0.02, 0.01}, .slide = {0.0, 0.05, 0.0}});
+    const MultiPointResponse r = multi_point_response(s.data, s.d, s.previous);
+    const Eigen::VectorXd& F = r.nodal_forces;
+    const double scale = F.cwiseAbs().maxCoeff();
+    double fx = 0.0, fy = 0.0, moment = 0.0;
+    for (int node = 0; node < 5; ++node) {
+      const Eigen::Vector2d x = node == 0 ? Eigen::Vector2d(s.data.initial.start + s.d.segment<2>(0))
+                                : node == 1 ? Eigen::Vector2d(s.data.initial.end + s.d.segment<2>(3))
+                                            : Eigen::Vector2d(s.data.points[node - 2].start + s.d.segment<2>(3 * node));
+      fx += F[3 * node];
+      fy += F[3 * node + 1];
+      moment += F[3 * node + 2] + x.x() * F[3 * node + 1] - x.y() * F[3 * node];
+      if (node >= 2) {
+        EXPECT_EQ(F[3 * node + 2], 0.0);  // a contact node takes no moment
+      }
+    }
+    EXPECT_NEAR(fx, 0.0, 1e-12 * scale);
+    EXPECT_NEAR(fy, 0.0, 1e-12 * scale);
+    EXPECT_NEAR(moment, 0.0, 3e-12 * scale);
+    // Y_p acts as Y_p · point_u.col(p), the rest is the plain element's.
+    const Eigen::VectorXd plain = multi_point_equilibrium_matrix(r.chord, r.alpha) *
+                                  (Eigen::VectorXd(6) << r.forces[0], s.data.k0.bottomRightCorner<2, 2>() *
+                                                                          r.deformations.segment<2>(1), 0, 0, 0).finished();
+    EXPECT_LE((plain + r.point_u * r.forces.tail(3) - F).norm(), 1e-12 * F.norm());
+  }
+  for (double angle : {0.0, 0.7, -2.9}) {  // rigid motion: no force
+    MultiTrial s = multi_trial({.psi = 0.01, .angle = angle, .alpha0 = {0.2, 0.5, 0.75}, .push = {0, 0, 0}, .slide = {0, 0, 0}});
+    const Eigen::Rotation2Dd R(angle);
+    const Eigen::Vector2d shift(0.4, -0.3), chord = s.data.initial.end - s.data.initial.start;
+    s.d.segment<2>(0) = shift;
+    s.d.segment<2>(3) = s.data.initial.start + shift + R * chord - s.data.initial.end;
+    for (int q = 0; q < 3; ++q)
+      s.d.segment<2>(6 + 3 * q) = s.data.initial.start + shift + R * (s.data.points[q].start - s.data.initial.start) -
+                                  s.data.points[q].start;
+    const MultiPointResponse r = multi_point_response(s.data, s.d, s.previous);
+    EXPECT_LT(r.nodal_forces.norm(), 1e-9 * 400.0) << angle;
+  }
+}
+
+/// Textbook simply supported beam (as in test_multi_point_law.cpp): unit load at a, deflection at x.
+double simply_supported(const tsm::element::SectionStiffness& s, double L, double x, double a) {
+  if (x > a) return simply_supported(s, L, L - x, L - a);
+  const double b = L - a;
+  return (b * x * (L * L - b * b - x * x) / 6.0 + s.shear_flexibility * x * b) / (s.EI * L);
+}
+
+TEST(MultiPointElement, ASimplySupportedBeamPressedByKRigidPointsCarriesTheTextbookLoads) {
+  // Both ends hinged to nodes that stay put (the chord turned by 0.9 rad), k contact nodes placed
+  // where the textbook beam under loads P would deflect them: the element's Y are those P.
+  for (double psi : {0.0, 0.01})
+    for (const std::vector<double>& alpha0 : {std::vector<double>{0.3, 0.6}, std::vector<double>{0.1, 0.3, 0.45, 0.7, 0.9}}) {
+      const int k = static_cast<int>(alpha0.size());
+      MultiTrial s = multi_trial({.psi = psi, .angle = 0.9, .alpha0 = alpha0, .push = std::vector<double>(k, 0.0),
+                                  .slide = std::vector<double>(k, 0.0), .ends = {INFINITY, INFINITY}});
+      const double L = s.data.initial.length;
+      const Eigen::Rotation2Dd R(0.9);
+      const Eigen::Vector2d chord = s.data.initial.end - s.data.initial.start, e = (R * chord).normalized(),
+                            n(-e.y(), e.x());
+      s.d.segment<2>(3) = s.data.initial.start + R * chord - s.data.initial.end;  // no stretch
+      Eigen::VectorXd P(k);
+      for (int q = 0; q < k; ++q) P[q] = (q % 2 ? -1.0 : 1.5) * (1.0 + 0.1 * q);
+      for (int q = 0; q < k; ++q) {
+        double w = 0.0;
+        for (int t = 0; t < k; ++t) w += simply_supported(s.data.section, L, alpha0[q] * L, alpha0[t] * L) * P[t];
+        s.d.segment<2>(6 + 3 * q) =
+            s.data.initial.start + alpha0[q] * (R * chord) + w * n - s.data.points[q].start;
+      }
+      const MultiPointResponse r = multi_point_response(s.data, s.d, s.previous);
+      EXPECT_LE((r.forces.tail(k) - P).norm(), 1e-9 * P.norm()) << "psi " << psi << " k " << k << "\n"
+                                                                 << r.forces.tail(k).transpose();
+      EXPECT_EQ(r.forces[1], 0.0);
+      EXPECT_EQ(r.forces[2], 0.0);
+    }
+}
+
+}  // namespace
