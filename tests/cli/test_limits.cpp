@@ -11,6 +11,7 @@
 #include <string>
 
 #include "support/cli.hpp"
+#include "support/scratch_directory.hpp"
 
 namespace {
 
@@ -22,24 +23,12 @@ using tsm::test::run_cli_bounded;
 constexpr long gigabyte = 1'000'000;  // ulimit -v counts kilobytes
 constexpr int seconds = 20;
 
-class Limits : public ::testing::Test {
+class Limits : public tsm::test::ScratchDirectory {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("tsmframe-limits-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string write(const std::string& name, const json& document) {
-    const fs::path path = dir_ / name;
-    std::ofstream(path) << document.dump();
-    return path.string();
-  }
+  Limits() : ScratchDirectory("tsmframe-limits-") {}
+  /// On one line: the big models stay as small as they can be.
+  std::string write(const std::string& name, const json& document) { return ScratchDirectory::write(name, document, -1); }
   std::string out() const { return (dir_ / "out").string(); }
-
-  fs::path dir_;
 };
 
 /// One line on stderr, and nothing written.

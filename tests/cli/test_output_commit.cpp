@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "support/cli.hpp"
+#include "support/scratch_directory.hpp"
 
 namespace {
 
@@ -62,20 +63,10 @@ long dead_pid() {
   return child;
 }
 
-class OutputCommit : public ::testing::Test {
+class OutputCommit : public tsm::test::ScratchDirectory {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("tsmframe-commit-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  OutputCommit() : ScratchDirectory("tsmframe-commit-") {}
 
-  std::string write(const std::string& name, const json& content) {
-    std::ofstream(dir_ / name) << content.dump(2);
-    return (dir_ / name).string();
-  }
   /// A converged run's outputs in `out`: the previous outputs the next run must keep or replace whole.
   void previous_outputs(const fs::path& out) {
     const Outcome o = run_cli("run " + write("previous.json", rolled_cantilever(2)) + " -q --out " + out.string());
@@ -102,8 +93,6 @@ class OutputCommit : public ::testing::Test {
     return found;
   }
   static size_t lines(const std::string& text) { return std::count(text.begin(), text.end(), '\n'); }
-
-  fs::path dir_;
 };
 
 TEST_F(OutputCommit, CtrlCAndSigtermWriteEveryConvergedStepAndExitOne) {

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/cli.hpp"
+#include "support/scratch_directory.hpp"
 #include <sstream>
 
 namespace {
@@ -27,19 +28,9 @@ using tsm::test::run_command;
 constexpr long test_memory_kb = 2'000'000;  // what a study run by these tests may take: 2 GB …
 constexpr int test_seconds = 60;            // … and a minute (each takes well under a second)
 
-class Study : public ::testing::Test {
+class Study : public tsm::test::ScratchDirectory {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("tsmframe-study-" + std::to_string(::getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const json& content) {
-    std::ofstream(dir_ / name) << content.dump(2);
-    return (dir_ / name).string();
-  }
+  Study() : ScratchDirectory("tsmframe-study-") {}
   json read_json(const fs::path& path) {
     std::ifstream in(path);
     return json::parse(in);
@@ -65,7 +56,6 @@ class Study : public ::testing::Test {
   }
   /// The study with the cantilever and `sweep`.
   static json study(const char* sweep) { return {{"model", cantilever()}, {"sweep", json::parse(sweep)}}; }
-  fs::path dir_;
 };
 
 TEST_F(Study, TwoCasesTwoRowsAndAFailingCaseIsARow) {
