@@ -191,15 +191,17 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
        "the beam's centre line, on the side it supports, and the node or the beam is held (by supports, or by a part that "
        "is) (contact node 5 is drawn 0.02 from the beam's centre line, its gap is 0: a part that only contacts would hold "
        "cannot fall onto them in a static analysis"},
-      {"two contacts resting on one element",
+      {"two contacts resting on one element, one in the cantilever frame",
        [](json& m) {
          m["nodes"].push_back({{"id", 5}, {"x", 2.2}, {"y", -0.05}});
          m["nodes"].push_back({{"id", 6}, {"x", 2.8}, {"y", -0.05}});
          m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
          m["supports"].push_back({{"node", 6}, {"type", "fixed"}});
-         m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"gap", 0.05}}, {{"node", 6}, {"members", "all"}, {"gap", 0.05}}});
+         m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"gap", 0.05}},
+                                      {{"node", 6}, {"members", "all"}, {"gap", 0.05}, {"frame", "cantilever"}}});
        },
-       "contacts[1]: rests on element 3, as contacts[0] does: one contact per element (give that member more divisions)"},
+       "contacts[1]: rests on element 3, as contacts[0] does: a cantilever-frame contact has its element to itself (give that "
+       "member more divisions, or use the chord frame)"},
       {"load on missing node", [](json& m) { m["loads"][0]["node"] = 42; }, "loads[0].node: unknown node 42"},
       {"contact on missing node",
        [](json& m) { m["contacts"] = json::array({{{"node", 42}, {"members", "all"}}}); },

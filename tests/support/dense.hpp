@@ -24,8 +24,8 @@ inline Eigen::MatrixXd dense_tangent(const assembly::DofMap& dofs, const linalg:
           if (a.row[p] != c) K(q, r) += a.value[p](i, j);
         }
   for (const linalg::RankOne& t : rank_one)
-    for (int i = 0; i < 9; ++i)
-      for (int j = 0; j < 9; ++j)
+    for (int i = 0; i < t.size(); ++i)
+      for (int j = 0; j < t.size(); ++j)
         if (t.equation[i] >= 0 && t.equation[j] >= 0) K(t.equation[i], t.equation[j]) += t.u[i] * t.v[j];
   return K;
 }

@@ -1,17 +1,21 @@
 #include "tsmframe/assembly/contact_assembly.hpp"
 
-#include "tsmframe/contact/contact_response.hpp"
-
 namespace tsm::assembly {
 
-std::array<int, 9> contact_dofs(const Element& e, int node) {
-  std::array<int, 9> g;
+std::vector<int> contact_dofs(const Element& e, const contact::ActiveContact& contact) {
+  std::vector<int> g(dofs_per_node * (2 + contact.size()));
   for (int d = 0; d < dofs_per_node; ++d) {
     g[d] = dofs_per_node * e.start + d;
     g[3 + d] = dofs_per_node * e.end + d;
-    g[6 + d] = dofs_per_node * node + d;
+    for (int p = 0; p < contact.size(); ++p) g[6 + 3 * p + d] = dofs_per_node * contact.points[p].node + d;
   }
   return g;
+}
+
+Eigen::VectorXd gather(const Eigen::VectorXd& displacements, const std::vector<int>& dofs) {
+  Eigen::VectorXd d(static_cast<Eigen::Index>(dofs.size()));
+  for (size_t a = 0; a < dofs.size(); ++a) d[static_cast<Eigen::Index>(a)] = displacements[dofs[a]];
+  return d;
 }
 
 std::vector<ContactDirection> contact_directions(const Model& model, const DofMap& dofs,
@@ -20,14 +24,13 @@ std::vector<ContactDirection> contact_directions(const Model& model, const DofMa
   std::vector<ContactDirection> directions;
   directions.reserve(contacts.size());
   for (const contact::ActiveContact& a : contacts) {
-    const std::array<int, 9> g = contact_dofs(model.elements[a.element], a.node);
-    const contact::ContactResponse r = contact::contact_response(a.data, gather(displacements, g), rotations[a.element], false);
-    ContactDirection d;
-    for (int k = 0; k < 9; ++k) d.equation[k] = dofs.equation(g[k]);
-    d.u = r.point_u;
-    d.stiffness = r.point_stiffness;
-    d.Y = r.forces[3];
-    directions.push_back(d);
+    const std::vector<int> g = contact_dofs(model.elements[a.element], a);
+    const contact::MultiPointResponse r =
+        contact::active_contact_response(a, gather(displacements, g), rotations[a.element], false);
+    std::vector<int> equation(g.size());
+    for (size_t k = 0; k < g.size(); ++k) equation[k] = dofs.equation(g[k]);
+    for (int p = 0; p < a.size(); ++p)
+      directions.push_back({equation, r.point_u.col(p), r.point_stiffness(p, p), r.forces[3 + p]});
   }
   return directions;
 }

@@ -1,12 +1,11 @@
 #pragma once
-// A contact element in the global system: its nine dofs (the beam element's two nodes, then the
-// contact node), its displacements gathered, and its point load seen from the free equations
-// (what Newton's release look-ahead needs). The element loop (global_system) adds the element's
-// forces, the symmetric part of its tangent to the node blocks and its sliding term as a rank-one
-// term beside them.
+// A contact element in the global system: its dofs (the beam element's two nodes, then each
+// contact point's node), its displacements gathered, and its points' loads seen from the free
+// equations (what Newton's release look-ahead needs). The element loop (global_system) adds the
+// element's forces, the symmetric part of its tangent to the node blocks and each point's
+// sliding term as a rank-one term beside them.
 
 #include <Eigen/Core>
-#include <array>
 #include <vector>
 
 #include "tsmframe/assembly/dof_map.hpp"
@@ -15,28 +14,25 @@
 
 namespace tsm::assembly {
 
-/// An active contact's point load seen from the free equations (contact_directions): Y acts as
-/// Y · u on its three nodes, and its stiffness part is stiffness · u uᵀ.
+/// A contact point's load seen from the free equations (contact_directions): Y acts as Y · u on
+/// its element's nodes, and where it is its element's only point its stiffness part is
+/// stiffness · u uᵀ (with several, the points' stiffness is C⁻¹, coupled: `stiffness` is its
+/// diagonal entry).
 struct ContactDirection {
-  std::array<int, 9> equation{};  ///< free equation of each entry of u, −1 where constrained
-  Eigen::Matrix<double, 9, 1> u;
+  std::vector<int> equation;  ///< free equation of each entry of u, −1 where constrained
+  Eigen::VectorXd u;
   double stiffness = 0.0;  ///< 1/c
   double Y = 0.0;
 };
 
-/// A contact element's dofs: the beam element's two nodes, then the contact node.
-std::array<int, 9> contact_dofs(const Element& element, int node);
+/// A contact element's dofs: the beam element's two nodes, then each point's node.
+std::vector<int> contact_dofs(const Element& element, const contact::ActiveContact& contact);
 
 /// The displacements of the given dofs.
-template <size_t N>
-Eigen::Matrix<double, N, 1> gather(const Eigen::VectorXd& displacements, const std::array<int, N>& dofs) {
-  Eigen::Matrix<double, N, 1> d;
-  for (size_t a = 0; a < N; ++a) d[a] = displacements[dofs[a]];
-  return d;
-}
+Eigen::VectorXd gather(const Eigen::VectorXd& displacements, const std::vector<int>& dofs);
 
-/// Each active contact's (in `contacts`' order) point load direction and stiffness at
-/// `displacements` (chord rotations of that state's evaluation).
+/// Each active contact point's (in `contacts`' order, points in order) load direction and
+/// stiffness at `displacements` (chord rotations of that state's evaluation).
 std::vector<ContactDirection> contact_directions(const Model& model, const DofMap& dofs,
                                                  const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                                                  const std::vector<contact::ActiveContact>& contacts);

@@ -33,17 +33,10 @@ void FollowerLoads::skew_terms(double load_factor, std::vector<linalg::RankOne>&
     const double c = load_factor * per_unit;
     const int u = dofs_.equation(dofs_per_node * node + ux), v = dofs_.equation(dofs_per_node * node + uy);
     if (c == 0.0 || u < 0 || v < 0) continue;  // a held dof carries no equation
-    linalg::RankOne term;
-    term.equation.fill(-1);
-    term.equation[0] = u;
-    term.equation[1] = v;
-    term.u.setZero();
-    term.v.setZero();
-    term.u[0] = 1.0, term.v[1] = -c;  // K_uv −= c
+    linalg::RankOne term{{u, v}, Eigen::Vector2d(1.0, 0.0), Eigen::Vector2d(0.0, -c)};  // K_uv −= c
     out.push_back(term);
-    term.u.setZero();
-    term.v.setZero();
-    term.u[1] = 1.0, term.v[0] = c;  // K_vu += c
+    term.u << 0.0, 1.0;
+    term.v << c, 0.0;  // K_vu += c
     out.push_back(term);
   }
 }

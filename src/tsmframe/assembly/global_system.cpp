@@ -1,6 +1,6 @@
 #include "tsmframe/assembly/global_system.hpp"
 
-#include "tsmframe/contact/contact_response.hpp"
+#include "tsmframe/contact/active_contact.hpp"
 #include "tsmframe/util/first_touch.hpp"
 #include "tsmframe/util/parallel_for.hpp"
 
@@ -190,17 +190,22 @@ int GlobalSystem::entry(int r, int c) const {
 
 void GlobalSystem::ensure_contact_pattern(const std::vector<contact::ActiveContact>& contacts) {
   bool missing = false;
+  const auto ensure = [&](int contact_node, int node) {
+    const int bc = dofs_.block(contact_node), bn = dofs_.block(node);
+    if (bc < 0 || bn < 0 || bc == bn) return;
+    // An entry that is fill of the factor is no entry of A: the factorisation starts it at
+    // zero, so a contact element's block written there would be lost. The pair is added.
+    const int p = entry(std::max(bc, bn), std::min(bc, bn));
+    if (p >= 0 && !tangent_.is_fill(p)) return;
+    contact_pairs_.emplace_back(contact_node, node);
+    missing = true;
+  };
   for (const contact::ActiveContact& a : contacts) {
     const Element& e = model_.elements[a.element];
-    for (const int node : {e.start, e.end}) {
-      const int bc = dofs_.block(a.node), bn = dofs_.block(node);
-      if (bc < 0 || bn < 0 || bc == bn) continue;
-      // An entry that is fill of the factor is no entry of A: the factorisation starts it at
-      // zero, so a contact element's block written there would be lost. The pair is added.
-      const int p = entry(std::max(bc, bn), std::min(bc, bn));
-      if (p >= 0 && !tangent_.is_fill(p)) continue;
-      contact_pairs_.emplace_back(a.node, node);
-      missing = true;
+    for (int p = 0; p < a.size(); ++p) {
+      ensure(a.points[p].node, e.start);
+      ensure(a.points[p].node, e.end);
+      for (int q = 0; q < p; ++q) ensure(a.points[p].node, a.points[q].node);  // coupled through the beam
     }
   }
   if (missing) {
@@ -308,32 +313,34 @@ double GlobalSystem::end_rotation(int q, const Eigen::VectorXd& displacements,
 void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen::VectorXd& displacements,
                                     const std::vector<double>& previous_rotations, bool with_tangent, Evaluation& out) {
   const Element& e = model_.elements[a.element];
-  const std::array<int, 9> g = contact_dofs(e, a.node);
-  const contact::Vector9 d = gather(displacements, g);
-  const contact::ContactResponse r = contact::contact_response(a.data, d, previous_rotations[a.element], with_tangent);
+  const std::vector<int> g = contact_dofs(e, a);
+  const int size = static_cast<int>(g.size());
+  const contact::MultiPointResponse r =
+      contact::active_contact_response(a, gather(displacements, g), previous_rotations[a.element], with_tangent);
   out.chord_rotations[a.element] = r.chord.rotation;
-  out.contacts.push_back({a.contact, a.vertex, r.alpha, r.forces[3]});
-  for (int k = 0; k < 9; ++k) out.internal_force[g[k]] += r.nodal_forces[k];
+  for (int p = 0; p < a.size(); ++p) out.contacts.push_back({a.points[p].contact, a.points[p].vertex, r.alpha[p], r.forces[3 + p]});
+  for (int k = 0; k < size; ++k) out.internal_force[g[k]] += r.nodal_forces[k];
   if (!with_tangent) return;
-  // The symmetric part joins the node blocks (i, j, c; each node pair once, the lower triangle);
-  // the sliding term stays a rank-one term for the linear solver.
-  const int nodes[3] = {e.start, e.end, a.node};
-  for (int p = 0; p < 3; ++p)
-    for (int q = p; q < 3; ++q) {
+  // The symmetric part joins the node blocks (i, j, then each point's node; each node pair once,
+  // the lower triangle); each point's sliding term stays a rank-one term for the linear solver.
+  std::vector<int> nodes = {e.start, e.end};
+  for (const contact::ActivePoint& p : a.points) nodes.push_back(p.node);
+  for (size_t p = 0; p < nodes.size(); ++p)
+    for (size_t q = p; q < nodes.size(); ++q) {
       if (p != q && nodes[p] == nodes[q]) continue;
       add_block(nodes[p], nodes[q], r.symmetric_tangent.block<3, 3>(3 * p, 3 * q));
     }
-  linalg::RankOne term;
-  for (int k = 0; k < 9; ++k) term.equation[k] = dofs_.equation(g[k]);
-  term.u = r.sliding_u;
-  term.v = r.sliding_v;
-  if (r.sliding_u.squaredNorm() > 0.0 && r.sliding_v.squaredNorm() > 0.0) contact_rank_one_.push_back(term);
+  std::vector<int> equation(g.size());
+  for (int k = 0; k < size; ++k) equation[k] = dofs_.equation(g[k]);
+  for (int p = 0; p < a.size(); ++p)
+    if (r.sliding_u.col(p).squaredNorm() > 0.0 && r.sliding_v.col(p).squaredNorm() > 0.0)
+      contact_rank_one_.push_back({equation, r.sliding_u.col(p), r.sliding_v.col(p)});
   if (!has_prescribed_) return;
-  for (int b = 0; b < 9; ++b) {
+  for (int b = 0; b < size; ++b) {
     const double dp = model_.reference_prescribed[g[b]];
-    if (dp == 0.0 || term.equation[b] >= 0) continue;
-    for (int k = 0; k < 9; ++k)
-      if (term.equation[k] >= 0) out.prescribed_coupling[term.equation[k]] += r.tangent(k, b) * dp;
+    if (dp == 0.0 || equation[b] >= 0) continue;
+    for (int k = 0; k < size; ++k)
+      if (equation[k] >= 0) out.prescribed_coupling[equation[k]] += r.tangent(k, b) * dp;
   }
 }
 
@@ -412,11 +419,14 @@ void GlobalSystem::evaluate_contact_change(const Eigen::VectorXd& displacements,
   for (const std::vector<contact::ActiveContact>* set : {&last, &contacts})
     for (const contact::ActiveContact& a : *set) {
       const Element& e = model_.elements[a.element];
-      for (const int node : {e.start, e.end, a.node})
-        if (!contact_node_[node]) {
-          contact_node_[node] = 1;
-          nodes.push_back(node);
-        }
+      const auto mark = [&](int node) {
+        if (contact_node_[node]) return;
+        contact_node_[node] = 1;
+        nodes.push_back(node);
+      };
+      mark(e.start);
+      mark(e.end);
+      for (const contact::ActivePoint& p : a.points) mark(p.node);
     }
   for (const contact::ActiveContact& a : contacts) replaced_[a.element] = 1;
   // What no element writes starts from zero (the contacts add to it), as in evaluate().
@@ -487,8 +497,8 @@ Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacement
     forces.segment<3>(3 * k) = slot.respond(d, rotations[k], false, connection(q)).forces;
   });
   for (const contact::ActiveContact& a : contacts) {
-    const contact::Vector9 d = gather(displacements, contact_dofs(model_.elements[a.element], a.node));
-    forces.segment<3>(3 * a.element) = contact::contact_response(a.data, d, rotations[a.element], false).forces.head<3>();
+    const Eigen::VectorXd d = gather(displacements, contact_dofs(model_.elements[a.element], a));
+    forces.segment<3>(3 * a.element) = contact::active_contact_response(a, d, rotations[a.element], false).forces.head<3>();
   }
   return forces;
 }
@@ -529,7 +539,7 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
   }
   std::vector<ContactRounding> shares;
   for (const contact::ActiveContact& a : contacts)
-    shares.push_back(contact_rounding(a, gather(displacements, contact_dofs(model_.elements[a.element], a.node)),
+    shares.push_back(contact_rounding(a, gather(displacements, contact_dofs(model_.elements[a.element], a)),
                                       rotations[a.element]));
   return assembly::rounding_floor(squared, contacts, shares);
 }

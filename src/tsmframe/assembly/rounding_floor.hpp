@@ -32,15 +32,18 @@ struct RoundingFloor {
 };
 
 /// An active contact element's share of the floor: its squared terms per kind (forces over its
-/// nine dofs, moments) and its force Y's own rounding, with what sets its compliance there.
+/// dofs, moments) and its point forces' rounding (the largest: its node, what sets its
+/// compliance there).
 struct ContactRounding {
   double force_squared = 0.0, moment_squared = 0.0;
-  double y_floor = 0.0;     ///< the rounding of Y
+  double points_squared = 0.0;  ///< the points' share of force_squared
+  int node = -1;            ///< the point whose Y rounds the most: its node
+  double y_floor = 0.0;     ///< the rounding of its Y
   double compliance = 0.0;  ///< c at the point
   bool at_edge = false, at_cap = false, uncapped = false;  ///< as RoundingFloor's
 };
-/// `d`: the contact element's nine displacements; `rotation`: its chord's rotation at the state.
-ContactRounding contact_rounding(const contact::ActiveContact& contact, const Eigen::Matrix<double, 9, 1>& d, double rotation);
+/// `d`: the contact element's displacements (contact_dofs); `rotation`: its chord's rotation at the state.
+ContactRounding contact_rounding(const contact::ActiveContact& contact, const Eigen::VectorXd& d, double rotation);
 
 /// The floor from the plain elements' squared sums per kind and the active contacts' shares.
 RoundingFloor rounding_floor(std::array<double, 2> elements_squared, const std::vector<contact::ActiveContact>& contacts,

@@ -23,16 +23,16 @@ std::vector<ContactState> ContactSet::initial_states() const {
   const Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
   const std::vector<double> rotations(model.elements.size(), 0.0);
   std::vector<ContactState> states(contact_count());
-  std::vector<char> occupied(model.elements.size(), 0);
+  Occupancy occupancy(model.elements.size());
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
     states[k].reference.side.assign(contact.candidates.size(), 0);
     reset_sides(geometry_, contact, D, rotations, 0, states[k]);
     // Resting on an element as drawn (model/resting_contact): in contact from the start, so a
-    // structure held only by its contacts has a tangent to start from (one contact per element,
-    // as always: a second one on the same element starts at the first update instead).
-    if (const auto r = resting_contact(model, model.contacts[k]); r && !occupied[r->element]) {
-      occupied[r->element] = 1;
+    // structure held only by its contacts has a tangent to start from (where the element may take
+    // no other point, occupancy.hpp, a second one starts at the first update instead).
+    if (const auto r = resting_contact(model, model.contacts[k]); r && occupancy.may_join(r->element, alone(contact))) {
+      occupancy.join(r->element, alone(contact));
       states[k].active = true;
       states[k].element = r->element;
       states[k].side = r->side;
@@ -44,13 +44,23 @@ std::vector<ContactState> ContactSet::initial_states() const {
 
 std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<ContactState>& states) const {
   std::vector<ActiveContact> active;
+  std::vector<int> place;  // per element: its place in `active`, −1 none (made only when needed)
+  const auto add_point = [&](int k, bool vertex, int element, int side) {
+    const ContactCandidates& contact = geometry_.contact(k);
+    if (place.empty()) place.assign(geometry_.model().elements.size(), -1);
+    if (place[element] < 0) {
+      place[element] = static_cast<int>(active.size());
+      active.push_back({element, {}, {}});
+    }
+    ActiveContact& a = active[place[element]];
+    a.points.push_back({k, vertex, contact.node});
+    a.data.push_back(geometry_.element_data(contact, element, side));
+  };
   for (int k = 0; k < contact_count(); ++k) {
     const ContactState& s = states[k];
     if (!s.active) continue;
-    const ContactCandidates& contact = geometry_.contact(k);
-    active.push_back({k, false, contact.node, s.element, geometry_.element_data(contact, s.element, s.side)});
-    if (s.vertex)
-      active.push_back({k, true, contact.node, s.vertex->element, geometry_.element_data(contact, s.vertex->element, s.vertex->side)});
+    add_point(k, false, s.element, s.side);
+    if (s.vertex) add_point(k, true, s.vertex->element, s.vertex->side);
   }
   return active;
 }
@@ -73,19 +83,14 @@ ContactChanges ContactSet::update(const Eigen::VectorXd& D, const std::vector<do
                                   bool at_convergence) const {
   record(D, rotations, evaluated, states);
   ContactChanges changes;
-  std::vector<char> occupied(geometry_.model().elements.size(), 0);
-  for (const ContactState& s : states)
-    if (s.active) {
-      occupied[s.element] = 1;
-      if (s.vertex) occupied[s.vertex->element] = 1;
-    }
+  Occupancy occupancy(geometry_, states);
   ChordFrames frames(geometry_, D);
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
     ContactState& state = states[k];
     if (state.active) {
-      update_active(contact, D, rotations, at_convergence, state, occupied, changes);
-    } else if (const std::optional<HandOver> touched = detect(geometry_, contact, D, rotations, frames, state, occupied)) {
+      update_active(contact, D, rotations, at_convergence, state, occupancy, changes);
+    } else if (const std::optional<HandOver> touched = detect(geometry_, contact, D, rotations, frames, state, occupancy)) {
       ++changes.activated;
       add(*touched, changes);
     }
@@ -95,20 +100,20 @@ ContactChanges ContactSet::update(const Eigen::VectorXd& D, const std::vector<do
 
 void ContactSet::update_active(const ContactCandidates& contact, const Eigen::VectorXd& D,
                                const std::vector<double>& rotations, bool at_convergence, ContactState& state,
-                               std::vector<char>& occupied, ContactChanges& changes) const {
+                               Occupancy& occupancy, ContactChanges& changes) const {
   if (state.vertex) {
     // A vertex holds the node at the beam node until a converged iterate finds a side pulling.
-    if (at_convergence && open_vertex(geometry_, contact, D, rotations, state, occupied)) ++changes.released;
+    if (at_convergence && open_vertex(geometry_, contact, D, rotations, state, occupancy)) ++changes.released;
     return;
   }
   if (at_convergence && state.force < 0.0) {  // compression only
-    occupied[state.element] = 0;
+    occupancy.leave(state.element);
     release(geometry_, contact, D, rotations, state, true);
     ++changes.released;
     return;
   }
   if (state.alpha >= 0.0 && state.alpha <= 1.0) return;
-  add(hand_over(geometry_, contact, D, rotations, at_convergence, state, occupied), changes);
+  add(hand_over(geometry_, contact, D, rotations, at_convergence, state, occupancy), changes);
 }
 
 bool ContactSet::passed_through(const Eigen::VectorXd& D, const std::vector<double>& rotations,

@@ -14,26 +14,19 @@
 #include <utility>
 #include <vector>
 
+#include "tsmframe/contact/active_contact.hpp"
 #include "tsmframe/contact/contact_element.hpp"
 #include "tsmframe/contact/contact_geometry.hpp"
 #include "tsmframe/contact/contact_state.hpp"
+#include "tsmframe/contact/occupancy.hpp"
 #include "tsmframe/model/model.hpp"
 
 namespace tsm::contact {
 
-/// A contact element to evaluate: the node of contact `contact` on element `element`.
-struct ActiveContact {
-  int contact = -1;     ///< index of the contact (model order)
-  bool vertex = false;  ///< the second element of a vertex (ContactState::vertex)
-  int node = 0;
-  int element = 0;
-  ContactElementData data;
-};
-
-/// What an evaluation of an active contact element found, for its contact.
+/// What an evaluation of an active contact element found, for one of its points.
 struct ContactEvaluation {
-  int contact = -1;     ///< ActiveContact::contact
-  bool vertex = false;  ///< ActiveContact::vertex
+  int contact = -1;     ///< ActivePoint::contact
+  bool vertex = false;  ///< ActivePoint::vertex
   double alpha = 0.0;
   double Y = 0.0;
 };
@@ -55,7 +48,8 @@ class ContactSet {
   /// States at the undeformed model: sides of every contact node against its candidates, and
   /// in touch where a node rests on an element as drawn (model/resting_contact).
   std::vector<ContactState> initial_states() const;
-  /// The contact elements of the active contacts (two for a vertex).
+  /// The contact elements of the active contacts: one per element with points on it (a vertex
+  /// is a point on each of its two elements), in the order of their first points' contacts.
   std::vector<ActiveContact> active_contacts(const std::vector<ContactState>& states) const;
   /// Reads the evaluations of the active contacts into their states (α, Y, compression) without
   /// changing the active set: the evaluation that stands.
@@ -72,8 +66,8 @@ class ContactSet {
   /// converged state is then not acceptable.
   bool passed_through(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                       const std::vector<ContactState>& states) const;
-  /// A contact (index) whose node reached an element another contact is on — one contact
-  /// element per element — and that element; {−1, −1} if none.
+  /// A contact (index) whose node reached an element it may not join — a vertex or a
+  /// cantilever-frame contact has it to itself (occupancy.hpp) — and that element; {−1, −1} if none.
   std::pair<int, int> blocked(const std::vector<ContactState>& states) const;
   /// Lets every contact released during this step whose node has passed through a beam touch
   /// again (the next update() starts it from its side at the step's start); returns how many.
@@ -95,7 +89,7 @@ class ContactSet {
   /// The life cycle of one active contact at an update.
   void update_active(const ContactCandidates& contact, const Eigen::VectorXd& displacements,
                      const std::vector<double>& rotations, bool at_convergence, ContactState& state,
-                     std::vector<char>& occupied, ContactChanges& changes) const;
+                     Occupancy& occupancy, ContactChanges& changes) const;
 
   ContactGeometry geometry_;
 };

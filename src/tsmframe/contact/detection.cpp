@@ -20,7 +20,7 @@ void ChordFrames::form() {
 }
 
 int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spec, const ContactState& state,
-                   const Eigen::VectorXd& D, const std::vector<char>& occupied) {
+                   const Eigen::VectorXd& D, const Occupancy& occupancy) {
   const Model& model = geometry.model();
   // In each element's own frame the node moved from (α0, g0) at the last converged state to
   // (α1, g1) now: where g reaches the contact's gap on the far side, α is interpolated between.
@@ -46,7 +46,7 @@ int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spe
   double first_t = INFINITY;
   for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
     const int f = spec.candidates[ci], side = state.reference.side[ci];
-    if (occupied[f] || (side != 1 && side != -1)) continue;
+    if (!occupancy.may_join(f, alone(spec)) || (side != 1 && side != -1)) continue;
     const double before = side * state.reference.across[ci];
     if (!(before > spec.gap)) continue;
     const Element& e = model.elements[f];
@@ -72,7 +72,7 @@ int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spe
 
 std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& D,
                                const std::vector<double>& rotations, ChordFrames& frames, ContactState& state,
-                               std::vector<char>& occupied) {
+                               Occupancy& occupancy) {
   state.step.blocked_element = -1;
   if (state.step.released) return std::nullopt;
   int best = -1, best_side = 0;
@@ -92,7 +92,7 @@ std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCan
     } else if (std::abs(where.gap) > geometry.touch_tolerance()) {
       side = -sign(where.gap);  // it left the centre line: it pushes the way it moves
     }
-    if (side != 0 && occupied[f]) {  // another contact holds this element: one per element
+    if (side != 0 && !occupancy.may_join(f, alone(contact))) {  // a vertex or a cantilever-frame contact holds it
       state.step.blocked_element = f;
       continue;
     }
@@ -107,7 +107,7 @@ std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCan
     // Across an element's span and on beyond it within one iterate (a long step along a beam
     // the node was pressed onto): contact starts on that element, and is handed on along the
     // beam from there to where the node is — as far as the beam lets it (a column in the way).
-    best = swept_crossing(geometry, contact, state, D, occupied);
+    best = swept_crossing(geometry, contact, state, D, occupancy);
     if (best < 0) return std::nullopt;
     best_side = state.reference.side[contact.candidate_index[best]];
     best_alpha = geometry.locate(contact, best, D, rotations).alpha;
@@ -118,8 +118,8 @@ std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCan
   state.side = best_side;
   state.alpha = best_alpha;
   state.force = state.Y = 0.0;
-  occupied[best] = 1;
-  if (state.alpha < 0.0 || state.alpha > 1.0) return hand_over(geometry, contact, D, rotations, false, state, occupied);
+  occupancy.join(best, alone(contact));
+  if (state.alpha < 0.0 || state.alpha > 1.0) return hand_over(geometry, contact, D, rotations, false, state, occupancy);
   return HandOver{};
 }
 

@@ -12,6 +12,7 @@
 
 #include "tsmframe/contact/contact_geometry.hpp"
 #include "tsmframe/contact/contact_state.hpp"
+#include "tsmframe/contact/occupancy.hpp"
 #include "tsmframe/contact/sliding.hpp"
 
 namespace tsm::contact {
@@ -38,13 +39,13 @@ class ChordFrames {
 /// The first candidate whose span the node has crossed, from its side, between the last
 /// converged state and now while ending beyond the span, first along the path (−1: none).
 int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& contact, const ContactState& state,
-                   const Eigen::VectorXd& displacements, const std::vector<char>& occupied);
+                   const Eigen::VectorXd& displacements, const Occupancy& occupancy);
 
 /// Starts the inactive contact `state` where its node has reached an element, and hands it on
 /// along the beam to where the node is (sliding.hpp). None: it touches nothing (or only elements
-/// another contact is on: state.step.blocked_element says which).
+/// it may not join, occupancy.hpp: state.step.blocked_element says which).
 std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCandidates& contact,
                                const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
-                               ChordFrames& frames, ContactState& state, std::vector<char>& occupied);
+                               ChordFrames& frames, ContactState& state, Occupancy& occupancy);
 
 }  // namespace tsm::contact

@@ -8,7 +8,7 @@ namespace tsm::contact {
 
 HandOver hand_over(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& D,
                    const std::vector<double>& rotations, bool at_convergence, ContactState& state,
-                   std::vector<char>& occupied) {
+                   Occupancy& occupancy) {
   // The point has left its element: hand it on to the neighbour at that end, and on while it
   // is still beyond, but not farther than max(one element, 5 % of the model's size) per
   // iterate (coarse meshes: one element; fine meshes slide many elements per iterate), and over
@@ -26,11 +26,11 @@ HandOver hand_over(const ContactGeometry& geometry, const ContactCandidates& con
     // (at a joint of three or more members, the one bounding the same sector: a point on a
     // beam's top passes a column below it and goes on along the beam).
     auto [best, to_side] = across(geometry, contact, state.element, state.side, end, D);
-    if (best >= 0 && occupied[best]) best = -1;
+    if (best >= 0 && !occupancy.may_join(best, alone(contact))) best = -1;
     const double best_alpha = best >= 0 ? geometry.locate(contact, best, D, rotations).alpha : 0.0;
     if (best < 0) {  // no element beyond: the point has left the beam's free end …
       if (at_convergence) {  // … but only a converged iterate says so (till then α is held at the end)
-        occupied[state.element] = 0;
+        occupancy.leave(state.element);
         release(geometry, contact, D, rotations, state, false);
         changes.released = true;
       }
@@ -45,14 +45,17 @@ HandOver hand_over(const ContactGeometry& geometry, const ContactCandidates& con
     if (end == state.step.held_node && beyond_from <= edge) break;
     const bool reverses = state.step.handover_direction != 0 && direction != state.step.handover_direction;
     const double into_to = to.start == end ? best_alpha : 1.0 - best_alpha;  // from the node, < 0: behind it
-    if (comes_to_rest_on_node(state, direction, end, edge, beyond_from, into_to)) {
-      occupied[best] = 1;
+    // A vertex needs both elements to itself: beside other points the point passes on instead.
+    if (occupancy.points(state.element) == 1 && occupancy.points(best) == 0 &&
+        comes_to_rest_on_node(state, direction, end, edge, beyond_from, into_to)) {
+      occupancy.make_exclusive(state.element);
+      occupancy.join(best, true);
       enter_vertex(model, end, best, to_side, state);
       ++changes.handed_over;
       break;
     }
-    occupied[state.element] = 0;
-    occupied[best] = 1;
+    occupancy.leave(state.element);
+    occupancy.join(best, alone(contact));
     state.side = to_side;
     if (reverses) {
       ++changes.reversed;

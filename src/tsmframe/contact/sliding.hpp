@@ -12,6 +12,7 @@
 
 #include "tsmframe/contact/contact_geometry.hpp"
 #include "tsmframe/contact/contact_state.hpp"
+#include "tsmframe/contact/occupancy.hpp"
 
 namespace tsm::contact {
 
@@ -24,9 +25,9 @@ struct HandOver {
 
 /// Hands the contact `state`, whose point has left its element, on along the beam.
 /// `at_convergence`: a converged iterate (a point past a free end lets go only there).
-/// `occupied`: per element, whether a contact is on it (one contact per element).
+/// `occupancy`: the points on each element (a point passes an element it may not join as a free end).
 HandOver hand_over(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& displacements,
                    const std::vector<double>& rotations, bool at_convergence, ContactState& state,
-                   std::vector<char>& occupied);
+                   Occupancy& occupancy);
 
 }  // namespace tsm::contact

@@ -53,23 +53,24 @@ void read_vertex(const ContactGeometry& geometry, const Eigen::VectorXd& D, cons
 }
 
 bool open_vertex(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& D,
-                 const std::vector<double>& rotations, ContactState& state, std::vector<char>& occupied) {
+                 const std::vector<double>& rotations, ContactState& state, Occupancy& occupancy) {
   const Vertex v = *state.vertex;
   const bool first_pulls = -state.side * state.Y < 0.0, partner_pulls = -v.side * v.Y < 0.0;
   if (!first_pulls && !partner_pulls) return false;
   const int node = vertex_node(geometry.model(), state);
   if (first_pulls && partner_pulls) {
-    occupied[state.element] = occupied[v.element] = 0;
+    occupancy.leave(state.element);
+    occupancy.leave(v.element);
     release(geometry, contact, D, rotations, state, true);
     return true;
   }
   if (first_pulls) {
-    occupied[state.element] = 0;
+    occupancy.leave(state.element);
     state.element = v.element;
     state.side = v.side;
     state.Y = v.Y;
   } else {
-    occupied[v.element] = 0;
+    occupancy.leave(v.element);
   }
   state.vertex.reset();
   state.step.held_node = node;  // the node goes on along the other element, held at the node for now

@@ -14,6 +14,7 @@
 
 #include "tsmframe/contact/contact_geometry.hpp"
 #include "tsmframe/contact/contact_state.hpp"
+#include "tsmframe/contact/occupancy.hpp"
 
 namespace tsm::contact {
 
@@ -37,9 +38,8 @@ void read_vertex(const ContactGeometry& geometry, const Eigen::VectorXd& displac
                  double partner_Y, ContactState& state);
 
 /// At a converged iterate: a vertex where a side pulls opens — that side lets go (both: the
-/// contact is released). Returns whether it opened. `occupied`: per element, whether a contact
-/// is on it.
+/// contact is released). Returns whether it opened; the elements it leaves are left in `occupancy`.
 bool open_vertex(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& displacements,
-                 const std::vector<double>& rotations, ContactState& state, std::vector<char>& occupied);
+                 const std::vector<double>& rotations, ContactState& state, Occupancy& occupancy);
 
 }  // namespace tsm::contact

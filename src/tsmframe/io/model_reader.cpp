@@ -338,18 +338,21 @@ class Reader {
     }
   }
 
-  /// Contacts resting on a beam as drawn start in contact, one per element (as at every
-  /// update): two resting on one element cannot both hold it.
+  /// Contacts resting on a beam as drawn start in contact; an element carries any number of
+  /// them, but a cantilever-frame contact one alone (as at every update): two resting on one
+  /// element where one of them is in that frame cannot both hold it.
   void check_resting_contacts() {
     std::vector<int> resting_on(model_.elements.size(), -1);
     for (int k = 0; k < static_cast<int>(model_.contacts.size()); ++k) {
       const auto r = resting_contact(model_, model_.contacts[k]);
       if (!r) continue;
-      if (resting_on[r->element] >= 0)
+      const int other = resting_on[r->element];
+      if (other >= 0 && (model_.contacts[k].frame == ContactFrame::cantilever ||
+                         model_.contacts[other].frame == ContactFrame::cantilever))
         fail("contacts[" + std::to_string(k) + "]",
-             "rests on element " + std::to_string(model_.elements[r->element].id) + ", as contacts[" +
-                 std::to_string(resting_on[r->element]) + "] does: one contact per element (give that member more divisions)");
-      resting_on[r->element] = k;
+             "rests on element " + std::to_string(model_.elements[r->element].id) + ", as contacts[" + std::to_string(other) +
+                 "] does: a cantilever-frame contact has its element to itself (give that member more divisions, or use the chord frame)");
+      if (other < 0 || model_.contacts[k].frame == ContactFrame::cantilever) resting_on[r->element] = k;
     }
   }
 

@@ -35,7 +35,7 @@ bool LinearSolver::factorize(BlockMatrix& matrix, const std::vector<RankOne>& ra
   woodbury_v_.setZero(n, q);
   for (Eigen::Index k = 0; k < q; ++k) {
     Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
-    for (int a = 0; a < 9; ++a) {
+    for (int a = 0; a < rank_one[k].size(); ++a) {
       const int eq = rank_one[k].equation[a];
       if (eq < 0) continue;
       u[eq] += rank_one[k].u[a];
@@ -76,7 +76,9 @@ bool LinearSolver::factorize_and_solve(BlockMatrix& matrix, const std::vector<Ra
 bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one) {
   const assembly::DofMap& dofs = *dofs_;
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(2 * 9 * matrix.value.size() + 81 * rank_one.size());
+  size_t rank_one_entries = 0;
+  for (const RankOne& t : rank_one) rank_one_entries += static_cast<size_t>(t.size()) * t.size();
+  entries.reserve(2 * 9 * matrix.value.size() + rank_one_entries);
   auto equation = [&](int block, int d) { return dofs.equation(dofs_per_node * dofs.block_node(block) + d); };
   for (int c = 0; c < matrix.size; ++c) {
     for (int p = matrix.column[c]; p < matrix.column[c + 1]; ++p) {
@@ -96,9 +98,9 @@ bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vecto
     }
   }
   for (const RankOne& t : rank_one)
-    for (int a = 0; a < 9; ++a) {
+    for (int a = 0; a < t.size(); ++a) {
       if (t.equation[a] < 0) continue;
-      for (int b = 0; b < 9; ++b)
+      for (int b = 0; b < t.size(); ++b)
         if (t.equation[b] >= 0) entries.emplace_back(t.equation[a], t.equation[b], t.u[a] * t.v[b]);
     }
   const int n = dofs.free_count();

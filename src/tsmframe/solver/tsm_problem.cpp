@@ -191,8 +191,8 @@ Settlement TsmProblem::at_convergence(State& state) {
     return settlement;
   }
   if (const auto [k, element] = contacts_ ? contacts_->blocked(state.contacts) : std::pair{-1, -1}; k >= 0) {
-    // Its node lies through an element another contact is on: the state is not acceptable,
-    // and no iterate can change that (one contact element per element).
+    // Its node lies through an element another contact has to itself (a vertex, or the
+    // cantilever frame): the state is not acceptable, and no iterate can change that.
     settlement.kind = Settlement::Kind::failed;
     settlement.failure.reason = StepFailure::Reason::contact_blocked;
     settlement.failure.blocked_contact = k;
@@ -272,7 +272,11 @@ std::vector<int> TsmProblem::look_ahead_releases(State& state, bool& overwrote_t
     }
     pulls = pulls || c.force < 0.0;
   }
-  if (!pulls || owner.size() != active.size()) return also;
+  // Points that share an element are coupled through it (their stiffness is C⁻¹, not one 1/c
+  // each): the forecast's model of letting go does not hold there, and Newton settles alone.
+  if (!pulls || owner.size() != active.size() ||
+      std::any_of(active.begin(), active.end(), [](const contact::ActiveContact& a) { return a.size() > 1; }))
+    return also;
   const std::vector<assembly::ContactDirection> directions =
       system_.contact_directions(state.displacements, state.chord_rotations, active);
   analyse_pattern();
@@ -287,13 +291,13 @@ std::vector<int> TsmProblem::look_ahead_releases(State& state, bool& overwrote_t
   bool finite = true;
   const auto column = [&](int j) {  // Uᵀ K⁻¹ u_j: one solve
     Eigen::VectorXd x = Eigen::VectorXd::Zero(system_.dofs().free_count());
-    for (int e = 0; e < 9; ++e)
+    for (size_t e = 0; e < directions[j].equation.size(); ++e)
       if (directions[j].equation[e] >= 0) x[directions[j].equation[e]] += directions[j].u[e];
     solver_.solve_in_place(x);
     Eigen::VectorXd g(n);
     for (int i = 0; i < n; ++i) {
       double sum = 0.0;
-      for (int e = 0; e < 9; ++e)
+      for (size_t e = 0; e < directions[i].equation.size(); ++e)
         if (directions[i].equation[e] >= 0) sum += directions[i].u[e] * x[directions[i].equation[e]];
       g[i] = sum;
     }

@@ -71,6 +71,57 @@ TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
   }
 }
 
+// ---- Several points on one element (issue 27) ----
+
+TEST(ContactAssembly, TangentWithSeveralPointsOnOneElementMatchesFiniteDifferences) {
+  // Three posts' free bottoms on the cantilever's third element (1/3 … 1/2), pressed into a bent,
+  // rotated beam: one contact element with three points, their nodes coupled through the beam.
+  for (const char* element : {"euler-bernoulli", "timoshenko"}) {
+    json m = post_on_cantilever(element, 0.36);
+    const double xs[3] = {0.36, 0.40, 0.47};
+    m["contacts"] = json::array({{{"node", 100}, {"members", {0}}}});
+    for (int p = 1; p < 3; ++p) {
+      m["nodes"].push_back({{"id", 100 + p}, {"x", xs[p]}, {"y", 0.0}});
+      m["nodes"].push_back({{"id", 11 + 10 * p}, {"x", xs[p]}, {"y", 0.5}});
+      m["members"].push_back({{"from", 11 + 10 * p}, {"to", 100 + p}, {"divisions", 2}, {"material", "m"}, {"section", "s"}});
+      m["supports"].push_back({{"node", 11 + 10 * p}, {"type", "fixed"}});
+      m["contacts"].push_back({{"node", 100 + p}, {"members", {0}}});
+    }
+    const tsm::Model model = tsm::io::read_model(m);
+    tsm::assembly::DofMap dofs(model);
+    tsm::assembly::GlobalSystem system(model, dofs);
+    tsm::contact::ContactSet tracker(model);
+    std::vector<tsm::contact::ContactState> states = tracker.initial_states();
+    Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
+    for (int k = 0; k < model.node_count(); ++k) {
+      const double x = model.nodes[k].position.x();
+      D.segment<3>(3 * k) << -0.05 * x * x, 0.3 * x * x, 0.6 * x;
+    }
+    for (int p = 0; p < 3; ++p) {
+      const double x = xs[p];
+      D.segment<2>(3 * model.node_index(100 + p)) << -0.05 * x * x + 0.01 * p, 0.3 * x * x + 0.02 - 0.01 * p;
+      states[p].active = true;
+      states[p].element = 2;
+      states[p].side = 1;
+    }
+    const std::vector<double> rotations(model.elements.size(), 0.0);
+    const auto active = tracker.active_contacts(states);
+    ASSERT_EQ(active.size(), 1u);
+    ASSERT_EQ(active[0].size(), 3);
+    tsm::assembly::Evaluation e;
+    system.evaluate(D, rotations, true, e, active);
+    ASSERT_EQ(e.contacts.size(), 3u);
+    for (const auto& c : e.contacts) ASSERT_GT(std::abs(c.Y), 1.0);
+    ASSERT_EQ(system.contact_rank_one().size(), 3u);  // one sliding term per point
+    const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent(), system.contact_rank_one());
+    const Eigen::MatrixXd fd = finite_difference_tangent(system, dofs, D, e.chord_rotations, active);
+    EXPECT_LE((K - fd).norm(), 1e-6 * fd.norm()) << element;
+    // The points' nodes are coupled through the beam (C⁻¹ is not diagonal).
+    const int c0 = dofs.equation(3 * model.node_index(100) + 1), c2 = dofs.equation(3 * model.node_index(102) + 1);
+    EXPECT_GT(std::abs(K(c0, c2)), 1e-3 * std::abs(K(c0, c0))) << element;
+  }
+}
+
 // ---- A vertex: two contact elements at one node ----
 
 TEST(ContactVertex, TheAssembledTangentMatchesFiniteDifferences) {

@@ -100,7 +100,7 @@ TEST_P(ContactChange, FormsBitForBitWhatAFullEvaluationForms) {
   for (size_t k = 0; k < rotations.size(); ++k) rotations[k] = 0.01 * static_cast<double>(k);
 
   // (element of contact 100, element of contact 200), −1: inactive.
-  const std::vector<std::pair<int, int>> sets = {{2, -1}, {3, -1}, {3, 4}, {-1, 5}, {0, 5}, {0, -1}, {-1, -1}, {5, 4}};
+  const std::vector<std::pair<int, int>> sets = {{2, -1}, {3, -1}, {3, 4}, {-1, 5}, {0, 5}, {4, 4}, {0, -1}, {-1, -1}, {5, 4}, {4, 4}};
   tsm::assembly::Evaluation p, f;
   patched.evaluate(D, rotations, true, p);
   for (const auto& [on_100, on_200] : sets) {

@@ -16,7 +16,7 @@ using tsm::test::ContactFixture;
 ContactState drawn(const ContactGeometry& geometry, const ContactFixture& f) { return tsm::test::reference_state(geometry, f); }
 
 std::optional<tsm::contact::HandOver> detect(const ContactGeometry& geometry, const ContactFixture& f,
-                                             ContactState& state, std::vector<char>& occupied) {
+                                             ContactState& state, tsm::contact::Occupancy& occupied) {
   ChordFrames frames(geometry, f.D);
   return tsm::contact::detect(geometry, geometry.contact(0), f.D, f.rotations, frames, state, occupied);
 }
@@ -25,7 +25,7 @@ TEST(ContactDetection, ANodeThatReachesTheBeamFromAboveTouchesTheElementUnderIt)
   ContactFixture f(0.3, 0.1);
   const ContactGeometry geometry(f.model);
   ContactState state = drawn(geometry, f);
-  std::vector<char> occupied(f.model.elements.size(), 0);
+  tsm::contact::Occupancy occupied(f.model.elements.size());
   f.move_foot(0.0, -0.09);  // still 1 cm above: nothing
   EXPECT_FALSE(detect(geometry, f, state, occupied));
   EXPECT_FALSE(state.active);
@@ -36,14 +36,14 @@ TEST(ContactDetection, ANodeThatReachesTheBeamFromAboveTouchesTheElementUnderIt)
   EXPECT_EQ(state.side, 1);  // it presses from above
   EXPECT_NEAR(state.alpha, 0.2, 1e-12);
   EXPECT_EQ(state.Y, 0.0);  // a contact starts without a jump
-  EXPECT_TRUE(occupied[1]);
+  EXPECT_EQ(occupied.points(1), 1);
 }
 
 TEST(ContactDetection, AContactWithAGapStartsAtTheGap) {
   ContactFixture f(0.3, 0.1, {{"gap", 0.02}});
   const ContactGeometry geometry(f.model);
   ContactState state = drawn(geometry, f);
-  std::vector<char> occupied(f.model.elements.size(), 0);
+  tsm::contact::Occupancy occupied(f.model.elements.size());
   f.move_foot(0.0, -0.079);  // 2.1 cm above
   EXPECT_FALSE(detect(geometry, f, state, occupied));
   f.move_foot(0.0, -0.081);  // 1.9 cm above: within the gap
@@ -55,7 +55,7 @@ TEST(ContactDetection, ANodeOffTheCentreLineItStartedOnPushesTheWayItMoves) {
   ContactFixture f(0.3, 0.0);  // drawn on the centre line: no side yet
   const ContactGeometry geometry(f.model);
   ContactState state = drawn(geometry, f);
-  std::vector<char> occupied(f.model.elements.size(), 0);
+  tsm::contact::Occupancy occupied(f.model.elements.size());
   f.move_foot(0.0, 1e-12);  // within the tolerance (1e-10 × size): still on it
   EXPECT_FALSE(detect(geometry, f, state, occupied));
   f.move_foot(0.0, -1e-3);
@@ -63,15 +63,29 @@ TEST(ContactDetection, ANodeOffTheCentreLineItStartedOnPushesTheWayItMoves) {
   EXPECT_EQ(state.side, 1);  // moved down: it presses down, as from above
 }
 
-TEST(ContactDetection, AnElementAnotherContactIsOnBlocksTheNodeAndSaysWhich) {
+TEST(ContactDetection, AnElementAVertexHoldsBlocksTheNodeAndSaysWhich) {
   ContactFixture f(0.3, 0.1);
   const ContactGeometry geometry(f.model);
   ContactState state = drawn(geometry, f);
-  std::vector<char> occupied(f.model.elements.size(), 0);
-  occupied[1] = 1;
+  tsm::contact::Occupancy occupied(f.model.elements.size());
+  occupied.join(1, true);  // another contact's vertex (or a cantilever-frame contact): its alone
   f.move_foot(0.0, -0.11);
   EXPECT_FALSE(detect(geometry, f, state, occupied));
   EXPECT_EQ(state.step.blocked_element, 1);
+}
+
+TEST(ContactDetection, ANodeReachingAnElementAnotherPointIsOnJoinsIt) {
+  // Issue 27: an element carries any number of chord-frame points.
+  ContactFixture f(0.3, 0.1);
+  const ContactGeometry geometry(f.model);
+  ContactState state = drawn(geometry, f);
+  tsm::contact::Occupancy occupied(f.model.elements.size());
+  occupied.join(1, false);
+  f.move_foot(0.0, -0.11);
+  ASSERT_TRUE(detect(geometry, f, state, occupied));
+  EXPECT_EQ(state.element, 1);
+  EXPECT_EQ(state.step.blocked_element, -1);
+  EXPECT_EQ(occupied.points(1), 2);
 }
 
 TEST(ContactDetection, AContactReleasedInTheStepDoesNotTouchAgainWithinIt) {
@@ -79,7 +93,7 @@ TEST(ContactDetection, AContactReleasedInTheStepDoesNotTouchAgainWithinIt) {
   const ContactGeometry geometry(f.model);
   ContactState state = drawn(geometry, f);
   state.step.released = true;
-  std::vector<char> occupied(f.model.elements.size(), 0);
+  tsm::contact::Occupancy occupied(f.model.elements.size());
   f.move_foot(0.0, -0.11);
   EXPECT_FALSE(detect(geometry, f, state, occupied));
 }
@@ -92,7 +106,7 @@ TEST(ContactDetection, ANodeThatCrossedASpanAndWentOnBeyondStartsOnItAndIsHanded
   ContactFixture f(0.3, 0.1);
   const ContactGeometry geometry(f.model);
   ContactState state = drawn(geometry, f);
-  std::vector<char> occupied(f.model.elements.size(), 0);
+  tsm::contact::Occupancy occupied(f.model.elements.size());
   f.move_foot(1.0, -0.3);
   EXPECT_EQ(tsm::contact::swept_crossing(geometry, geometry.contact(0), state, f.D, occupied), 2);
   const auto handed = detect(geometry, f, state, occupied);

@@ -11,21 +11,22 @@ namespace {
 
 using tsm::contact::ContactGeometry;
 using tsm::contact::ContactState;
+using tsm::contact::Occupancy;
 using tsm::contact::HandOver;
 using tsm::test::ContactFixture;
 
 /// The contact active on `element` from above, its node at the fixture's displacements.
-ContactState on(const ContactGeometry& geometry, const ContactFixture& f, int element, std::vector<char>& occupied) {
+ContactState on(const ContactGeometry& geometry, const ContactFixture& f, int element, Occupancy& occupied) {
   const ContactState state = tsm::test::active_state(geometry, f, element);
-  occupied.assign(f.model.elements.size(), 0);
-  occupied[element] = 1;
+  occupied = Occupancy(f.model.elements.size());
+  occupied.join(element, false);
   return state;
 }
 
 TEST(ContactSliding, APointPastAnElementsEndGoesOnToTheNextElement) {
   ContactFixture f(0.3, 0.0);
   const ContactGeometry geometry(f.model);
-  std::vector<char> occupied;
+  Occupancy occupied(0);
   ContactState state = on(geometry, f, 1, occupied);
   f.move_foot(0.25, 0.0);  // to x = 0.55: α = 1.2 on element 1
   state.alpha = geometry.locate(geometry.contact(0), 1, f.D, f.rotations).alpha;
@@ -36,8 +37,8 @@ TEST(ContactSliding, APointPastAnElementsEndGoesOnToTheNextElement) {
   EXPECT_NEAR(state.alpha, 0.2, 1e-12);
   EXPECT_EQ(state.side, 1);
   EXPECT_EQ(state.step.handover_direction, 1);
-  EXPECT_FALSE(occupied[1]);
-  EXPECT_TRUE(occupied[2]);
+  EXPECT_EQ(occupied.points(1), 0);
+  EXPECT_EQ(occupied.points(2), 1);
 }
 
 TEST(ContactSliding, APointGoesNoFartherThanOneElementOrAFewPerCentOfTheModelPerIterate) {
@@ -45,7 +46,7 @@ TEST(ContactSliding, APointGoesNoFartherThanOneElementOrAFewPerCentOfTheModelPer
   // (0.25): one element per iterate, the point left beyond it for the next.
   ContactFixture f(0.1, 0.0);
   const ContactGeometry geometry(f.model);
-  std::vector<char> occupied;
+  Occupancy occupied(0);
   ContactState state = on(geometry, f, 0, occupied);
   f.move_foot(0.6, 0.0);  // to x = 0.7: α = 2.8 on element 0
   state.alpha = geometry.locate(geometry.contact(0), 0, f.D, f.rotations).alpha;
@@ -58,7 +59,7 @@ TEST(ContactSliding, APointGoesNoFartherThanOneElementOrAFewPerCentOfTheModelPer
 TEST(ContactSliding, AtAFreeEndThePointIsHeldUntilAConvergedIterateLetsItGo) {
   ContactFixture f(0.9, 0.0);
   const ContactGeometry geometry(f.model);
-  std::vector<char> occupied;
+  Occupancy occupied(0);
   ContactState state = on(geometry, f, 3, occupied);
   f.move_foot(0.2, 0.0);  // to x = 1.1: past the free end
   state.alpha = geometry.locate(geometry.contact(0), 3, f.D, f.rotations).alpha;
@@ -71,15 +72,15 @@ TEST(ContactSliding, AtAFreeEndThePointIsHeldUntilAConvergedIterateLetsItGo) {
   EXPECT_FALSE(state.active);
   EXPECT_EQ(state.step.slid_off_element, 3);
   EXPECT_TRUE(state.step.released);
-  EXPECT_FALSE(occupied[3]);
+  EXPECT_EQ(occupied.points(3), 0);
 }
 
-TEST(ContactSliding, AnElementAnotherContactIsOnStopsThePointAsAFreeEndWould) {
+TEST(ContactSliding, AnElementAVertexHoldsStopsThePointAsAFreeEndWould) {
   ContactFixture f(0.3, 0.0);
   const ContactGeometry geometry(f.model);
-  std::vector<char> occupied;
+  Occupancy occupied(0);
   ContactState state = on(geometry, f, 1, occupied);
-  occupied[2] = 1;
+  occupied.join(2, true);  // another contact's vertex: the element is its alone
   f.move_foot(0.25, 0.0);
   state.alpha = geometry.locate(geometry.contact(0), 1, f.D, f.rotations).alpha;
   const HandOver h = tsm::contact::hand_over(geometry, geometry.contact(0), f.D, f.rotations, false, state, occupied);
@@ -87,10 +88,26 @@ TEST(ContactSliding, AnElementAnotherContactIsOnStopsThePointAsAFreeEndWould) {
   EXPECT_EQ(state.element, 1);
 }
 
+TEST(ContactSliding, APointPassesOntoAnElementAnotherPointIsOn) {
+  // Issue 27: an element carries any number of chord-frame points.
+  ContactFixture f(0.3, 0.0);
+  const ContactGeometry geometry(f.model);
+  Occupancy occupied(0);
+  ContactState state = on(geometry, f, 1, occupied);
+  occupied.join(2, false);  // another contact's point
+  f.move_foot(0.25, 0.0);
+  state.alpha = geometry.locate(geometry.contact(0), 1, f.D, f.rotations).alpha;
+  const HandOver h = tsm::contact::hand_over(geometry, geometry.contact(0), f.D, f.rotations, false, state, occupied);
+  EXPECT_EQ(h.handed_over, 1);
+  EXPECT_EQ(state.element, 2);
+  EXPECT_EQ(occupied.points(1), 0);
+  EXPECT_EQ(occupied.points(2), 2);
+}
+
 TEST(ContactSliding, APointComingBackTheWayItWentCountsAReversalAtThatNode) {
   ContactFixture f(0.3, 0.0);
   const ContactGeometry geometry(f.model);
-  std::vector<char> occupied;
+  Occupancy occupied(0);
   ContactState state = on(geometry, f, 1, occupied);
   f.move_foot(0.25, 0.0);  // on to element 2
   state.alpha = geometry.locate(geometry.contact(0), 1, f.D, f.rotations).alpha;
@@ -115,7 +132,7 @@ TEST(ContactSliding, APointBeyondBothElementsOfAPeakIsHandedOverNoMoreTimesThanT
   const ContactGeometry geometry(f.model);
   f.D.segment<2>(tsm::dofs_per_node * f.model.elements[1].end) << 0.0, 0.5;
   f.move_foot(0.0, 10.5 - 1000.0);
-  std::vector<char> occupied;
+  Occupancy occupied(0);
   ContactState state = on(geometry, f, 1, occupied);
   ASSERT_NEAR(state.alpha, 17.0, 1e-9);
   ASSERT_NEAR(geometry.locate(geometry.contact(0), 2, f.D, f.rotations).alpha, -16.0, 1e-9);
@@ -123,7 +140,9 @@ TEST(ContactSliding, APointBeyondBothElementsOfAPeakIsHandedOverNoMoreTimesThanT
   EXPECT_GE(h.handed_over, 1);
   EXPECT_LE(h.handed_over, static_cast<int>(f.model.elements.size()));
   EXPECT_TRUE(state.element == 1 || state.element == 2) << state.element;
-  EXPECT_EQ(std::count(occupied.begin(), occupied.end(), 1), 1);  // still one element holds it
+  int holding = 0;  // still one element holds it
+  for (int e = 0; e < static_cast<int>(f.model.elements.size()); ++e) holding += occupied.points(e);
+  EXPECT_EQ(holding, 1);
 }
 
 }  // namespace

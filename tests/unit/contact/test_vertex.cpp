@@ -73,12 +73,13 @@ TEST(ContactVertex, AtAConvergedIterateThePullingSideLetsGoAndBothPullingRelease
   ContactFixture f(0.5, 0.0);
   const ContactGeometry geometry(f.model);
   const int node = f.model.elements[1].end;
-  std::vector<char> occupied(f.model.elements.size(), 0);
+  tsm::contact::Occupancy occupied(f.model.elements.size());
   const auto open = [&](double Y1, double Y2, ContactState& state) {
     state.Y = Y1;
     state.vertex->Y = Y2;
-    occupied.assign(f.model.elements.size(), 0);
-    occupied[1] = occupied[2] = 1;
+    occupied = tsm::contact::Occupancy(f.model.elements.size());
+    occupied.join(1, true);
+    occupied.join(2, true);
     return tsm::contact::open_vertex(geometry, geometry.contact(0), f.D, f.rotations, state, occupied);
   };
   {  // both press (side +1: Y < 0): it stays
@@ -93,14 +94,14 @@ TEST(ContactVertex, AtAConvergedIterateThePullingSideLetsGoAndBothPullingRelease
     EXPECT_EQ(state.element, 1);
     EXPECT_EQ(state.step.held_node, node);
     EXPECT_EQ(state.force, 3.0);
-    EXPECT_FALSE(occupied[2]);
+    EXPECT_EQ(occupied.points(2), 0);
   }
   {  // element 1's side pulls: element 2 carries on
     ContactState state = at_vertex(geometry, f);
     EXPECT_TRUE(open(3.0, -2.0, state));
     EXPECT_EQ(state.element, 2);
     EXPECT_EQ(state.Y, -2.0);
-    EXPECT_FALSE(occupied[1]);
+    EXPECT_EQ(occupied.points(1), 0);
   }
   {  // both pull: released
     ContactState state = at_vertex(geometry, f);
@@ -117,8 +118,8 @@ TEST(ContactVertex, APointHoppingBackAndForthAcrossANodeComesToRestThere) {
   ContactFixture f(0.45, 0.0);
   const ContactGeometry geometry(f.model);
   ContactState state = tsm::test::active_state(geometry, f, 1);
-  std::vector<char> occupied(f.model.elements.size(), 0);
-  occupied[1] = 1;
+  tsm::contact::Occupancy occupied(f.model.elements.size());
+  occupied.join(1, false);
   for (const double x : {0.52, 0.48, 0.52}) {
     f.move_foot(x - 0.45, 0.0);
     state.alpha = geometry.locate(geometry.contact(0), state.element, f.D, f.rotations).alpha;
@@ -127,7 +128,10 @@ TEST(ContactVertex, APointHoppingBackAndForthAcrossANodeComesToRestThere) {
   ASSERT_TRUE(state.vertex);
   EXPECT_EQ(state.element, 1);  // reported on the element ending at the node
   EXPECT_EQ(state.vertex->element, 2);
-  EXPECT_TRUE(occupied[1] && occupied[2]);
+  EXPECT_EQ(occupied.points(1), 1);
+  EXPECT_EQ(occupied.points(2), 1);
+  EXPECT_FALSE(occupied.may_join(1, false));  // a vertex has both elements to itself
+  EXPECT_FALSE(occupied.may_join(2, false));
 }
 
 }  // namespace

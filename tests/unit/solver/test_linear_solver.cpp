@@ -62,6 +62,9 @@ std::vector<RankOne> rank_ones(const tsm::assembly::DofMap& dofs, int count, uns
   std::uniform_int_distribution<int> equation(0, dofs.free_count() - 1);
   std::vector<RankOne> terms(count);
   for (RankOne& t : terms) {
+    t.equation.resize(9);
+    t.u.resize(9);
+    t.v.resize(9);
     for (int a = 0; a < 9; ++a) {
       t.equation[a] = a == 8 ? -1 : equation(random);  // one entry on a constrained dof
       t.u[a] = value(random);
@@ -129,14 +132,9 @@ TEST(LinearSolver, SingularSymmetricPartFallsBackToSparseLUWithTheTangentIntact)
     }
   a.value[last](0, 0) = 0.0;
   const int block = a.size - 1;
-  RankOne t;
-  t.equation.fill(-1);
-  t.u.setZero();
-  t.v.setZero();
-  t.equation[0] = s->dofs->equation(3 * s->dofs->block_node(block));
+  RankOne t{{s->dofs->equation(3 * s->dofs->block_node(block))}, Eigen::VectorXd::Constant(1, 2.0),
+            Eigen::VectorXd::Constant(1, 1.5)};
   ASSERT_GE(t.equation[0], 0);
-  t.u[0] = 2.0;
-  t.v[0] = 1.5;
   const Eigen::MatrixXd K = dense_tangent(*s->dofs, a, {t});
   const BlockMatrix original = a;
   tsm::solver::LinearSolver solver;

@@ -1,0 +1,58 @@
+#include "tsmframe/contact/active_contact.hpp"
+
+#include <algorithm>
+
+#include "tsmframe/contact/contact_response.hpp"
+
+namespace tsm::contact {
+namespace {
+
+/// The three-node element's response in the k-point form (k = 1), value for value.
+MultiPointResponse as_multi_point(const ContactResponse& r, bool with_tangent) {
+  MultiPointResponse m;
+  m.chord = r.chord;
+  m.alpha = Eigen::VectorXd::Constant(1, r.alpha);
+  m.normal = Eigen::VectorXd::Constant(1, r.normal);
+  m.deformations = r.deformations;
+  m.forces = r.forces;
+  m.nodal_forces = r.nodal_forces;
+  m.point_u = r.point_u;
+  m.point_stiffness = Eigen::MatrixXd::Constant(1, 1, r.point_stiffness);
+  m.sliding_u = r.sliding_u;
+  m.sliding_v = r.sliding_v;
+  if (with_tangent) {
+    m.tangent = r.tangent;
+    m.symmetric_tangent = r.symmetric_tangent;
+  }
+  return m;
+}
+
+}  // namespace
+
+MultiPointElementData multi_point_data(const ActiveContact& contact) {
+  const ContactElementData& first = contact.data.front();
+  MultiPointElementData data;
+  data.initial = first.initial;
+  data.section = first.section;
+  data.k0 = first.k0;
+  data.edge = first.edge;
+  data.flexibility_i = first.flexibility_i;
+  data.flexibility_j = first.flexibility_j;
+  for (const ContactElementData& point : contact.data) {
+    data.points.push_back({point.contact_start, point.offset});
+    data.min_compliance = std::max(data.min_compliance, point.min_compliance);
+    data.sliding_term = data.sliding_term && point.sliding_term;
+  }
+  return data;
+}
+
+MultiPointResponse active_contact_response(const ActiveContact& contact, const Eigen::VectorXd& d,
+                                           double previous_rotation, bool with_tangent) {
+  if (contact.size() == 1) {
+    const Vector9 d9 = d;
+    return as_multi_point(contact_response(contact.data.front(), d9, previous_rotation, with_tangent), with_tangent);
+  }
+  return multi_point_response(multi_point_data(contact), d, previous_rotation, with_tangent);
+}
+
+}  // namespace tsm::contact
