@@ -64,8 +64,8 @@ struct StepMemory {
   /// The beam node at which a vertex opened on one side: the contact left on the other element
   /// stays there rather than go back into the corner.
   int held_node = -1;
-  /// Inactive: an element the node has reached that it may not join (a vertex or a
-  /// cantilever-frame contact is on it, occupancy.hpp), at the last update; −1 none.
+  /// Inactive: an element the node has reached that it may not join (a cantilever-frame contact
+  /// is on it, or it is one, occupancy.hpp), at the last update; −1 none.
   int blocked_element = -1;
 };
 

@@ -92,7 +92,7 @@ std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCan
     } else if (std::abs(where.gap) > geometry.touch_tolerance()) {
       side = -sign(where.gap);  // it left the centre line: it pushes the way it moves
     }
-    if (side != 0 && !occupancy.may_join(f, alone(contact))) {  // a vertex or a cantilever-frame contact holds it
+    if (side != 0 && !occupancy.may_join(f, alone(contact))) {  // a cantilever-frame contact holds it
       state.step.blocked_element = f;
       continue;
     }

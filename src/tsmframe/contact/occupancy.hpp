@@ -1,8 +1,8 @@
 #pragma once
 // Which elements carry contact points at an update, and whether another point may join one: an
-// element carries any number of chord-frame points (multi_point_element.hpp, issue 27), but a
-// vertex (vertex.hpp) or a cantilever-frame contact (cantilever_frame_element.hpp, one point by
-// its formulation) has its element to itself.
+// element carries any number of chord-frame points (multi_point_element.hpp, issue 27; a vertex,
+// vertex.hpp, is a point on each of its two elements), but a cantilever-frame contact
+// (cantilever_frame_element.hpp, one point by its formulation) has its element to itself.
 
 #include <vector>
 
@@ -23,8 +23,8 @@ class Occupancy {
     for (int k = 0; k < static_cast<int>(states.size()); ++k) {
       const ContactState& s = states[k];
       if (!s.active) continue;
-      join(s.element, s.vertex.has_value() || alone(geometry.contact(k)));
-      if (s.vertex) join(s.vertex->element, true);
+      join(s.element, alone(geometry.contact(k)));
+      if (s.vertex) join(s.vertex->element, alone(geometry.contact(k)));
     }
   }
 
@@ -43,8 +43,6 @@ class Occupancy {
     --points_[element];
     exclusive_[element] = 0;
   }
-  /// The point alone on `element` takes it to itself (a vertex forms there).
-  void make_exclusive(int element) { exclusive_[element] = 1; }
 
  private:
   std::vector<int> points_;

@@ -45,11 +45,8 @@ HandOver hand_over(const ContactGeometry& geometry, const ContactCandidates& con
     if (end == state.step.held_node && beyond_from <= edge) break;
     const bool reverses = state.step.handover_direction != 0 && direction != state.step.handover_direction;
     const double into_to = to.start == end ? best_alpha : 1.0 - best_alpha;  // from the node, < 0: behind it
-    // A vertex needs both elements to itself: beside other points the point passes on instead.
-    if (occupancy.points(state.element) == 1 && occupancy.points(best) == 0 &&
-        comes_to_rest_on_node(state, direction, end, edge, beyond_from, into_to)) {
-      occupancy.make_exclusive(state.element);
-      occupancy.join(best, true);
+    if (comes_to_rest_on_node(state, direction, end, edge, beyond_from, into_to)) {
+      occupancy.join(best, alone(contact));
       enter_vertex(model, end, best, to_side, state);
       ++changes.handed_over;
       break;

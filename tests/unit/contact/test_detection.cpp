@@ -63,12 +63,12 @@ TEST(ContactDetection, ANodeOffTheCentreLineItStartedOnPushesTheWayItMoves) {
   EXPECT_EQ(state.side, 1);  // moved down: it presses down, as from above
 }
 
-TEST(ContactDetection, AnElementAVertexHoldsBlocksTheNodeAndSaysWhich) {
+TEST(ContactDetection, AnElementACantileverFrameContactHoldsBlocksTheNodeAndSaysWhich) {
   ContactFixture f(0.3, 0.1);
   const ContactGeometry geometry(f.model);
   ContactState state = drawn(geometry, f);
   tsm::contact::Occupancy occupied(f.model.elements.size());
-  occupied.join(1, true);  // another contact's vertex (or a cantilever-frame contact): its alone
+  occupied.join(1, true);  // a cantilever-frame contact: its alone
   f.move_foot(0.0, -0.11);
   EXPECT_FALSE(detect(geometry, f, state, occupied));
   EXPECT_EQ(state.step.blocked_element, 1);

@@ -75,12 +75,12 @@ TEST(ContactSliding, AtAFreeEndThePointIsHeldUntilAConvergedIterateLetsItGo) {
   EXPECT_EQ(occupied.points(3), 0);
 }
 
-TEST(ContactSliding, AnElementAVertexHoldsStopsThePointAsAFreeEndWould) {
+TEST(ContactSliding, AnElementACantileverFrameContactHoldsStopsThePointAsAFreeEndWould) {
   ContactFixture f(0.3, 0.0);
   const ContactGeometry geometry(f.model);
   Occupancy occupied(0);
   ContactState state = on(geometry, f, 1, occupied);
-  occupied.join(2, true);  // another contact's vertex: the element is its alone
+  occupied.join(2, true);  // a cantilever-frame contact: the element is its alone
   f.move_foot(0.25, 0.0);
   state.alpha = geometry.locate(geometry.contact(0), 1, f.D, f.rotations).alpha;
   const HandOver h = tsm::contact::hand_over(geometry, geometry.contact(0), f.D, f.rotations, false, state, occupied);

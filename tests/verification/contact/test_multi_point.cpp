@@ -165,6 +165,36 @@ TEST(MultiPointContact, ACoarseBeamUnderAFineOneCarriesTheContactForcesAFineBeam
   EXPECT_NEAR(total_a, total_b, 1e-6 * total_b);
 }
 
+TEST(MultiPointContact, EveryControlEndsOnTheClosedForm) {
+  // Three loaded pushers: one resting on the beam node at 10/3 (a leaf spring's roller on a node
+  // of the beam another roller touches: the point of an element at its end), two within the middle
+  // element. Load, displacement (pusher 11 taken to its closed-form deflection) and arc-length
+  // control each end as the beam under those point loads, times the load factor they end at.
+  const std::vector<double> x = {10.0 / 3.0, 4.0, 5.5}, P = {100.0, 130.0, 160.0};
+  std::vector<double> exact(3, 0.0);
+  for (int p = 0; p < 3; ++p)
+    for (int q = 0; q < 3; ++q) exact[p] -= influence(x[p], x[q], true) * P[q];
+  for (const char* control : {"load", "displacement", "arc-length"}) {
+    json m = pushed_beam(x, P, "timoshenko");
+    if (std::string(control) == "displacement")
+      m["analysis"]["control"] = {{"type", "displacement"}, {"node", 11}, {"dof", "uy"}, {"target", exact[1]}, {"steps", 4}};
+    if (std::string(control) == "arc-length")
+      m["analysis"]["control"] = {{"type", "arc-length"}, {"initial_increment", 0.2}, {"max_increment", 0.3},
+                                  {"max_steps", 100}, {"until", {{"load_factor", 1.0}}}};
+    tsm::Model model;
+    const tsm::solver::RunResult r = run(m, model);
+    ASSERT_EQ(r.status, tsm::solver::Status::converged) << control << ": " << r.message;
+    const double lambda = r.steps.back().load_factor;
+    EXPECT_NEAR(lambda, 1.0, 1e-4) << control;
+    for (int p = 0; p < 3; ++p) {
+      SCOPED_TRACE(testing::Message() << control << " control, point " << p);
+      EXPECT_GE(contact_of(r.steps.back(), p).element, 0);
+      EXPECT_NEAR(contact_of(r.steps.back(), p).force, lambda * P[p], 1e-5 * P[p]);
+      EXPECT_NEAR(node_displacement(model, r.steps.back(), 10 + p)[1], lambda * exact[p], 1e-5 * std::abs(exact[2]));
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(
     KPoints, MultiPointPush,
     ::testing::Values(Case{{5.0}, "euler-bernoulli"}, Case{{4.0, 6.0}, "euler-bernoulli"},
