@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -193,6 +196,51 @@ TEST(MultiPointContact, EveryControlEndsOnTheClosedForm) {
       EXPECT_NEAR(node_displacement(model, r.steps.back(), 10 + p)[1], lambda * exact[p], 1e-5 * std::abs(exact[2]));
     }
   }
+}
+
+TEST(MultiPointContact, AStripOnATrapezoidDrumTakesTheSameForcesFromOneElementPerFaceAsFromTen) {
+  // examples/strip-on-coarse-arch.json with the drum's three faces as straight members: one
+  // element each (four points share each sloping face, two the crown) or ten. The drum is stiff
+  // (its faces turn ~10⁻⁵ rad), so the chord normals are the faces' and the two meshes must give
+  // the same contact forces.
+  const double gap = 0.02, c = std::cos(std::numbers::pi / 6), y = c + gap;
+  const auto draped = [&](int divisions) {
+    json m = {{"materials", {{"steel", {{"E", 2.0e11}, {"nu", 0.3}}}}},
+              {"sections", {{"drum", {{"A", 1e-2}, {"I", 1e-5}}}, {"strip", {{"A", 1e-4}, {"I", 3.333e-11}}}}},
+              {"nodes", json::array({{{"id", 1}, {"x", 1.0}, {"y", 0.0}}, {{"id", 2}, {"x", 0.5}, {"y", c}},
+                                     {{"id", 3}, {"x", -0.5}, {"y", c}}, {{"id", 4}, {"x", -1.0}, {"y", 0.0}},
+                                     {{"id", 101}, {"x", -1.5}, {"y", y}}, {{"id", 102}, {"x", 0.0}, {"y", y}},
+                                     {{"id", 103}, {"x", 1.5}, {"y", y}}})},
+              {"members", json::array()},
+              {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 4}, {"type", "fixed"}},
+                                        {{"node", 102}, {"fix", {"ux", "rz"}}}})},
+              {"contacts", json::array({{{"nodes", {{"members", {3, 4}}}}, {"members", {0, 1, 2}}, {"gap", gap}}})},
+              {"analysis", {{"control", {{"type", "load"}, {"steps", 20}}}}}};
+    for (const auto& [from, to] : {std::pair{1, 2}, {2, 3}, {3, 4}})
+      m["members"].push_back({{"from", from}, {"to", to}, {"divisions", divisions}, {"material", "steel"}, {"section", "drum"}});
+    for (const auto& [from, to] : {std::pair{101, 102}, {102, 103}})
+      m["members"].push_back({{"from", from}, {"to", to}, {"divisions", 30}, {"material", "steel"}, {"section", "strip"},
+                              {"load", {{"fy", -200.0}}}});
+    return m;
+  };
+  tsm::Model coarse_model, fine_model;
+  const tsm::solver::RunResult coarse = run(draped(1), coarse_model);
+  const tsm::solver::RunResult fine = run(draped(10), fine_model);
+  ASSERT_EQ(coarse.status, tsm::solver::Status::converged) << coarse.message;
+  ASSERT_EQ(fine.status, tsm::solver::Status::converged) << fine.message;
+  const auto& a = coarse.steps.back().contacts;
+  const auto& b = fine.steps.back().contacts;
+  std::vector<int> on(3, 0);
+  double total = 0.0;
+  for (size_t k = 0; k < a.size(); ++k) {
+    if (a[k].element >= 0) ++on[a[k].element];
+    EXPECT_EQ(a[k].element >= 0, b[k].element >= 0) << "strip node " << k;
+    EXPECT_NEAR(a[k].force, b[k].force, 1e-4 * 200.0) << "strip node " << k;
+    total += a[k].force;
+  }
+  EXPECT_EQ(on, (std::vector<int>{4, 2, 4}));
+  EXPECT_GT(total, 600.0);  // the sloping faces' normals lean: their vertical parts carry the 600 N
+  expect_equilibrium(coarse_model, coarse.steps.back());
 }
 
 INSTANTIATE_TEST_SUITE_P(
