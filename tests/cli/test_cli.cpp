@@ -302,6 +302,17 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
        [](json& m) { m["analysis"]["control"] = {{"type", "displacement"}, {"node", 1}, {"dof", "uy"}, {"target", 1.0}}; },
        "analysis.control.dof: the controlled dof uy of node 1 is fixed"},
       {"bad format", [](json& m) { m["format"] = "tsmframe-model/2"; }, "format: unsupported format"},
+      {"between and members",
+       [](json& m) { m["contacts"] = json::array({{{"between", {{0}, {0}}}, {"members", {0}}}}); },
+       "contacts[0].members: give either \"between\" or node(s) and members, not both"},
+      {"between one side", [](json& m) { m["contacts"] = json::array({{{"between", {{0}}}}}); },
+       "contacts[0].between: expected two lists of member indices, [[A…], [B…]]"},
+      {"between unknown member", [](json& m) { m["contacts"] = json::array({{{"between", {{0}, {3}}}}}); },
+       "contacts[0].between[1][0]: unknown member 3 (members are numbered 0 to 0 in file order)"},
+      {"between a member and itself", [](json& m) { m["contacts"] = json::array({{{"between", {{0}, {0}}}}}); },
+       "contacts[0].between: member 0 is on both sides"},
+      {"contact without members", [](json& m) { m["contacts"] = json::array({{{"node", 2}}}); },
+       "contacts[0].members: missing (required, or give \"between\")"},
   };
   for (const BadCase& c : cases) {
     json m = cantilever();

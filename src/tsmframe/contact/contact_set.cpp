@@ -23,7 +23,7 @@ std::vector<ContactState> ContactSet::initial_states() const {
   const Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
   const std::vector<double> rotations(model.elements.size(), 0.0);
   std::vector<ContactState> states(contact_count());
-  Occupancy occupancy(model.elements.size());
+  Occupancy occupancy(model.elements.size(), model.node_count());
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
     states[k].reference.side.assign(contact.candidates.size(), 0);
@@ -31,8 +31,10 @@ std::vector<ContactState> ContactSet::initial_states() const {
     // Resting on an element as drawn (model/resting_contact): in contact from the start, so a
     // structure held only by its contacts has a tangent to start from (where the element may take
     // no other point, occupancy.hpp, a second one starts at the first update instead).
-    if (const auto r = resting_contact(model, model.contacts[k]); r && occupancy.may_join(r->element, alone(contact))) {
+    if (const auto r = resting_contact(model, model.contacts[k]);
+        r && occupancy.may_join(r->element, alone(contact)) && !pair_in_contact(geometry_, contact, r->element, D, occupancy)) {
       occupancy.join(r->element, alone(contact));
+      occupancy.set_touching(contact.node, r->element);
       states[k].active = true;
       states[k].element = r->element;
       states[k].side = r->side;
@@ -94,6 +96,7 @@ ContactChanges ContactSet::update(const Eigen::VectorXd& D, const std::vector<do
       ++changes.activated;
       add(*touched, changes);
     }
+    occupancy.set_touching(contact.node, state.active ? state.element : -1);
   }
   return changes;
 }

@@ -10,7 +10,21 @@ constexpr double alpha_tolerance = 1e-12;  // a node on a beam node counts for b
 
 int sign(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
 
+
 }  // namespace
+
+bool pair_in_contact(const ContactGeometry& geometry, const ContactCandidates& contact, int f, const Eigen::VectorXd& D,
+                     const Occupancy& occupancy) {
+  const Model& model = geometry.model();
+  const Eigen::Vector2d node = geometry.position(contact.node, D);
+  for (const int end : {model.elements[f].start, model.elements[f].end}) {
+    const int g = occupancy.touching(end);
+    if (g < 0 || (model.elements[g].start != contact.node && model.elements[g].end != contact.node)) continue;
+    const double reach = contact.gap + 1e-2 * geometry.initial(f).length;
+    if ((geometry.position(end, D) - node).squaredNorm() <= reach * reach) return true;
+  }
+  return false;
+}
 
 void ChordFrames::form() {
   const Model& model = geometry_.model();
@@ -92,6 +106,7 @@ std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCan
     } else if (std::abs(where.gap) > geometry.touch_tolerance()) {
       side = -sign(where.gap);  // it left the centre line: it pushes the way it moves
     }
+    if (side != 0 && pair_in_contact(geometry, contact, f, D, occupancy)) continue;
     if (side != 0 && !occupancy.may_join(f, alone(contact))) {  // a cantilever-frame contact holds it
       state.step.blocked_element = f;
       continue;

@@ -41,6 +41,13 @@ class ChordFrames {
 int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& contact, const ContactState& state,
                    const Eigen::VectorXd& displacements, const Occupancy& occupancy);
 
+/// Whether the contact's node would start on element `f` against a node of f that already
+/// presses on an element at the contact's node (two beams' nodes resting on each other, as a
+/// "between" entry makes them): that pair is in contact already, and a second contact would
+/// count its force twice. The nodes are then within the gap (and a little) of each other.
+bool pair_in_contact(const ContactGeometry& geometry, const ContactCandidates& contact, int element,
+                     const Eigen::VectorXd& displacements, const Occupancy& occupancy);
+
 /// Starts the inactive contact `state` where its node has reached an element, and hands it on
 /// along the beam to where the node is (sliding.hpp). None: it touches nothing (or only elements
 /// it may not join, occupancy.hpp: state.step.blocked_element says which).

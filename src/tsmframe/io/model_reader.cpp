@@ -1,5 +1,7 @@
 #include "tsmframe/io/model_reader.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -388,10 +390,15 @@ class Reader {
       const std::string path = child("contacts", k);
       const json& c = contacts[k];
       expect_object(c, path);
-      check_keys(c, path, {"node", "nodes", "members", "element", "frame", "gap", "edge", "max_stiffness_ratio", "sliding_tangent"});
+      check_keys(c, path, {"node", "nodes", "members", "between", "element", "frame", "gap", "edge", "max_stiffness_ratio", "sliding_tangent"});
+      if (c.contains("between")) {
+        read_between(c, path);
+        continue;
+      }
       if (c.contains("node") && c.contains("nodes")) fail(child(path, "nodes"), "give either node or nodes, not both");
+      if (!c.contains("members")) fail(child(path, "members"), "missing (required, or give \"between\")");
       if (!c.contains("nodes")) {
-        read_contact(c, path, required_node(c, path), child(path, "node"), false);
+        read_contact(c, path, required_node(c, path), child(path, "node"), false, c["members"], child(path, "members"));
         continue;
       }
       // Several contact nodes with the same options: a list of node references, or every node
@@ -418,19 +425,57 @@ class Reader {
         for (size_t j = 0; j < nodes.size(); ++j) listed.emplace_back(node_ref(nodes[j], child(npath, j)), child(npath, j));
       }
       if (listed.empty()) fail(npath, "no node listed");
-      for (const auto& [node, where] : listed) read_contact(c, path, node, where, true);
+      for (const auto& [node, where] : listed) read_contact(c, path, node, where, true, c["members"], child(path, "members"));
+    }
+  }
+
+  /// A contact entry between two beams, {"between": [[members A], [members B]]} (issue 27, part
+  /// 3): every node of A's members a contact node on B's, and every node of B's on A's, with the
+  /// entry's options; a node of both (a joint) touches neither. Where a node of one comes to rest
+  /// on a node of the other, one of the two contacts carries the pair (contact/detection.cpp).
+  void read_between(const json& c, const std::string& path) {
+    const std::string bpath = child(path, "between");
+    for (const char* key : {"node", "nodes", "members"})
+      if (c.contains(key)) fail(child(path, key), "give either \"between\" or node(s) and members, not both");
+    const json& between = c["between"];
+    expect_array(between, bpath);
+    if (between.size() != 2) fail(bpath, "expected two lists of member indices, [[A…], [B…]]");
+    std::array<std::set<int>, 2> members;
+    std::array<std::vector<int>, 2> nodes;  // each side's nodes, in its members' element order
+    for (int side = 0; side < 2; ++side) {
+      const std::string spath = child(bpath, side);
+      expect_array(between[side], spath);
+      if (between[side].empty()) fail(spath, "no member listed");
+      std::set<int> seen;
+      for (size_t m = 0; m < between[side].size(); ++m) {
+        const long index = integer(between[side][m], child(spath, m));
+        if (index < 0 || index >= model_.member_count) fail(child(spath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
+        if (!members[side].insert(static_cast<int>(index)).second) fail(child(spath, m), "member " + std::to_string(index) + " listed twice");
+        for (int e = member_first_[index]; e < member_first_[index + 1]; ++e)
+          for (const int node : {model_.elements[e].start, model_.elements[e].end})
+            if (seen.insert(node).second) nodes[side].push_back(node);
+      }
+    }
+    for (const int m : members[0])
+      if (members[1].count(m)) fail(bpath, "member " + std::to_string(m) + " is on both sides");
+    const auto on = [&](int side, int node) {
+      const std::set<int> holding = holding_members(node);
+      return std::any_of(holding.begin(), holding.end(), [&](int m) { return members[side].count(m) > 0; });
+    };
+    for (int side = 0; side < 2; ++side) {
+      const json other = json(std::vector<int>(members[1 - side].begin(), members[1 - side].end()));
+      for (const int node : nodes[side])
+        if (!on(1 - side, node)) read_contact(c, path, node, child(bpath, side), true, other, child(bpath, 1 - side));
     }
   }
 
   /// One contact entry's options for the contact node `node`, named at `node_path` (`named`: one
   /// of several nodes of the entry, whose id the messages then give).
-  void read_contact(const json& c, const std::string& path, int node, const std::string& node_path, bool named) {
+  void read_contact(const json& c, const std::string& path, int node, const std::string& node_path, bool named,
+                    const json& members, const std::string& mpath) {
     ContactSpec spec;
     spec.node = node;
     const std::string which = named ? "the contact node " + std::to_string(model_.nodes[node].id) : "the contact node";
-    if (!c.contains("members")) fail(child(path, "members"), "missing (required)");
-    const json& members = c["members"];
-    const std::string mpath = child(path, "members");
     const std::set<int> holding = holding_members(spec.node);
     // Hinged or sprung members carry contacts in the chord frame (their ends condensed out of
     // the contact element's law); the cantilever-coordinate element has no such form.
