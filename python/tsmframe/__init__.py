@@ -109,9 +109,16 @@ class Model:
         self._doc["prescribed"].append({"node": _ref(node), **dofs})
         return self
 
-    def contact(self, node=None, members="all", nodes=None, **options):
+    def contact(self, node=None, members="all", nodes=None, between=None, **options):
         """A contact node, or several with the same options: nodes=[refs] or nodes={"members": [i, …]}
-        (every node of those members); options: element, frame, gap, edge, max_stiffness_ratio, sliding_tangent (FORMAT.md, README)."""
+        (every node of those members), or between=([members A], [members B]): every node of each
+        side a contact node on the other (beam on beam from both sides); options: element, frame,
+        gap, edge, max_stiffness_ratio, sliding_tangent (FORMAT.md, README)."""
+        if between is not None:
+            if node is not None or nodes is not None:
+                raise ValueError("contact: give between, or node(s) and members (not both)")
+            self._doc["contacts"].append({"between": [list(side) for side in between], **options})
+            return self
         if (node is None) == (nodes is None):
             raise ValueError("contact: give node or nodes (not both)")
         if node is not None:

@@ -87,6 +87,25 @@ def test_one_contact_entry_for_many_nodes():
         tf.Model().contact(1, nodes=[2])
 
 
+def test_a_contact_between_two_beams_is_the_files_entry():
+    # Two overlapping cantilevers (20 elements each), the upper tip pushed down onto the lower
+    # beam: contact(between=(...)) writes the file's "between" entry, every node of each beam a
+    # contact node on the other (42), and either order gives the same tip force.
+    def crossing(between):
+        m = tf.Model("crossing").material("steel", E=2.05e11, nu=0.3).section("bar", A=1e-3, I=1e-6)
+        m.node(1, 0, 0).node(2, 2, 0).node(3, 3, 0.05).node(4, 1, 0.05)
+        m.member(1, 2, "steel", "bar", divisions=20).member(3, 4, "steel", "bar", divisions=20)
+        m.support(1, "fixed").support(3, "fixed").load(4, fy=-2e4).contact(between=between).analysis(steps=10)
+        return tf.run(m)
+    ab, ba = crossing(([0], [1])), crossing(([1], [0]))
+    assert ab.ok and ba.ok, (ab.message, ba.message)
+    assert ab.contact_force.shape[1] == 42
+    assert ab.contact_force[-1].max() == pytest.approx(ba.contact_force[-1].max(), rel=1e-12)
+    assert ab.contact_force[-1].max() > 1e4
+    with pytest.raises(ValueError, match="give between"):
+        tf.Model().contact(1, between=([0], [1]))
+
+
 def test_a_study_runs_its_cases_and_returns_their_rows():
     # The README's cantilever (EI = 2.05e7) under 1 kN over two meshes: each row has the
     # parameter, how the case ended and the recorded tip deflection, PL³/3EI for an
