@@ -17,15 +17,25 @@ Eigen::VectorXd spread(int size, int point, const Eigen::Vector2d& at_i, const E
   return v;
 }
 
-/// ∂²(δy_p)/∂x² on the translations of i, j, c_p (FORMULATION §2's K_G term, for point p).
-Eigen::MatrixXd point_hessian(int size, int point, const element::Chord& chord, double alpha, double rho) {
+/// Adds Y_p ∂²(δy_p)/∂x² (FORMULATION §2's K_G term, for point p) to `tangent`: it lives on the
+/// translations of i, j and c_p alone, so it is formed there (6×6), not over every point's dofs.
+void add_point_hessian(Eigen::MatrixXd& tangent, int point, const element::Chord& chord, double alpha, double rho,
+                       double Y) {
   const Eigen::Vector2d e(chord.cos, chord.sin), n(-chord.sin, chord.cos), zero = Eigen::Vector2d::Zero();
   const double l = chord.length;
-  const Eigen::VectorXd a1 = spread(size, point, -n, n, zero);  // n · dΔ
-  const Eigen::VectorXd a2 = spread(size, point, -e, zero, e);  // e · dr_p
-  const Eigen::VectorXd a3 = spread(size, point, -e, e, zero);  // e · dΔ
-  return (-(a1 * a2.transpose() + a2 * a1.transpose()) - (rho / l) * a1 * a1.transpose() +
-          alpha * (a1 * a3.transpose() + a3 * a1.transpose())) / l;
+  const int place[6] = {0, 1, 3, 4, 6 + 3 * point, 7 + 3 * point};  // u, v of i, j, c_p
+  const auto on = [](const Eigen::Vector2d& at_i, const Eigen::Vector2d& at_j, const Eigen::Vector2d& at_point) {
+    Eigen::Matrix<double, 6, 1> v;
+    v << at_i, at_j, at_point;
+    return v;
+  };
+  const Eigen::Matrix<double, 6, 1> a1 = on(-n, n, zero);  // n · dΔ
+  const Eigen::Matrix<double, 6, 1> a2 = on(-e, zero, e);  // e · dr_p
+  const Eigen::Matrix<double, 6, 1> a3 = on(-e, e, zero);  // e · dΔ
+  const Eigen::Matrix<double, 6, 6> hessian = (-(a1 * a2.transpose() + a2 * a1.transpose()) - (rho / l) * a1 * a1.transpose() +
+                                               alpha * (a1 * a3.transpose() + a3 * a1.transpose())) / l;
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) tangent(place[r], place[c]) += Y * hessian(r, c);
 }
 
 }  // namespace
@@ -93,7 +103,7 @@ MultiPointResponse multi_point_response(const MultiPointElementData& data, const
   r.tangent = J * D * J.transpose();
   // K_G (K15): N ∂²l + (M_i + M_j) ∂²(−β) on i, j, and Y_p ∂²δy_p on the translations of i, j, c_p.
   r.tangent.topLeftCorner<6, 6>() += element::geometric_stiffness(r.chord, r.forces.head<3>());
-  for (int p = 0; p < k; ++p) r.tangent += f.point_forces[p] * point_hessian(size, p, r.chord, r.alpha[p], r.normal[p]);
+  for (int p = 0; p < k; ++p) add_point_hessian(r.tangent, p, r.chord, r.alpha[p], r.normal[p], f.point_forces[p]);
   r.symmetric_tangent = r.tangent;
 
   if (data.sliding_term) {

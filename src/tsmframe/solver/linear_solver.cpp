@@ -77,7 +77,7 @@ bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vecto
   const assembly::DofMap& dofs = *dofs_;
   std::vector<Eigen::Triplet<double>> entries;
   size_t rank_one_entries = 0;
-  for (const RankOne& t : rank_one) rank_one_entries += static_cast<size_t>(t.size()) * t.size();
+  for (const RankOne& t : rank_one) rank_one_entries += 9 * static_cast<size_t>(t.size());
   entries.reserve(2 * 9 * matrix.value.size() + rank_one_entries);
   auto equation = [&](int block, int d) { return dofs.equation(dofs_per_node * dofs.block_node(block) + d); };
   for (int c = 0; c < matrix.size; ++c) {
@@ -97,12 +97,19 @@ bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vecto
       }
     }
   }
-  for (const RankOne& t : rank_one)
+  // Only u vᵀ's nonzero products: a point's v = ∂α/∂x lives on its element's two nodes and its
+  // own (9 entries) while u spans every point of the element, so a k-point element's terms are
+  // mostly zero (their places are in the block pattern anyway).
+  std::vector<int> nonzero_v;
+  for (const RankOne& t : rank_one) {
+    nonzero_v.clear();
+    for (int b = 0; b < t.size(); ++b)
+      if (t.equation[b] >= 0 && t.v[b] != 0.0) nonzero_v.push_back(b);
     for (int a = 0; a < t.size(); ++a) {
-      if (t.equation[a] < 0) continue;
-      for (int b = 0; b < t.size(); ++b)
-        if (t.equation[b] >= 0) entries.emplace_back(t.equation[a], t.equation[b], t.u[a] * t.v[b]);
+      if (t.equation[a] < 0 || t.u[a] == 0.0) continue;
+      for (const int b : nonzero_v) entries.emplace_back(t.equation[a], t.equation[b], t.u[a] * t.v[b]);
     }
+  }
   const int n = dofs.free_count();
   general_matrix_.resize(n, n);
   general_matrix_.setFromTriplets(entries.begin(), entries.end());
