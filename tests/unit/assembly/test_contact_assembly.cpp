@@ -37,6 +37,16 @@ Eigen::MatrixXd finite_difference_tangent(tsm::assembly::GlobalSystem& system, c
   return fd;
 }
 
+/// A bent, rotated state of every node: (−0.05 x², 0.3 x², 0.6 x) at x as drawn.
+Eigen::VectorXd bent_and_turned(const tsm::Model& model) {
+  Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
+  for (int k = 0; k < model.node_count(); ++k) {
+    const double x = model.nodes[k].position.x();
+    D.segment<3>(3 * k) << -0.05 * x * x, 0.3 * x * x, 0.6 * x;
+  }
+  return D;
+}
+
 TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
   for (const char* element : {"euler-bernoulli", "timoshenko"}) {
     const tsm::Model model = tsm::io::read_model(post_on_cantilever(element, 0.45));
@@ -45,11 +55,7 @@ TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
     tsm::contact::ContactSet tracker(model);
     std::vector<tsm::contact::ContactState> states = tracker.initial_states();
     // A bent, rotated state with the pusher pressed 0.02 into the beam near α = 0.7.
-    Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
-    for (int k = 0; k < model.node_count(); ++k) {
-      const double x = model.nodes[k].position.x();
-      D.segment<3>(3 * k) << -0.05 * x * x, 0.3 * x * x, 0.6 * x;
-    }
+    Eigen::VectorXd D = bent_and_turned(model);
     const int c = model.node_index(100);
     const double x_c = 0.45;
     D.segment<2>(3 * c) << -0.05 * x_c * x_c + 0.01, 0.3 * x_c * x_c + 0.02;
@@ -92,11 +98,7 @@ TEST(ContactAssembly, TangentWithSeveralPointsOnOneElementMatchesFiniteDifferenc
     tsm::assembly::GlobalSystem system(model, dofs);
     tsm::contact::ContactSet tracker(model);
     std::vector<tsm::contact::ContactState> states = tracker.initial_states();
-    Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
-    for (int k = 0; k < model.node_count(); ++k) {
-      const double x = model.nodes[k].position.x();
-      D.segment<3>(3 * k) << -0.05 * x * x, 0.3 * x * x, 0.6 * x;
-    }
+    Eigen::VectorXd D = bent_and_turned(model);
     for (int p = 0; p < 3; ++p) {
       const double x = xs[p];
       D.segment<2>(3 * model.node_index(100 + p)) << -0.05 * x * x + 0.01 * p, 0.3 * x * x + 0.02 - 0.01 * p;

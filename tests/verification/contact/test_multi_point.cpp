@@ -49,6 +49,19 @@ json pushed_beam(const std::vector<double>& x, const std::vector<double>& load, 
   return m;
 }
 
+/// The same structure run with a coarse and a fine master mesh.
+struct CoarseAndFine {
+  CoarseAndFine(const json& coarse_file, const json& fine_file)
+      : coarse(run(coarse_file, coarse_model)), fine(run(fine_file, fine_model)) {}
+  ::testing::AssertionResult converged() const {
+    for (const tsm::solver::RunResult* r : {&coarse, &fine})
+      if (r->status != tsm::solver::Status::converged) return ::testing::AssertionFailure() << r->message;
+    return ::testing::AssertionSuccess();
+  }
+  tsm::Model coarse_model, fine_model;
+  tsm::solver::RunResult coarse, fine;
+};
+
 struct Case {
   std::vector<double> x;  ///< the pushers, all over the middle element (10/3 … 20/3)
   const char* element;
@@ -146,13 +159,10 @@ TEST(MultiPointContact, ACoarseBeamUnderAFineOneCarriesTheContactForcesAFineBeam
     m["contacts"][0]["gap"] = 0.001;
     return m;
   };
-  tsm::Model coarse_model, fine_model;
-  const tsm::solver::RunResult coarse = run(pressed(20), coarse_model);
-  const tsm::solver::RunResult fine = run(pressed(400), fine_model);
-  ASSERT_EQ(coarse.status, tsm::solver::Status::converged) << coarse.message;
-  ASSERT_EQ(fine.status, tsm::solver::Status::converged) << fine.message;
-  const auto& a = coarse.steps.back().contacts;
-  const auto& b = fine.steps.back().contacts;
+  const CoarseAndFine runs(pressed(20), pressed(400));
+  ASSERT_TRUE(runs.converged());
+  const auto& a = runs.coarse.steps.back().contacts;
+  const auto& b = runs.fine.steps.back().contacts;
   ASSERT_EQ(a.size(), b.size());
   double largest = 0.0, worst = 0.0, total_a = 0.0, total_b = 0.0;
   int shared = 0;
@@ -223,13 +233,10 @@ TEST(MultiPointContact, AStripOnATrapezoidDrumTakesTheSameForcesFromOneElementPe
                               {"load", {{"fy", -200.0}}}});
     return m;
   };
-  tsm::Model coarse_model, fine_model;
-  const tsm::solver::RunResult coarse = run(draped(1), coarse_model);
-  const tsm::solver::RunResult fine = run(draped(10), fine_model);
-  ASSERT_EQ(coarse.status, tsm::solver::Status::converged) << coarse.message;
-  ASSERT_EQ(fine.status, tsm::solver::Status::converged) << fine.message;
-  const auto& a = coarse.steps.back().contacts;
-  const auto& b = fine.steps.back().contacts;
+  const CoarseAndFine runs(draped(1), draped(10));
+  ASSERT_TRUE(runs.converged());
+  const auto& a = runs.coarse.steps.back().contacts;
+  const auto& b = runs.fine.steps.back().contacts;
   std::vector<int> on(3, 0);
   double total = 0.0;
   for (size_t k = 0; k < a.size(); ++k) {
@@ -240,7 +247,7 @@ TEST(MultiPointContact, AStripOnATrapezoidDrumTakesTheSameForcesFromOneElementPe
   }
   EXPECT_EQ(on, (std::vector<int>{4, 2, 4}));
   EXPECT_GT(total, 600.0);  // the sloping faces' normals lean: their vertical parts carry the 600 N
-  expect_equilibrium(coarse_model, coarse.steps.back());
+  expect_equilibrium(runs.coarse_model, runs.coarse.steps.back());
 }
 
 INSTANTIATE_TEST_SUITE_P(
