@@ -3,8 +3,9 @@
 // differences; the whole tangent (sliding term included) against central differences at large
 // chord rotations, bent, both theories, rigid, hinged and sprung ends; the chord element where the
 // slope is zero; the force on the contact node normal to the shape's tangent, that tangent taken
-// from the shape itself (multi_point_law's two-point influence, differenced); self-equilibrium,
-// rigid motion and the axial force on either side of the point.
+// from the shape itself (multi_point_law's two-point influence, differenced); on a circular arc
+// the direction is the radius to third order in the element size (the chord's: first order);
+// self-equilibrium, rigid motion and the axial force on either side of the point.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -179,14 +180,18 @@ TEST(DeflectedNormal, BeyondAnEndTheDirectionIsHeldAndTheForcesAreContinuous) {
 
 // ---- (b) Where the slope is zero it is the paper's element ----
 
-/// |a − b| ≤ tolerance ‖b‖ (the whole field's scale).
+/// max |a − b| / max |b| (against the whole field's scale), and the worst of them so far.
+double worst_field = 0.0;
 template <class A>
 double relative(const A& a, const A& b) {
-  return (a - b).cwiseAbs().maxCoeff() / std::max(b.cwiseAbs().maxCoeff(), 1e-300);
+  const double error = (a - b).cwiseAbs().maxCoeff() / std::max(b.cwiseAbs().maxCoeff(), 1e-300);
+  worst_field = std::max(worst_field, error);
+  return error;
 }
 
 TEST(DeflectedNormal, StraightUnloadedElementIsTheChordElementInEveryField) {
   // θ = 0 and the node on the chord: Y = 0, w_α = 0; stretched, turned, the node slid along.
+  worst_field = 0.0;
   for (double psi : {0.0, 0.01})
     for (double angle : {0.0, 1.2, -2.6})
       for (const Ends f : {Ends{0.0, 0.0}, connections[0], connections[2], connections[4]}) {
@@ -204,12 +209,15 @@ TEST(DeflectedNormal, StraightUnloadedElementIsTheChordElementInEveryField) {
                   1e-14 * today.tangent.cwiseAbs().maxCoeff());
         EXPECT_LE(relative(r.sliding_v, today.sliding_v), 1e-14);
       }
+  std::printf("straight and unloaded, against chord_frame_response: worst %.2e of a field\n", worst_field);
 }
 
 TEST(DeflectedNormal, PushedAtMidspanOfAStraightElementTheForcesAreTheChordElements) {
   // θ = 0, the point at α = ½ of a symmetric beam: the shape is level there, w_α = 0, so the
   // forces are the chord element's; the tangent differs by the normal's turning alone, the
   // rank-one −Y ∂α/∂x (∇w_α)ᵀ the paper's element lacks.
+  worst_field = 0.0;
+  double worst_rank = 0.0;
   for (double psi : {0.0, 0.01})
     for (double angle : {0.0, 1.2, -1.9})
       for (const Ends f : {Ends{0.0, 0.0}, Ends{INFINITY, INFINITY}, Ends{0.4, 0.4}}) {
@@ -224,7 +232,10 @@ TEST(DeflectedNormal, PushedAtMidspanOfAStraightElementTheForcesAreTheChordEleme
         const Eigen::JacobiSVD<Matrix9> svd(r.tangent - today.tangent);
         EXPECT_GT(svd.singularValues()[0], 1e-5 * today.tangent.norm()) << "the normal turns";
         EXPECT_LE(svd.singularValues()[1], 1e-12 * today.tangent.norm());
+        worst_rank = std::max(worst_rank, svd.singularValues()[1] / today.tangent.norm());
       }
+  std::printf("pushed at midspan: forces %.2e of a field; second singular value of the tangent's change %.2e\n",
+              worst_field, worst_rank);
 }
 
 // ---- (c) The force on the contact node is normal to the deflected shape ----
@@ -273,6 +284,42 @@ TEST(DeflectedNormal, ForceOnTheContactNodeIsNormalToTheShapesTangent) {
   EXPECT_GT(off_chord_normal, 0.05) << "the states bend the element: the force leaves the chord's normal";
   std::printf("force on the contact node along the shape's tangent: worst %.2e of the force; slope %.2e\n", worst,
               worst_slope);
+}
+
+TEST(DeflectedNormal, OnACircularArcTheDirectionIsTheRadiusToThirdOrderInTheElementSize) {
+  // An element drawn straight and bent into an arc of radius 1 (its nodes on the arc, turned to
+  // its tangents), a contact node on the arc at 0.3 of its length: the beam's own normal there is
+  // the radius. The chord's normal misses it by the slope, O(h); the deflected normal by O(h³).
+  for (double psi : {0.0, 1e-4}) {
+    double last_chord = 0.0, last_deflected = 0.0;
+    for (double h : {0.4, 0.2, 0.1}) {
+      ContactElementData data;
+      data.initial = tsm::element::initial_chord({0.0, 0.0}, {h, 0.0});
+      data.section = {.EA = 1e4, .EI = 1.0, .shear_flexibility = psi};
+      data.k0 = tsm::element::basic_stiffness(data.section, h);
+      data.edge = 1e-3;
+      const double t = 0.3;
+      data.contact_start = {t * h, 0.0};
+      const Eigen::Vector2d centre(std::sin(h / 2), -std::cos(h / 2));
+      auto on_arc = [&](double u) { return Eigen::Vector2d(centre + Eigen::Vector2d(std::sin(h * (u - 0.5)), std::cos(h * (u - 0.5)))); };
+      const Eigen::Vector2d xj = on_arc(1.0), xc = on_arc(t), radius = xc - centre;
+      Vector9 d;
+      d << 0.0, 0.0, h / 2, xj.x() - h, xj.y(), -h / 2, xc.x() - t * h, xc.y(), 0.0;
+      const ContactResponse r = deflected_normal_response(data, d, 0.0, false);
+      const Eigen::Vector2d nu = deflected_normal(data, r).direction, n(-r.chord.sin, r.chord.cos);
+      auto miss = [&](const Eigen::Vector2d& v) { return std::abs(v.x() * radius.y() - v.y() * radius.x()) / v.norm(); };
+      const double chord = miss(n), deflected = miss(nu);
+      std::printf("arc, psi %g, h %.2f: chord normal off by %.3e rad, deflected normal by %.3e rad\n", psi, h, chord,
+                  deflected);
+      EXPECT_LT(deflected, 1e-2 * chord);
+      if (last_chord > 0.0) {
+        EXPECT_NEAR(last_chord / chord, 2.0, 0.05) << "first order";
+        EXPECT_GT(last_deflected / deflected, 7.0) << "third order";
+      }
+      last_chord = chord;
+      last_deflected = deflected;
+    }
+  }
 }
 
 // ---- (d) Equilibrium, rigid motion, the axial force on either side ----
