@@ -200,8 +200,15 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
          m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"gap", 0.05}},
                                       {{"node", 6}, {"members", "all"}, {"gap", 0.05}, {"frame", "cantilever"}}});
        },
-       "contacts[1]: rests on element 3, as contacts[0] does: a cantilever-frame contact has its element to itself (give that "
-       "member more divisions, or use the chord frame)"},
+       "contacts[1]: rests on element 3, as contacts[0] does: a cantilever-frame contact, or one along the deflected normal, "
+       "has its element to itself (give that member more divisions, or use the chord frame and normal)"},
+      {"unknown normal",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 3}, {"x", 2.0}, {"y", 1.0}});
+         m["supports"].push_back({{"node", 3}, {"type", "fixed"}});
+         m["contacts"] = json::array({{{"node", 3}, {"members", {0}}, {"normal", "bent"}}});
+       },
+       "contacts[0].normal: unknown normal \"bent\" (expected \"chord\" or \"deflected\")"},
       {"load on missing node", [](json& m) { m["loads"][0]["node"] = 42; }, "loads[0].node: unknown node 42"},
       {"contact on missing node",
        [](json& m) { m["contacts"] = json::array({{{"node", 42}, {"members", "all"}}}); },

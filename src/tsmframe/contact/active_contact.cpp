@@ -3,12 +3,13 @@
 #include <algorithm>
 
 #include "tsmframe/contact/contact_response.hpp"
+#include "tsmframe/contact/deflected_normal_element.hpp"
 
 namespace tsm::contact {
 namespace {
 
 /// The three-node element's response in the k-point form (k = 1), value for value.
-MultiPointResponse as_multi_point(const ContactResponse& r, bool with_tangent) {
+MultiPointResponse as_multi_point(const ContactElementData& data, const ContactResponse& r, bool with_tangent) {
   MultiPointResponse m;
   m.chord = r.chord;
   m.alpha = Eigen::VectorXd::Constant(1, r.alpha);
@@ -16,6 +17,8 @@ MultiPointResponse as_multi_point(const ContactResponse& r, bool with_tangent) {
   m.deformations = r.deformations;
   m.forces = r.forces;
   m.nodal_forces = r.nodal_forces;
+  const bool deflected = data.frame == ContactFrame::chord && data.normal == ContactNormal::deflected;
+  m.force_per_Y = Eigen::VectorXd::Constant(1, deflected ? deflected_normal(data, r).direction.norm() : 1.0);
   m.point_u = r.point_u;
   m.point_stiffness = Eigen::MatrixXd::Constant(1, 1, r.point_stiffness);
   m.sliding_u = r.sliding_u;
@@ -50,7 +53,8 @@ MultiPointResponse active_contact_response(const ActiveContact& contact, const E
                                            double previous_rotation, bool with_tangent) {
   if (contact.size() == 1) {
     const Vector9 d9 = d;
-    return as_multi_point(contact_response(contact.data.front(), d9, previous_rotation, with_tangent), with_tangent);
+    const ContactElementData& data = contact.data.front();
+    return as_multi_point(data, contact_response(data, d9, previous_rotation, with_tangent), with_tangent);
   }
   return multi_point_response(multi_point_data(contact), d, previous_rotation, with_tangent);
 }

@@ -31,6 +31,7 @@ struct ContactElementData {
   double min_compliance = 0.0;        ///< the stiffness cap's compliance floor (0: none), see point_load_law
   bool sliding_term = true;           ///< include J (∂S/∂α)(∂α/∂x)ᵀ in the tangent
   ContactFrame frame = ContactFrame::chord;  ///< the chord's (Eq. 6–9) or the cantilever's (FORMULATION §2b; contact_response.hpp)
+  ContactNormal normal = ContactNormal::chord;  ///< chord frame: the force along the chord's normal or the bent beam's
   /// How the element's ends are joined to its nodes: 0 rigidly, ∞ by a hinge (a member's
   /// "release"), 1/k by a rotational spring ("end_springs"); see connected_law. Chord frame only.
   double flexibility_i = 0.0, flexibility_j = 0.0;

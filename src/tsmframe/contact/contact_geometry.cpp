@@ -58,6 +58,7 @@ ContactCandidates ContactGeometry::candidates_of(const ContactSpec& c) const {
   }
   s.sliding_term = c.sliding_tangent;
   s.frame = c.frame;
+  s.normal = c.normal;
   return s;
 }
 
@@ -123,6 +124,7 @@ ContactElementData ContactGeometry::element_data(const ContactCandidates& contac
   data.min_compliance = cap_compliance(contact, element);
   data.sliding_term = contact.sliding_term;
   data.frame = contact.frame;
+  data.normal = contact.normal;
   std::tie(data.flexibility_i, data.flexibility_j) = end_flexibilities(element);
   return data;
 }

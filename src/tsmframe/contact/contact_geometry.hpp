@@ -33,6 +33,7 @@ struct ContactCandidates {
   std::vector<Own> own;
   bool sliding_term = true;
   ContactFrame frame = ContactFrame::chord;
+  ContactNormal normal = ContactNormal::chord;
   bool is_candidate(int element) const { return candidate_index[element] >= 0; }
 };
 

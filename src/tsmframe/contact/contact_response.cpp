@@ -1,6 +1,7 @@
 #include "tsmframe/contact/contact_response.hpp"
 
 #include "tsmframe/contact/cantilever_frame_element.hpp"
+#include "tsmframe/contact/deflected_normal_element.hpp"
 
 namespace tsm::contact {
 
@@ -10,6 +11,7 @@ ContactResponse contact_response(const ContactElementData& data, const Vector9& 
     case ContactFrame::cantilever: return cantilever_frame_response(data, d, previous_rotation, with_tangent);
     case ContactFrame::chord: break;
   }
+  if (data.normal == ContactNormal::deflected) return deflected_normal_response(data, d, previous_rotation, with_tangent);
   return chord_frame_response(data, d, previous_rotation, with_tangent);
 }
 

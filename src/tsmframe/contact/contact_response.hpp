@@ -1,7 +1,8 @@
 #pragma once
 // The three-node contact element in the frame its contact asks for (ContactElementData::frame):
-// the chord's (Eq. 6–9, contact_element.hpp) or the cantilever's (FORMULATION §2b,
-// cantilever_frame_element.hpp). What assembly evaluates.
+// the chord's (Eq. 6–9, contact_element.hpp; with the force along the bent beam's normal where
+// ContactElementData::normal asks, deflected_normal_element.hpp) or the cantilever's (FORMULATION
+// §2b, cantilever_frame_element.hpp). What assembly evaluates.
 
 #include "tsmframe/contact/contact_element.hpp"
 

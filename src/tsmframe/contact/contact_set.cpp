@@ -74,7 +74,7 @@ void ContactSet::record(const Eigen::VectorXd& D, const std::vector<double>& rot
     ContactState& state = states[e.contact];
     state.alpha = e.alpha;
     state.Y = e.Y;
-    state.force = -state.side * state.Y;
+    state.force = -state.side * state.Y * e.force_per_Y;
   }
   for (const ContactEvaluation& e : evaluated)  // a vertex's second element, with its first read
     if (e.vertex) read_vertex(geometry_, D, rotations, e.Y, states[e.contact]);

@@ -29,6 +29,7 @@ struct ContactEvaluation {
   bool vertex = false;  ///< ActivePoint::vertex
   double alpha = 0.0;
   double Y = 0.0;
+  double force_per_Y = 1.0;  ///< MultiPointResponse::force_per_Y: the compression is −side · Y · this
 };
 
 /// Changes made by one update().

@@ -84,6 +84,7 @@ MultiPointResponse multi_point_response(const MultiPointElementData& data, const
 
   const Eigen::MatrixXd J = multi_point_equilibrium_matrix(r.chord, r.alpha);
   r.nodal_forces = J * r.forces;
+  r.force_per_Y = Eigen::VectorXd::Ones(k);
   // P = [0; H; I] maps the point forces into S (K14).
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(3 + k, k);
   P.middleRows(1, 2) = law.h;

@@ -49,6 +49,9 @@ struct MultiPointResponse {
   Eigen::VectorXd deformations;  ///< (δl, θ_i, θ_j, δy_1 … δy_k)
   Eigen::VectorXd forces;        ///< S = (N, M_i, M_j, Y_1 … Y_k)
   Eigen::VectorXd nodal_forces;  ///< J S
+  /// |force on c_p| / |Y_p|: 1 along the chord's normal, |ν| = √(1 + w'²) along the bent beam's
+  /// (deflected_normal_element.hpp).
+  Eigen::VectorXd force_per_Y;
   /// The point loads' directions and stiffness: Y_p acts on the nodes as Y_p · point_u.col(p)
   /// (= J (0, h_p, e_p)), and the points' stiffness part is point_u · point_stiffness · point_uᵀ
   /// with point_stiffness = C⁻¹ (k×k, not diagonal: the points are coupled through the beam).

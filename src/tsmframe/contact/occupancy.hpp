@@ -13,8 +13,11 @@
 
 namespace tsm::contact {
 
-/// Whether a contact's element carries it alone: the cantilever frame has one point per element.
-inline bool alone(const ContactCandidates& contact) { return contact.frame == ContactFrame::cantilever; }
+/// Whether a contact's element carries it alone: the cantilever frame has one point per element,
+/// and so has the force along the bent beam's normal until the k-point element has that form.
+inline bool alone(const ContactCandidates& contact) {
+  return contact.frame == ContactFrame::cantilever || contact.normal == ContactNormal::deflected;
+}
 
 class Occupancy {
  public:

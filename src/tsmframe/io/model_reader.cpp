@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "tsmframe/io/analysis_reader.hpp"
+#include "tsmframe/io/contact_options.hpp"
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/io/input_file.hpp"
 #include "tsmframe/io/json_input.hpp"
@@ -349,12 +350,16 @@ class Reader {
       const auto r = resting_contact(model_, model_.contacts[k]);
       if (!r) continue;
       const int other = resting_on[r->element];
-      if (other >= 0 && (model_.contacts[k].frame == ContactFrame::cantilever ||
-                         model_.contacts[other].frame == ContactFrame::cantilever))
+      // The cantilever frame, and the force along the deflected normal, have one point per element.
+      const auto alone = [&](int j) {
+        return model_.contacts[j].frame == ContactFrame::cantilever || model_.contacts[j].normal == ContactNormal::deflected;
+      };
+      if (other >= 0 && (alone(k) || alone(other)))
         fail("contacts[" + std::to_string(k) + "]",
              "rests on element " + std::to_string(model_.elements[r->element].id) + ", as contacts[" + std::to_string(other) +
-                 "] does: a cantilever-frame contact has its element to itself (give that member more divisions, or use the chord frame)");
-      if (other < 0 || model_.contacts[k].frame == ContactFrame::cantilever) resting_on[r->element] = k;
+                 "] does: a cantilever-frame contact, or one along the deflected normal, has its element to itself (give "
+                 "that member more divisions, or use the chord frame and normal)");
+      if (other < 0 || alone(k)) resting_on[r->element] = k;
     }
   }
 
@@ -376,6 +381,24 @@ class Reader {
     has_contact_.assign(model_.node_count(), 0);
   }
 
+  /// A member index (0-based, file order) at `path`.
+  int member_index(const json& value, const std::string& path) const {
+    const long index = integer(value, path);
+    if (index < 0 || index >= model_.member_count)
+      fail(path, "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
+    return static_cast<int>(index);
+  }
+
+  /// The nodes of a member's elements, in element order (each element's two ends; inner nodes twice).
+  std::vector<int> member_nodes(int member) const {
+    std::vector<int> nodes;
+    for (int e = member_first_[member]; e < member_first_[member + 1]; ++e) {
+      nodes.push_back(model_.elements[e].start);
+      nodes.push_back(model_.elements[e].end);
+    }
+    return nodes;
+  }
+
   /// The members whose elements hold `node`.
   std::set<int> holding_members(int node) const {
     return {members_at_.begin() + members_at_start_[node], members_at_.begin() + members_at_start_[node + 1]};
@@ -390,7 +413,7 @@ class Reader {
       const std::string path = child("contacts", k);
       const json& c = contacts[k];
       expect_object(c, path);
-      check_keys(c, path, {"node", "nodes", "members", "between", "element", "frame", "gap", "edge", "max_stiffness_ratio", "sliding_tangent"});
+      check_keys(c, path, {"node", "nodes", "members", "between", "element", "frame", "normal", "gap", "edge", "max_stiffness_ratio", "sliding_tangent"});
       if (c.contains("between")) {
         read_between(c, path);
         continue;
@@ -414,11 +437,8 @@ class Reader {
         expect_array(nodes["members"], mpath);
         std::set<int> seen;
         for (size_t m = 0; m < nodes["members"].size(); ++m) {
-          const long index = integer(nodes["members"][m], child(mpath, m));
-          if (index < 0 || index >= model_.member_count) fail(child(mpath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
-          for (int e = member_first_[index]; e < member_first_[index + 1]; ++e)
-            for (const int node : {model_.elements[e].start, model_.elements[e].end})
-              if (seen.insert(node).second) listed.emplace_back(node, child(mpath, m));
+          for (const int node : member_nodes(member_index(nodes["members"][m], child(mpath, m))))
+            if (seen.insert(node).second) listed.emplace_back(node, child(mpath, m));
         }
       } else {
         expect_array(nodes, npath);
@@ -448,12 +468,10 @@ class Reader {
       if (between[side].empty()) fail(spath, "no member listed");
       std::set<int> seen;
       for (size_t m = 0; m < between[side].size(); ++m) {
-        const long index = integer(between[side][m], child(spath, m));
-        if (index < 0 || index >= model_.member_count) fail(child(spath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
-        if (!members[side].insert(static_cast<int>(index)).second) fail(child(spath, m), "member " + std::to_string(index) + " listed twice");
-        for (int e = member_first_[index]; e < member_first_[index + 1]; ++e)
-          for (const int node : {model_.elements[e].start, model_.elements[e].end})
-            if (seen.insert(node).second) nodes[side].push_back(node);
+        const int index = member_index(between[side][m], child(spath, m));
+        if (!members[side].insert(index).second) fail(child(spath, m), "member " + std::to_string(index) + " listed twice");
+        for (const int node : member_nodes(index))
+          if (seen.insert(node).second) nodes[side].push_back(node);
       }
     }
     for (const int m : members[0])
@@ -488,12 +506,11 @@ class Reader {
     } else {
       expect_array(members, mpath);
       for (size_t m = 0; m < members.size(); ++m) {
-        const long index = integer(members[m], child(mpath, m));
-        if (index < 0 || index >= model_.member_count) fail(child(mpath, m), "unknown member " + std::to_string(index) + " (members are numbered 0 to " + std::to_string(model_.member_count - 1) + " in file order)");
-        if (holding.count(static_cast<int>(index))) fail(child(mpath, m), which + " belongs to member " + std::to_string(index));
-        if (refused.count(static_cast<int>(index)))
+        const int index = member_index(members[m], child(mpath, m));
+        if (holding.count(index)) fail(child(mpath, m), which + " belongs to member " + std::to_string(index));
+        if (refused.count(index))
           fail(child(mpath, m), "member " + std::to_string(index) + " has a moment release or an end spring: the cantilever-coordinate contact element does not support such members (the chord frame does)");
-        spec.members.push_back(static_cast<int>(index));
+        spec.members.push_back(index);
       }
     }
     if (spec.members.empty())
@@ -514,24 +531,7 @@ class Reader {
         }
       }
     }
-    if (c.contains("frame")) {
-      const std::string frame = string(c["frame"], child(path, "frame"));
-      if (frame != "chord" && frame != "cantilever") fail(child(path, "frame"), "unknown frame " + quote_text(frame) + " (expected \"chord\" or \"cantilever\")");
-      spec.frame = frame == "cantilever" ? ContactFrame::cantilever : ContactFrame::chord;
-    }
-    if (auto edge = optional_number(c, "edge", path)) {
-      if (!(*edge >= 1e-12 && *edge <= 0.25)) fail(child(path, "edge"), "must lie between 1e-12 and 0.25 (a fraction of the element length)");
-      spec.edge = *edge;
-    }
-    if (auto ratio = optional_number(c, "max_stiffness_ratio", path)) {
-      if (!(*ratio >= 1.0)) fail(child(path, "max_stiffness_ratio"), "must be at least 1 (the contact's stiffness at most this many times the stiffest element holding its node)");
-      spec.max_stiffness_ratio = *ratio;
-    }
-    if (c.contains("sliding_tangent")) spec.sliding_tangent = boolean(c["sliding_tangent"], child(path, "sliding_tangent"));
-    if (auto gap = optional_number(c, "gap", path)) {
-      if (*gap < 0.0) fail(child(path, "gap"), "must not be negative");
-      spec.gap = *gap;
-    }
+    read_contact_law_options(c, path, spec);
     if (has_contact_[spec.node])
       fail(node_path, (named ? "node " + std::to_string(model_.nodes[node].id) + " already has" : std::string("this node already has")) +
                           " a contact entry: list all its members in one entry");

@@ -67,6 +67,9 @@ inline Eigen::Matrix<double, 6, 1> element_displacements(const Eigen::VectorXd& 
 /// The frame a contact element is written in: the chord's (Eq. 6–9) or the cantilever's
 /// clamped at node i (FORMULATION §2b).
 enum class ContactFrame { chord, cantilever };
+/// Which normal a frictionless contact force acts along: the element's chord's (the paper's,
+/// Eq. 6–9) or its deflected shape's at the contact point (docs/contact-normal.md; issue 27).
+enum class ContactNormal { chord, deflected };
 
 struct ContactSpec {
   int node = 0;                 ///< contact node index
@@ -74,6 +77,7 @@ struct ContactSpec {
   /// The contact law's beam theory where it overrides the touched element's (none: follow it).
   std::optional<BeamTheory> theory;
   ContactFrame frame = ContactFrame::chord;
+  ContactNormal normal = ContactNormal::chord;
   double gap = 0.0;             ///< distance from the centre line at which contact starts
   double edge = -1.0;           ///< compliance clamp zone (contact_force_law); < 0: default per theory
   /// The contact at most this many times as stiff as the stiffest element holding its node, in

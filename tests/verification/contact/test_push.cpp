@@ -171,6 +171,103 @@ TEST_P(LargePush, MatchesTheElasticaWithContact) {
   for (const StepRecord& s : r.steps) expect_equilibrium(model, s);
 }
 
+// ---- A tip-loaded cantilever resting on a rigid point: the contact force's normal ----
+// Inextensible cantilever (EI = 1, L = 1) under a tip load P down, resting on a point fixed at
+// (a, h) below it; the contact force R is normal to the beam there. Shooting on (R, θc, x_tip):
+// EI θ' = M(s) = −P (x_tip − x) + [before the point] ((a − x) Fy − (h − y) Fx), F = R (−sin θc,
+// cos θc); at x = a, y = h and θ = θc; at s = 1, x = x_tip.
+/// The shooting residuals (y − h and θ − θc at x = a, x(1) − x_tip) for tip load P.
+Eigen::Vector3d resting_cantilever_residual(double P, double a, double h, const Eigen::Vector3d& u) {
+  const double R = u[0], theta_c = u[1], x_tip = u[2];
+  const double Fx = -R * std::sin(theta_c), Fy = R * std::cos(theta_c);
+  bool beyond = false;
+  auto f = [&](const std::array<double, 3>& q) {
+    const double M = -P * (x_tip - q[0]) + (beyond ? 0.0 : (a - q[0]) * Fy - (h - q[1]) * Fx);
+    return std::array<double, 3>{std::cos(q[2]), std::sin(q[2]), M};
+  };
+  const int n = 4000;
+  const double ds = 1.0 / n;
+  std::array<double, 3> q = {0.0, 0.0, 0.0};
+  Eigen::Vector3d r(1.0, 1.0, 0.0);
+  for (int k = 0; k < n; ++k) {
+    std::array<double, 3> next = rk4_step(f, q, ds);
+    if (!beyond && next[0] >= a) {  // the point lies within this step: land on x = a, then go on
+      double lo = 0.0, hi = ds;
+      for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (rk4_step(f, q, mid)[0] < a ? lo : hi) = mid;
+      }
+      const std::array<double, 3> at = rk4_step(f, q, 0.5 * (lo + hi));
+      r[0] = at[1] - h;
+      r[1] = at[2] - theta_c;
+      beyond = true;
+      next = rk4_step(f, at, ds - 0.5 * (lo + hi));
+    }
+    q = next;
+  }
+  r[2] = q[0] - x_tip;
+  return r;
+}
+
+/// The contact force R: damped Newton on (R, θc, x_tip), the tip load raised from just past
+/// the touch (P = 0.5: it touches at P ≈ 0.48) to P in steps of 0.5.
+double resting_cantilever_force(double P, double a, double h) {
+  Eigen::Vector3d u(0.05, -0.15, 1.0);
+  for (double load = 0.5; load <= P + 1e-12; load += 0.5)
+    for (int it = 0; it < 60; ++it) {
+      const Eigen::Vector3d r = resting_cantilever_residual(load, a, h, u);
+      if (r.norm() < 1e-11) break;
+      Eigen::Matrix3d J;
+      for (int c = 0; c < 3; ++c) {
+        Eigen::Vector3d v = u;
+        const double step = 1e-7 * std::max(1.0, std::abs(u[c]));
+        v[c] += step;
+        J.col(c) = (resting_cantilever_residual(load, a, h, v) - r) / step;
+      }
+      const Eigen::Vector3d du = J.colPivHouseholderQr().solve(r);
+      double damping = 1.0;
+      while (damping > 1e-3 && resting_cantilever_residual(load, a, h, u - damping * du).norm() >= r.norm()) damping *= 0.5;
+      u -= damping * du;
+    }
+  return u[0];
+}
+
+TEST(RestingCantileverNormal, TheForceAlongTheBentBeamsNormalConvergesAsHSquared) {
+  // The issue's case: a cantilever with a tip load P L²/EI = 10 resting on a rigid point at
+  // (0.5, −0.05) L, meshed with 10 … 80 Euler–Bernoulli elements: the contact force against the
+  // exact elastica's with the force along the chord's normal (the paper's) and along the bent
+  // beam's ("normal": "deflected", issue 27 part 2).
+  const double P = 10.0, a = 0.5, h = -0.05;
+  const double exact = resting_cantilever_force(P, a, h);
+  std::array<std::array<double, 4>, 2> error{};
+  const int meshes[4] = {10, 20, 40, 80};
+  for (int normal = 0; normal < 2; ++normal)
+    for (int q = 0; q < 4; ++q) {
+      BeamSpec b;
+      b.divisions = meshes[q];
+      b.A = 1e7;  // inextensible
+      json m = beam_model(b);
+      m["nodes"].push_back({{"id", 100}, {"x", a}, {"y", h}});
+      m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 100}, {"type", "fixed"}}});
+      m["loads"] = json::array({{{"node", 2}, {"fy", -P}}});
+      m["contacts"] = json::array({{{"node", 100}, {"members", "all"}, {"normal", normal == 0 ? "chord" : "deflected"}}});
+      m["analysis"] = {{"control", {{"type", "load"}, {"steps", 20}}}, {"cutback", true}};
+      tsm::Model model;
+      const RunResult r = run(m, model);
+      ASSERT_EQ(r.status, tsm::solver::Status::converged) << meshes[q] << ": " << r.message;
+      error[normal][q] = contact_of(r.steps.back()).force / exact - 1.0;
+      std::printf("[figure] %d elements, %s normal: contact force %.8g, exact %.8g, error %+.3e\n", meshes[q],
+                  normal == 0 ? "chord" : "deflected", contact_of(r.steps.back()).force, exact, error[normal][q]);
+    }
+  EXPECT_NEAR(exact, 18.4851216, 1e-6);  // the shooting's own check: RK4 with 4,000 steps against 20,000
+  for (int q = 0; q < 4; ++q) {
+    const double h2 = (10.0 / meshes[q]) * (10.0 / meshes[q]);
+    EXPECT_LT(std::abs(error[1][q]), 2e-4 * h2) << "deflected, " << meshes[q];  // within 2·10⁻⁴ (h / 0.1)²
+    EXPECT_GT(std::abs(error[0][q]), 1e-3) << "chord, " << meshes[q];            // the paper's stays off
+  }
+  EXPECT_GT(error[0][1], 0.015);  // the issue's 1.8 % at 20 elements
+}
+
 INSTANTIATE_TEST_SUITE_P(Formulations, LargePush,
                          ::testing::Values(PushCase{"euler-bernoulli", "chord"}, PushCase{"timoshenko", "chord"},
                                            PushCase{"euler-bernoulli", "cantilever"}, PushCase{"timoshenko", "cantilever"}));
