@@ -14,7 +14,7 @@
 // force at the point (N6). In the nodal forces this is the chord element's less T ∂α/∂x, T = Y w_α
 // (N7, N8), and it is exactly the chord element where w_α = 0.
 //
-// Not yet used by the solver (the wiring is the next increment of issue 27 part 2).
+// Used where a contact asks for "normal": "deflected" (contact_response.cpp), one point per element.
 
 #include <Eigen/Core>
 

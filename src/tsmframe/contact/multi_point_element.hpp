@@ -7,7 +7,7 @@
 // c_p is Y_p n) and the consistent tangent (K15)
 //     K = J (∂S/∂d) Jᵀ + K_G + Σ_p J (∂S/∂α_p)(∂α_p/∂x)ᵀ,
 // each point's sliding term a rank-one term kept apart, so a solver can leave them out.
-// Not yet used by the solver (the next increment of issue 27).
+// Used for every element with two or more contact points (active_contact.cpp).
 
 #include <vector>
 
