@@ -4,6 +4,8 @@
 // `angle` about node i, stretched by 0.2 %, bent (θ_i, θ_j), the node moved off the chord by
 // `push` along n and by `slide` along e, everything then shifted by `shift`.
 
+#include <gtest/gtest.h>
+
 #include <Eigen/Geometry>
 
 #include "tsmframe/contact/contact_response.hpp"
@@ -57,6 +59,21 @@ inline contact::Matrix9 finite_difference_tangent(const ContactTrial& s) {
                 contact::contact_response(s.data, minus, s.previous).nodal_forces) / (2 * h);
   }
   return K;
+}
+
+/// The contact element's nodal forces F at (data, d) are self-equilibrated: no net force and no
+/// net moment (about the origin, at the current positions), none on the contact node's rotation.
+inline void expect_self_equilibrated(const contact::ContactElementData& data, const contact::Vector9& d,
+                                     const contact::Vector9& F) {
+  const double scale = F.cwiseAbs().maxCoeff();
+  EXPECT_NEAR(F[0] + F[3] + F[6], 0.0, 1e-12 * scale);
+  EXPECT_NEAR(F[1] + F[4] + F[7], 0.0, 1e-12 * scale);
+  const Eigen::Vector2d xi = data.initial.start + d.segment<2>(0), xj = data.initial.end + d.segment<2>(3),
+                        xc = data.contact_start + d.segment<2>(6);
+  auto cross = [](const Eigen::Vector2d& x, double fx, double fy) { return x.x() * fy - x.y() * fx; };
+  const double moment = F[2] + F[5] + F[8] + cross(xi, F[0], F[1]) + cross(xj, F[3], F[4]) + cross(xc, F[6], F[7]);
+  EXPECT_NEAR(moment, 0.0, 3e-12 * scale);
+  EXPECT_EQ(F[8], 0.0);  // the contact node takes no moment
 }
 
 }  // namespace tsm::test

@@ -86,17 +86,7 @@ TEST(ContactElement, ForcesAreSelfEquilibrated) {
     const Trial s = trial(psi, 1.3, 0.2, -0.15, 0.4, 0.03, 0.05);
     const ContactResponse r = contact_response(s.data, s.d, s.previous);
     ASSERT_GT(std::abs(r.forces[3]), 1.0);  // a real contact force
-    const Vector9& F = r.nodal_forces;
-    const double scale = F.cwiseAbs().maxCoeff();
-    EXPECT_NEAR(F[0] + F[3] + F[6], 0.0, 1e-12 * scale);
-    EXPECT_NEAR(F[1] + F[4] + F[7], 0.0, 1e-12 * scale);
-    // Moments about the origin, at the current positions.
-    const Eigen::Vector2d xi = s.data.initial.start + s.d.segment<2>(0), xj = s.data.initial.end + s.d.segment<2>(3),
-                          xc = s.data.contact_start + s.d.segment<2>(6);
-    auto cross = [](const Eigen::Vector2d& x, double fx, double fy) { return x.x() * fy - x.y() * fx; };
-    const double moment = F[2] + F[5] + F[8] + cross(xi, F[0], F[1]) + cross(xj, F[3], F[4]) + cross(xc, F[6], F[7]);
-    EXPECT_NEAR(moment, 0.0, 1e-12 * scale * 3.0);
-    EXPECT_EQ(F[8], 0.0);  // the contact node takes no moment
+    tsm::test::expect_self_equilibrated(s.data, s.d, r.nodal_forces);
   }
 }
 
