@@ -100,8 +100,12 @@ class Model:
         self._doc["supports"].append(entry)
         return self
 
-    def load(self, node, fx=0.0, fy=0.0, mz=0.0):
-        self._doc["loads"].append({"node": _ref(node), "fx": fx, "fy": fy, "mz": mz})
+    def load(self, node, fx=0.0, fy=0.0, mz=0.0, follower=False):
+        """A nodal load scaled by λ; follower=True: the force (fx, fy, as drawn) turns with its node."""
+        entry = {"node": _ref(node), "fx": fx, "fy": fy, "mz": mz}
+        if follower:
+            entry["follower"] = True
+        self._doc["loads"].append(entry)
         return self
 
     def prescribe(self, node, **dofs):

@@ -276,6 +276,22 @@ def test_model_built_in_code_rolls_into_a_circle():
     assert math.hypot(L + ux, uy) < 1e-6 * L  # the tip is back at the root
 
 
+def test_a_follower_tip_force_built_in_code_stays_normal_to_the_tip():
+    # The support carries the force turned with the tip: −P (−sin θ, cos θ), whatever θ (statics).
+    P = 3.0
+    m = tf.Model("follower").material("m", E=1.0, G=1.0).section("s", A=1e8, I=1.0, shear_area=1e14)
+    m.node(1, 0, 0).node(2, 1, 0).member(1, 2, "m", "s", divisions=20)
+    m.support(1, "fixed").load(2, fy=P, follower=True)
+    m.analysis(steps=4)
+    r = tf.run(m)
+    assert r.ok, r.message
+    theta = r.displacement(2)[2]
+    assert theta > 1.0  # turned far enough for the direction to matter
+    rx, ry = r.reactions[-1, r._node(1), :2]
+    assert rx == pytest.approx(P * math.sin(theta), abs=1e-8)
+    assert ry == pytest.approx(-P * math.cos(theta), abs=1e-8)
+
+
 def off_chord(curve):
     """The largest distance of a curve's points (k, 2) from the line through its ends, and its chord's length."""
     chord = curve[-1] - curve[0]

@@ -1,6 +1,17 @@
 #include "tsmframe/assembly/follower_loads.hpp"
 
+#include <Eigen/Geometry>
+#include <utility>
+
 namespace tsm::assembly {
+namespace {
+
+/// R(θ) F: a follower point load at its node's rotation θ.
+Eigen::Vector2d turned(const FollowerForce& f, const Eigen::VectorXd& displacements) {
+  return Eigen::Rotation2Dd(displacements[dofs_per_node * f.node + rz]) * f.force;
+}
+
+}  // namespace
 
 FollowerLoads::FollowerLoads(const Model& model, const DofMap& dofs) : model_(model), dofs_(dofs) {
   for (const Element& e : model.elements)
@@ -25,10 +36,21 @@ void FollowerLoads::reference_load(const Eigen::VectorXd& displacements, Eigen::
     out.segment<2>(dofs_per_node * f.start) += half;
     out.segment<2>(dofs_per_node * f.end) += half;
   }
+  for (const FollowerForce& f : model_.follower_forces) out.segment<2>(dofs_per_node * f.node) += turned(f, displacements);
 }
 
-void FollowerLoads::skew_terms(double load_factor, std::vector<linalg::RankOne>& out) const {
+void FollowerLoads::skew_terms(double load_factor, const Eigen::VectorXd& displacements,
+                               std::vector<linalg::RankOne>& out) const {
   out.clear();
+  for (const FollowerForce& f : model_.follower_forces) {
+    const int base = dofs_per_node * f.node, theta = dofs_.equation(base + rz);
+    if (theta < 0 || load_factor == 0.0) continue;  // a held rotation turns the force by no unknown
+    const Eigen::Vector2d P = turned(f, displacements);
+    // −λ ∂P/∂θ = −λ Q R(θ) F, Q (x, y) = (−y, x)
+    linalg::RankOne term{{dofs_.equation(base + ux), dofs_.equation(base + uy), theta},
+                         Eigen::Vector3d(load_factor * P.y(), -load_factor * P.x(), 0.0), Eigen::Vector3d(0.0, 0.0, 1.0)};
+    out.push_back(std::move(term));
+  }
   for (const auto& [node, per_unit] : skew_) {
     const double c = load_factor * per_unit;
     const int u = dofs_.equation(dofs_per_node * node + ux), v = dofs_.equation(dofs_per_node * node + uy);

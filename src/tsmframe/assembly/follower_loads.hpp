@@ -22,10 +22,11 @@ namespace tsm::assembly {
 class FollowerLoads {
  public:
   FollowerLoads(const Model& model, const DofMap& dofs);
-  bool empty() const { return loads_.empty(); }
+  bool empty() const { return loads_.empty() && model_.follower_forces.empty(); }
 
   /// The reference load at `displacements` (all dofs): the model's, plus the follower loads on
-  /// the current geometry, at λ = 1.
+  /// the current geometry (pressure on the current chords, point loads turned with their nodes),
+  /// at λ = 1.
   void reference_load(const Eigen::VectorXd& displacements, Eigen::VectorXd& out) const;
 
   /// add(node_i, node_j, K_ij) for each load's symmetric coupling K_ij = λ (p/2) R (on the
@@ -43,8 +44,9 @@ class FollowerLoads {
   }
 
   /// The skew rest c R at the nodes where loaded stretches end, as rank-one terms over the free
-  /// equations (K_uv −= c, K_vu += c), into `out` (cleared first).
-  void skew_terms(double load_factor, std::vector<linalg::RankOne>& out) const;
+  /// equations (K_uv −= c, K_vu += c), and each follower point load's −λ Q R(θ) F on its node's
+  /// free rotation, into `out` (cleared first).
+  void skew_terms(double load_factor, const Eigen::VectorXd& displacements, std::vector<linalg::RankOne>& out) const;
 
  private:
   struct Load {

@@ -383,7 +383,7 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
     follower_loads_.reference_load(displacements, out.reference_load);
     if (with_tangent) {
       follower_loads_.couplings(load_factor_, nullptr, [&](int i, int j, const Eigen::Matrix3d& k) { add_block(i, j, k); });
-      follower_loads_.skew_terms(load_factor_, follower_rank_one_);
+      follower_loads_.skew_terms(load_factor_, displacements, follower_rank_one_);
     }
   }
   finish_evaluation(displacements, previous_rotations, with_tangent, out, contacts);

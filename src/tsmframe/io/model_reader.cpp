@@ -14,6 +14,7 @@
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/io/input_file.hpp"
 #include "tsmframe/io/json_input.hpp"
+#include "tsmframe/io/member_options.hpp"
 #include "tsmframe/io/section_table.hpp"
 #include "tsmframe/io/system_error.hpp"
 #include "tsmframe/model/hinges.hpp"
@@ -220,47 +221,6 @@ class Reader {
     return member;
   }
 
-  /// A member's "load": force per unit length in global x and y, and a follower pressure.
-  static void read_member_load(const json& load, const std::string& path, MemberInput& member) {
-    expect_object(load, path);
-    check_keys(load, path, {"fx", "fy", "pressure"});
-    if (auto fx = optional_number(load, "fx", path)) member.load.x() = *fx;
-    if (auto fy = optional_number(load, "fy", path)) member.load.y() = *fy;
-    if (auto p = optional_number(load, "pressure", path)) member.pressure = *p;
-    if (member.load.x() == 0.0 && member.load.y() == 0.0 && member.pressure == 0.0)
-      fail(path, "give fx, fy or pressure (force per unit length)");
-  }
-
-  /// Rotational springs at a member's ends (semi-rigid connections), kept as flexibilities 1/k.
-  static void read_end_springs(const json& springs, const std::string& path, MemberInput& member) {
-    expect_object(springs, path);
-    check_keys(springs, path, {"start", "end"});
-    for (const std::string end : {"start", "end"}) {
-      if (!springs.contains(end)) continue;
-      const std::string epath = child(path, end);
-      const double stiffness = number(springs[end], epath);
-      if (!(stiffness > 0.0) || !std::isfinite(stiffness))
-        fail(epath, "a rotational spring's stiffness (moment per radian) must be a positive finite number (a hinge is \"release\")");
-      if ((end == "start" && member.release_start) || (end == "end" && member.release_end))
-        fail(epath, "that end is released (a hinge): a spring there holds nothing");
-      (end == "start" ? member.flexibility_from : member.flexibility_to) = 1.0 / stiffness;
-    }
-    if (springs.empty()) fail(path, "give start or end (rotational stiffness, moment per radian)");
-  }
-
-  /// A member's "arc" (its centre and sweep; whether it joins the member's nodes is the mesh's check).
-  static Arc read_arc(const json& arc, const std::string& path) {
-    expect_object(arc, path);
-    check_keys(arc, path, {"center", "sweep"});
-    if (!arc.contains("center")) fail(child(path, "center"), "missing (required)");
-    Arc out;
-    out.centre = point(arc["center"], child(path, "center"));
-    out.sweep = required_number(arc, "sweep", path);
-    if (out.sweep == 0.0 || std::abs(out.sweep) > 2.0 * std::numbers::pi * (1 + 1e-12))
-      fail(child(path, "sweep"), "must be non-zero and at most 2π in size");
-    return out;
-  }
-
   void read_supports() {
     if (!doc_.contains("supports")) return;
     const json& supports = doc_["supports"];
@@ -301,18 +261,33 @@ class Reader {
       const std::string path = child("loads", k);
       const json& l = loads[k];
       expect_object(l, path);
-      check_keys(l, path, {"node", "fx", "fy", "mz"});
+      check_keys(l, path, {"node", "fx", "fy", "mz", "follower"});
       const int node = required_node(l, path);
+      const bool follower = l.contains("follower") && boolean(l["follower"], child(path, "follower"));
       const char* keys[3] = {"fx", "fy", "mz"};
+      Eigen::Vector3d value = Eigen::Vector3d::Zero();
       for (int dof = 0; dof < dofs_per_node; ++dof)
-        if (auto value = optional_number(l, keys[dof], path)) {
-          if (dof == rz && *value != 0.0 && hinge[node] && !model_.constrained[dofs_per_node * node + rz])
-            fail(child(path, "mz"), "node " + std::to_string(model_.nodes[node].id) +
-                                        " is a hinge: every element end there is released, so it carries no moment");
-          model_.reference_load[dofs_per_node * node + dof] += *value;
-          if (*value != 0.0) nodally_loaded_.insert(node);
-        }
+        if (auto v = optional_number(l, keys[dof], path)) value[dof] = *v;
+      if (value[rz] != 0.0 && hinge[node] && !model_.constrained[dofs_per_node * node + rz])
+        fail(child(path, "mz"), "node " + std::to_string(model_.nodes[node].id) +
+                                    " is a hinge: every element end there is released, so it carries no moment");
+      if (follower) read_follower_force(path, node, value.head<2>());
+      else model_.reference_load.segment<2>(dofs_per_node * node) += value.head<2>();
+      model_.reference_load[dofs_per_node * node + rz] += value[rz];  // a moment turns with nothing
+      if ((value.array() != 0.0).any()) nodally_loaded_.insert(node);
     }
+  }
+
+  /// A force that turns with its node ("follower": true): it needs a node an element end turns
+  /// with, else its direction would follow a rotation that means nothing.
+  void read_follower_force(const std::string& path, int node, const Eigen::Vector2d& force) {
+    if (force.x() == 0.0 && force.y() == 0.0) fail(path, "a follower load needs a force (fx or fy) to turn");
+    if (turned_.empty()) turned_ = turned_nodes(model_);
+    if (!turned_[node])
+      fail(child(path, "follower"), "node " + std::to_string(model_.nodes[node].id) +
+                                        " turns with no element end (a hinge, or held by no element): a follower "
+                                        "load there has no rotation to follow");
+    model_.follower_forces.push_back({node, force});
   }
 
   void read_prescribed() {
@@ -552,6 +527,7 @@ class Reader {
   Model model_;
   std::optional<SectionTable> sections_;  ///< read after the header
   std::set<int> connected_members_;  ///< members with a moment release or an end spring ("release", "end_springs")
+  std::vector<char> turned_;         ///< turned_nodes, once a follower load asks
   std::set<int> nodally_loaded_;     ///< nodes a "loads" entry names with a nonzero value
   std::unordered_map<int, int> ids_;
   // The contacts' look-ups (index_members): each member's first element, the members at each

@@ -8,6 +8,10 @@
 
 namespace tsm {
 
+/// Per node: 1 where an element end turns with it (held and not released there). A node turned by
+/// none — a hinge, or a node no element holds (a rigid pusher) — has a rotation that means nothing.
+std::vector<char> turned_nodes(const Model& model);
+
 /// Per node: 1 where elements hold it but every element end there is released (a hinge). Its
 /// rotation is the reader's to fix: it is no support (results' reactions) and holds nothing of
 /// the structure (the mechanism check).

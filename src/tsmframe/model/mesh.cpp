@@ -121,11 +121,9 @@ void MemberMesh::finish() {
 }
 
 void fix_free_rotations(Model& model) {
-  const std::vector<char> hinge = hinge_nodes(model);
-  std::vector<bool> held(model.node_count(), false);
-  for (const Element& e : model.elements) held[e.start] = held[e.end] = true;
+  const std::vector<char> turned = turned_nodes(model);
   for (int k = 0; k < model.node_count(); ++k)
-    if (!held[k] || hinge[k]) model.constrained[dofs_per_node * k + rz] = true;
+    if (!turned[k]) model.constrained[dofs_per_node * k + rz] = true;
 }
 
 std::vector<int> default_monitor(const Model& model, const std::set<int>& nodally_loaded,

@@ -112,6 +112,13 @@ struct Control {
   int until_dof = uy;
 };
 
+/// A nodal force that turns with its node (a follower point load): R(θ) force at the node's
+/// rotation θ, scaled by λ like the reference load (`force`: as drawn, at θ = 0).
+struct FollowerForce {
+  int node = 0;  ///< node index
+  Eigen::Vector2d force = Eigen::Vector2d::Zero();
+};
+
 struct OutputSelection {
   enum class Kind { all, last, every } kind = Kind::all;
   int every = 1;
@@ -146,6 +153,8 @@ struct Model {
   std::vector<bool> constrained;
   /// Per dof: reference load, multiplied by the load factor λ.
   Eigen::VectorXd reference_load;
+  /// Nodal forces that turn with their nodes, multiplied by λ too (not in reference_load).
+  std::vector<FollowerForce> follower_forces;
   /// Per dof: prescribed displacement reached at λ = 1 (zero where none); empty when no
   /// displacement is prescribed (a model's worth of zeros saved). Read it through prescribed().
   Eigen::VectorXd reference_prescribed;
