@@ -14,8 +14,9 @@
     to a reader and not to the schema (or the other way round) fails here;
   - with the command line given: the reader refuses each "zzz" mutation (exit 2, naming zzz),
     accepts each example with "extra" everywhere (the reader's checks pass: exit 3 from an
-    output directory that cannot be made, before any analysis), and the values the reader's
-    messages list for a bad enumerated value ("(expected …)") are the schema's enum.
+    output directory that cannot be made, before any analysis), the values the reader's
+    messages list for a bad enumerated value ("(expected …)") are the schema's enum, and values
+    out of the reader's ranges (tolerance, divisions, E, nu, ids, ±1e50, …) are refused by both.
 
     /usr/bin/python3 tests/format/test_schema.py SOURCE_DIR [TSMFRAME_BINARY]
 
@@ -246,6 +247,27 @@ ENUMS = [
 ]
 
 
+# Values the reader refuses by their range, set in examples/portal-frame.json: (path, key, value).
+RANGES = [
+    (["analysis"], "tolerance", 1),
+    (["analysis"], "tolerance", 0),
+    (["analysis"], "max_iterations", 0),
+    (["analysis"], "max_cutbacks", 61),
+    (["analysis"], "output", 0),
+    (["analysis"], "output", 2.5),
+    (["analysis", "control"], "steps", 0),
+    (["members", 0], "divisions", 0),
+    (["members", 0], "divisions", 10000001),
+    (["materials", "steel"], "E", 0),
+    (["materials", "steel"], "nu", 0.5),
+    (["sections", "column"], "I", -1.0),
+    (["nodes", 0], "id", 3000000000),
+    (["loads", 0], "fx", 1e51),
+    (["members", 0], "arc", {"center": [0, 2], "sweep": 0}),
+    ([], "format", "tsmframe-model/2"),
+]
+
+
 def expected_list(message):
     """The values in a reader message's "(expected a, b or c)" / "expected \"a\", \"b\" or …"."""
     m = re.search(r"\(expected ([^)]*)\)", message) or re.search(r"expected (.*?)(?: \(|$)", message)
@@ -299,6 +321,15 @@ class AgainstTheReader(unittest.TestCase):
             code, err = self.read(with_extra_everywhere(load(path)))
             with self.subTest(example=os.path.basename(path)):
                 self.assertEqual(code, 3, f"expected the reader to accept it (exit 3: no output directory): {err}")
+
+    def test_values_out_of_the_readers_ranges_are_refused_by_both(self):
+        for where, key, value in RANGES:
+            model = load(os.path.join(SOURCE, "examples", "portal-frame.json"))
+            at(model, where)[key] = value
+            code, err = self.read(model)
+            with self.subTest(at=where + [key], value=value):
+                self.assertEqual(code, 2, err)
+                self.assertFalse(MODEL.is_valid(model))
 
     def test_the_readers_enumerations_are_the_schemas(self):
         for file, where, key, which, enum_at in ENUMS:
