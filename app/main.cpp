@@ -1,4 +1,4 @@
-// The `tsmframe` command: a thin shell over the library (FORMAT.md, "Command line").
+// The `tsmframe` command: a thin shell over the library (docs/format.md, "Command line").
 // Exit status: 0 converged to the end; 1 ran but did not reach the end (results written: a step
 // failed, or Ctrl-C / SIGTERM interrupted it); 2 bad input or usage; 3 the system failed us (a
 // file that cannot be written, memory run out). The outputs appear whole or not at all
@@ -226,7 +226,7 @@ int main(int argc, char** argv) {
 
   RunOptions options;
   CLI::App* run_command = app.add_subcommand("run", "Analyse MODEL.json; write results.json and steps.csv");
-  run_command->add_option("model", options.model, "model file (FORMAT.md, tsmframe-model/1)")->required();
+  run_command->add_option("model", options.model, "model file (docs/format.md, tsmframe-model/1)")->required();
   run_command->add_option("-o,--out", options.out, "output directory (default: out)");
   run_command->add_flag("-q,--quiet", options.quiet, "no progress lines");
   run_command->add_flag("--log-iterations", options.log_iterations, "print the residual of every iterate");

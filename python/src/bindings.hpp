@@ -16,7 +16,7 @@ namespace py = pybind11;
 
 /// MemoryError and OSError for what the system could not give a run (errors.cpp).
 void define_errors(py::module_& module);
-/// MeshedModel and read_model: a model from its FORMAT.md JSON text (model.cpp).
+/// MeshedModel and read_model: a model from its docs/format.md JSON text (model.cpp).
 void define_model(py::module_& module);
 /// run_json: a model run, its results as numpy arrays and the CLI's texts (run.cpp, results.cpp).
 void define_run(py::module_& module);
@@ -25,7 +25,7 @@ void define_curves(py::module_& module);
 /// study_json: a parameter study's cases run, study.json's text back (study.cpp).
 void define_study(py::module_& module);
 
-/// A model read and meshed from its FORMAT.md JSON text; ValueError ("JSON.path: reason", the
+/// A model read and meshed from its docs/format.md JSON text; ValueError ("JSON.path: reason", the
 /// CLI's words) for bad input.
 std::shared_ptr<Model> read_model(const std::string& text);
 

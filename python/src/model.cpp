@@ -1,4 +1,4 @@
-// Model reading: a model from its FORMAT.md JSON text, read and meshed — what run_json runs and
+// Model reading: a model from its docs/format.md JSON text, read and meshed — what run_json runs and
 // what a Result unpickled needs for its curves.
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/io/model_reader.hpp"
@@ -16,7 +16,7 @@ std::shared_ptr<Model> read_model(const std::string& text) {
 
 void define_model(py::module_& module) {
   py::class_<Model, std::shared_ptr<Model>>(module, "MeshedModel", "A model as read and meshed (opaque): what element_curves draws");
-  module.def("read_model", &read_model, py::arg("text"), "Read and mesh a model given as FORMAT.md JSON text (ValueError for bad input).");
+  module.def("read_model", &read_model, py::arg("text"), "Read and mesh a model given as docs/format.md JSON text (ValueError for bad input).");
 }
 
 }  // namespace tsm::python

@@ -1,4 +1,4 @@
-// Running: a model given as FORMAT.md JSON text, run on `threads` threads with the GIL released
+// Running: a model given as docs/format.md JSON text, run on `threads` threads with the GIL released
 // (Ctrl-C ends it at the next step and raises KeyboardInterrupt: interruptible.hpp); its results
 // as numpy arrays (results.cpp).
 #include <omp.h>
@@ -29,7 +29,7 @@ py::dict run_json(const std::string& text, int threads) {
 
 void define_run(py::module_& module) {
   module.def("run_json", &run_json, py::arg("text"), py::arg("threads") = 0,
-             "Run a model given as FORMAT.md JSON text; returns a dict of numpy arrays and the results.json text. "
+             "Run a model given as docs/format.md JSON text; returns a dict of numpy arrays and the results.json text. "
              "Raises ValueError (JSON path: reason) for bad input.");
 }
 

@@ -1,6 +1,6 @@
 """tsmframe from Python: geometrically nonlinear plane frames by the Tangent Stiffness Method.
 
-Build a model in code or load a FORMAT.md file, run it, get numpy arrays::
+Build a model in code or load a docs/format.md file, run it, get numpy arrays::
 
     import tsmframe as tf
     m = tf.Model("cantilever rolled into a circle")
@@ -29,7 +29,7 @@ __all__ = ["Model", "Result", "run", "load", "__version__"]
 
 
 class Model:
-    """A model built in code; mirrors FORMAT.md key for key (see to_dict())."""
+    """A model built in code; mirrors docs/format.md key for key (see to_dict())."""
 
     def __init__(self, title="", units=None):
         self._doc = {"format": "tsmframe-model/1", "title": title, "materials": {}, "sections": {},
@@ -117,7 +117,7 @@ class Model:
         """A contact node, or several with the same options: nodes=[refs] or nodes={"members": [i, …]}
         (every node of those members), or between=([members A], [members B]): every node of each
         side a contact node on the other (beam on beam from both sides); options: element, frame,
-        gap, edge, max_stiffness_ratio, sliding_tangent (FORMAT.md, README)."""
+        gap, edge, max_stiffness_ratio, sliding_tangent (docs/format.md, README)."""
         if between is not None:
             if node is not None or nodes is not None:
                 raise ValueError("contact: give between, or node(s) and members (not both)")
@@ -146,7 +146,7 @@ class Model:
         return self
 
     def to_dict(self):
-        """The FORMAT.md document (empty optional lists left out)."""
+        """The docs/format.md document (empty optional lists left out)."""
         return {k: v for k, v in self._doc.items() if not (isinstance(v, (list, dict)) and not v and k not in ("materials", "sections", "nodes", "members"))}
 
     def to_json(self, indent=1):
@@ -186,7 +186,7 @@ def study(definition, jobs=0):
 
 
 def load(path):
-    """A Model from a FORMAT.md file (validated when run)."""
+    """A Model from a docs/format.md file (validated when run)."""
     with open(path) as f:
         try:
             return Model.from_dict(_json.load(f))
@@ -287,7 +287,7 @@ class Result:
 
 
 def run(model, threads=0):
-    """Run a Model, a FORMAT.md dict, a JSON text or a file path. Raises ValueError for bad input."""
+    """Run a Model, a docs/format.md dict, a JSON text or a file path. Raises ValueError for bad input."""
     if isinstance(model, Model):
         text = model.to_json()
     elif isinstance(model, dict):

@@ -320,6 +320,8 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
        "contacts[0].between: member 0 is on both sides"},
       {"contact without members", [](json& m) { m["contacts"] = json::array({{{"node", 2}}}); },
        "contacts[0].members: missing (required, or give \"between\")"},
+      {"end springs with neither end", [](json& m) { m["members"][0]["end_springs"] = {{"extra", "note"}}; },
+       "members[0].end_springs: give start or end"},
   };
   for (const BadCase& c : cases) {
     json m = cantilever();

@@ -114,6 +114,7 @@ TEST_F(Study, BadStudyInputExitsTwoWithThePath) {
       {R"([{"name": "v", "variants": [{"label": "a"}]}])", "sweep[0].variants[0].set: missing"},
       {R"([{"name": "n", "path": "/x", "values": [1], "colour": 1}])", "sweep[0].colour: unknown key"},
       {R"([{"name": "status", "path": "/x", "values": [1]}])", "sweep[0].name: \"status\" names another column already"},
+      {R"([{"name": "", "path": "/x", "values": [1]}])", "sweep[0].name: empty"},
       {R"([{"name": "n", "path": "/x", "values": [1]}, {"name": "n", "path": "/y", "values": [2]}])",
        "sweep[1].name: \"n\" names another column already"},
   };

@@ -1,5 +1,5 @@
 #pragma once
-// A model file's "analysis" (FORMAT.md): the control (load, displacement, arc-length), the
+// A model file's "analysis" (docs/format.md): the control (load, displacement, arc-length), the
 // convergence settings, the output selection and the monitored nodes; and whether the states the
 // output selection keeps fit in memory.
 

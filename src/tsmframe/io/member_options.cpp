@@ -33,7 +33,7 @@ void read_end_springs(const json& springs, const std::string& path, MemberInput&
       fail(epath, "that end is released (a hinge): a spring there holds nothing");
     (end == "start" ? member.flexibility_from : member.flexibility_to) = 1.0 / stiffness;
   }
-  if (springs.empty()) fail(path, "give start or end (rotational stiffness, moment per radian)");
+  if (!springs.contains("start") && !springs.contains("end")) fail(path, "give start or end (rotational stiffness, moment per radian)");
 }
 
 Arc read_arc(const json& arc, const std::string& path) {

@@ -60,7 +60,7 @@ class Reader {
 
   Model read() {
     expect_object(doc_, "(document)");
-    check_keys(doc_, "", {"format", "title", "units", "materials", "sections", "nodes", "members", "supports",
+    check_keys(doc_, "", {"$schema", "format", "title", "units", "materials", "sections", "nodes", "members", "supports",
                           "loads", "prescribed", "contacts", "analysis"});
     read_header();
     sections_.emplace(doc_);

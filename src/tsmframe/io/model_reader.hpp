@@ -1,5 +1,5 @@
 #pragma once
-// Reads a model file (FORMAT.md, "tsmframe-model/1") strictly: unknown keys, wrong types and
+// Reads a model file (docs/format.md, "tsmframe-model/1") strictly: unknown keys, wrong types and
 // inconsistent data are InputErrors carrying the JSON path (`members[2].section`). Each member's
 // keys become a MemberInput that model/mesh.hpp divides into elements — counted first, against the
 // element cap and the memory budget; the whole run's memory estimate is held to the budget before

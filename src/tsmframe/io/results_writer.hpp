@@ -1,5 +1,5 @@
 #pragma once
-// results.json and steps.csv (FORMAT.md, "tsmframe-results/1").
+// results.json and steps.csv (docs/format.md, "tsmframe-results/1").
 
 #include <ostream>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// A model file's "materials" and "sections" (FORMAT.md), read strictly, and a member's section
+// A model file's "materials" and "sections" (docs/format.md), read strictly, and a member's section
 // stiffness from the material and section it names: EA, EI and, for Timoshenko elements,
 // Ψ = EI/(G A_s) (Eq. 8).
 

@@ -1,5 +1,5 @@
 #pragma once
-// Members made into the model's nodes and elements (FORMAT.md, "A member"): each divided into
+// Members made into the model's nodes and elements (docs/format.md, "A member"): each divided into
 // equal elements along its chord or a circular arc, the interior nodes numbered after the largest
 // id; its distributed load lumped half to each end of every element; and what follows from the
 // mesh — rotations no element end holds fixed, the nodes steps.csv shows by default.

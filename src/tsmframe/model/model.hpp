@@ -100,7 +100,7 @@ struct Control {
   int node = -1;
   int dof = uy;
   double target = 0.0;
-  // arc-length control (FORMAT.md): arc length of the first step, bounds, step budget, and when
+  // arc-length control (docs/format.md): arc length of the first step, bounds, step budget, and when
   // to stop (a load factor, or a value of one dof, reached in either direction)
   double initial_increment = 0.0;
   double min_increment = 0.0;
@@ -129,7 +129,7 @@ struct AnalysisSettings {
   double tolerance = 1e-8;
   int max_iterations = 50;
   bool cutback = true;
-  int max_cutbacks = 10;  ///< halvings in a row before the run gives up (FORMAT.md)
+  int max_cutbacks = 10;  ///< halvings in a row before the run gives up (docs/format.md)
   OutputSelection output;
   std::vector<int> monitor;  ///< node indices written to steps.csv
 };

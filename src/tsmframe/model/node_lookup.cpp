@@ -6,7 +6,7 @@
 namespace tsm {
 namespace {
 
-constexpr double coordinate_match = 1e-9;  // × model size (FORMAT.md)
+constexpr double coordinate_match = 1e-9;  // × model size (docs/format.md)
 
 std::string point_text(const Eigen::Vector2d& p) {
   std::ostringstream os;

@@ -1,6 +1,6 @@
 #pragma once
 // A node named by its coordinates: `[x, y]` in a model or study file matches the nodes within
-// 1e-9 of the model's size (FORMAT.md). One lookup for the reader and the study's records.
+// 1e-9 of the model's size (docs/format.md). One lookup for the reader and the study's records.
 
 #include <Eigen/Core>
 #include <string>

@@ -16,7 +16,7 @@ namespace {
 // arc length (cutback) until min_increment.
 constexpr double aim_iterations = 6.0;
 
-/// The quantity `until` watches at a state (FORMAT.md `until`): λ or one dof. Only for a control
+/// The quantity `until` watches at a state (docs/format.md `until`): λ or one dof. Only for a control
 /// that has an `until` (Until::steps names no dof).
 double watched(const Control& control, double load_factor, const Eigen::VectorXd& displacements) {
   if (control.until == Control::Until::load_factor) return load_factor;

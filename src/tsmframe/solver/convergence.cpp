@@ -6,7 +6,7 @@
 namespace tsm::solver {
 namespace {
 
-constexpr double round_off_ratio = 1e-12;  // ‖ΔD‖∞ ≤ 1e-12 · max(size, ‖D‖∞) ends a step (FORMAT.md)
+constexpr double round_off_ratio = 1e-12;  // ‖ΔD‖∞ ≤ 1e-12 · max(size, ‖D‖∞) ends a step (docs/format.md)
 constexpr double blow_up_ratio = 1e12;     // ‖R‖ > 1e12 · scale is divergence (FORMULATION §4)
 constexpr double runaway_ratio = 1e6;      // |u| > 1e6 · (size + prescribed) is divergence, unless …
 // … the iterate's coordinates still give every element's chord to this fraction of its length

@@ -86,6 +86,7 @@ Parameter read_parameter(const json& p, const std::string& path) {
   check_keys(p, path, {"name", "path", "values", "range", "variants"});
   Parameter out;
   out.name = required_string(p, "name", path, "missing (required, a string)");
+  if (out.name.empty()) fail(child(path, "name"), "empty (the parameter's study.csv column needs a name)");
   if (p.contains("variants")) {
     if (p.contains("values") || p.contains("range") || p.contains("path"))
       fail(path, "give either \"variants\" or \"path\" with \"values\"/\"range\"");
@@ -134,7 +135,7 @@ Record read_record(const json& r, const std::string& path) {
   Record out;
   out.path = path;
   out.name = required_string(r, "name", path, "missing (required, a string)");
-  if (out.name.empty()) fail(child(path, "name"), "missing (required, a string)");
+  if (out.name.empty()) fail(child(path, "name"), "empty (the parameter's study.csv column needs a name)");
   const std::string quantity = required_string(r, "quantity", path, "missing (required, a string)");
   out.quantity = quantity_from_name(quantity, child(path, "quantity"));
   const bool with_node = out.quantity != Record::Quantity::load_factor;
@@ -165,7 +166,7 @@ Record read_record(const json& r, const std::string& path) {
 json read_base_model(const json& doc, const std::string& directory) {
   if (doc.contains("model") == doc.contains("model_file")) fail("model", "give exactly one of \"model\" and \"model_file\"");
   if (doc.contains("model")) {
-    if (!doc["model"].is_object()) fail("model", "expected the model as an object (FORMAT.md)");
+    if (!doc["model"].is_object()) fail("model", "expected the model as an object (docs/format.md)");
     return doc["model"];
   }
   const std::filesystem::path file = std::filesystem::path(directory) / io::string(doc["model_file"], "model_file");
@@ -203,7 +204,7 @@ size_t Study::case_count() const {
 
 Study read_study(const json& doc, const std::string& directory) {
   if (!doc.is_object()) fail("", "a study file is a JSON object");
-  check_keys(doc, "", {"format", "title", "model", "model_file", "sweep", "record", "keep"});
+  check_keys(doc, "", {"$schema", "format", "title", "model", "model_file", "sweep", "record", "keep"});
   if (doc.contains("format")) {
     const std::string format = io::string(doc["format"], "format");
     if (format != "tsmframe-study/1") fail("format", "unsupported format " + quote_text(format) + " (expected \"tsmframe-study/1\")");

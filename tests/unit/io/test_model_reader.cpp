@@ -69,4 +69,11 @@ TEST(ModelReaderBudget, ContactsWithTheirCandidates) {
   EXPECT_NE(why.find("2,001 contacts with 4,002,000 candidate elements 26"), std::string::npos) << why;
 }
 
+// An editor's "$schema" key (docs/tsmframe-model.schema.json) is read past, as the schema allows.
+TEST(ModelReader, ASchemaKeyIsAccepted) {
+  json model = cantilever(4);
+  model["$schema"] = "https://example.org/tsmframe-model.schema.json";
+  EXPECT_EQ(refusal(model, 50e6), "");
+}
+
 }  // namespace
