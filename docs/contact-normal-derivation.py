@@ -2,7 +2,8 @@
 """docs/contact-normal.md, redone with sympy: the slope of the contact element's deflected shape at
 the contact point (N1–N3), the force along its normal and the equilibrium matrix's new column
 (N4, N7, N8), the axial law with a point load (N6), ∂²α/∂x² (N11), the second α-derivatives the
-tangent needs (N12) and the order of what measuring along the chord's normal leaves out (§4).
+tangent needs (N12), the order of what measuring along the chord's normal leaves out (§4), and for
+several points (§8) the influence function's second derivatives (N17) and the tangent's split (N21).
 Prints nothing but "ok" when every identity holds (in about two minutes).
 
     /usr/bin/python3 docs/contact-normal-derivation.py
@@ -130,5 +131,55 @@ assert sp.simplify(coeffs[d1] - g * w1) == 0, "the foot moves by g w' (first ord
 distance2 = (delta**2 + (w(X0) + g - w(X0 + delta))**2).subs(coeffs).series(eps, 0, 3).removeO()
 assert sp.simplify(sp.expand(distance2) - sp.expand(g**2 * (1 - eps**2 * w1**2))) == 0, \
     "the normal gap is g cos(w'): second order"
+
+# --- §8, N17: the clamped influence function's second derivatives, from K5 on either side --------
+u, v, m = sp.symbols("u v m", positive=True)
+A_num = K5(u, v, m) * (6 * EI * L * span)  # K5's numerator A(u, v, m), l0 held
+second = {"uu": 6 * L * m * v**2 + 12 * u * v**3 + 36 * Psi * v * (u + v + m),
+          "vv": 6 * L * m * u**2 + 12 * u**3 * v + 36 * Psi * u * (u + v + m),
+          "uv": 12 * L * m * u * v + 18 * u**2 * v**2 + 6 * Psi * (3 * u**2 + 3 * v**2 + 12 * u * v + 6 * m * (u + v)) +
+                72 * Psi**2,
+          "um": 6 * L * u * v**2 + 18 * Psi * v * (2 * u + v),
+          "vm": 6 * L * u**2 * v + 18 * Psi * u * (2 * v + u)}
+symbol = {"u": u, "v": v, "m": m}
+for name, closed in second.items():
+    assert sp.expand(sp.diff(A_num, symbol[name[0]], symbol[name[1]]) - closed) == 0, "A_" + name
+assert sp.diff(A_num, m, 2) == 0, "A_mm"
+xi = sp.symbols("xi", positive=True)
+D_den = 6 * EI * L * span
+at_left = {u: x, v: L - xi, m: xi - x}    # x the left point
+at_right = {u: xi, v: L - x, m: x - xi}   # x the right point
+C_left, C_right = K5(x, L - xi, xi - x), K5(xi, L - x, x - xi)
+sub = lambda expr, at: expr.subs(at, simultaneous=True)
+assert sp.simplify(sp.diff(C_left, x, 2) - sub(second["uu"] - 2 * second["um"], at_left) / D_den) == 0, "C_xx left"
+assert sp.simplify(sp.diff(C_right, x, 2) - sub(second["vv"] - 2 * second["vm"], at_right) / D_den) == 0, "C_xx right"
+cross_closed = second["um"] - second["uv"] + second["vm"]
+assert sp.simplify(sp.diff(C_left, x, xi) - sub(cross_closed, at_left) / D_den) == 0, "C_xξ left"
+assert sp.simplify(sp.diff(C_right, x, xi) - sub(cross_closed, at_right) / D_den) == 0, "C_xξ right"
+# continuous where the points meet: the two sides differ by a (x − ξ) + b (x − ξ)³
+assert sp.simplify((sp.diff(C_left, x, 2) - sp.diff(C_right, x, 2)).subs(xi, x)) == 0, "C_xx continuous"
+assert sp.simplify((sp.diff(C_left, x, xi) - sp.diff(C_right, x, xi)).subs(xi, x)) == 0, "C_xξ continuous"
+# N16 with two points at one place: the other's share of the slope is the mean of its one-sided
+# slopes, ½ c_α — both points read the direction one point carrying Y_p + Y_q would.
+mean_other = (sp.diff(C_left, x) + sp.diff(C_right, x)).subs(xi, a).subs(x, a) / 2
+assert sp.simplify(mean_other - sp.diff(c, a) / 2) == 0, "coincident points"
+
+# --- §8, N21: the split of N20 into a symmetric part and one rank-one term per point (n = 4
+# dofs, k = 2 points, every entry a symbol; the −Σ T_p ∂²α_p term, symmetric, left out) ---------
+nd, kp = 4, 2
+mat = lambda name, r, c_: sp.Matrix(r, c_, lambda i, j: sp.Symbol(f"{name}{i}{j}"))
+Pc, G, dW, Uc, dYa = mat("P", nd, kp), mat("g", nd, kp), mat("dw", nd, kp), mat("U", nd, kp), mat("dy", kp, kp)
+Ci = sp.Matrix(kp, kp, lambda i, j: sp.Symbol(f"c{min(i, j)}{max(i, j)}"))  # C⁻¹, symmetric
+Wd = sp.diag(*sp.symbols("w0 w1"))
+Yd = sp.diag(*sp.symbols("Y0 Y1"))
+Symc = sp.Matrix(nd, nd, lambda i, j: sp.Symbol(f"s{min(i, j)}{max(i, j)}"))
+B = G * Wd
+Pnu = Pc - B
+K_chord = Symc + Uc * G.T
+K_N20 = K_chord - (B * Ci * Pc.T + B * dYa * G.T + G * Yd * dW.T)  # Σ_p g_p (∇T_p)ᵀ
+sym_part = Symc - Pc * Ci * Pc.T + Pnu * Ci * Pnu.T - (G * Yd * dW.T + dW * Yd * G.T)
+sliding_u = Uc + Pnu * Ci * Wd - B * dYa + dW * Yd
+assert sp.expand(sym_part + sliding_u * G.T - K_N20) == sp.zeros(nd, nd), "N21"
+assert sp.expand(sym_part - sym_part.T) == sp.zeros(nd, nd), "N21 symmetric"
 
 print("ok")

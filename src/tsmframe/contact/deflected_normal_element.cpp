@@ -22,24 +22,6 @@ Vector9 spread(const Vector2d& at_i, const Vector2d& at_j, const Vector2d& at_c)
   return v;
 }
 
-/// ∂α/∂x (N10, FORMULATION §2).
-Vector9 alpha_gradient(const element::Chord& chord, double alpha, double rho) {
-  const Vector2d e(chord.cos, chord.sin), n(-chord.sin, chord.cos);
-  const double l = chord.length;
-  return spread(((alpha - 1.0) / l) * e - (rho / (l * l)) * n, (rho / (l * l)) * n - (alpha / l) * e, e / l);
-}
-
-/// ∂²α/∂x² (N11).
-Matrix9 alpha_hessian(const element::Chord& chord, double alpha, double rho) {
-  const Vector2d e(chord.cos, chord.sin), n(-chord.sin, chord.cos), zero = Vector2d::Zero();
-  const double l = chord.length;
-  const Vector9 a1 = spread(-n, n, zero), a2 = spread(-e, zero, e);  // n·dΔ, e·dr
-  const Vector9 a3 = spread(-e, e, zero), b2 = spread(-n, zero, n);  // e·dΔ, n·dr
-  auto sym = [](const Vector9& u, const Vector9& v) -> Matrix9 { return u * v.transpose() + v * u.transpose(); };
-  return (-sym(a2, a3) + sym(b2, a1) - (2.0 * rho / l) * sym(a1, a3) +
-          2.0 * alpha * (a3 * a3.transpose() - a1 * a1.transpose())) / (l * l);
-}
-
 /// The law at α as chord_frame_response evaluates it: the beam's own (raw) and, where the ends
 /// are hinged or sprung, the connected one (K12), with the bending block that goes with it.
 struct Law {
@@ -119,6 +101,22 @@ Slope shape_slope(const ContactElementData& data, const ContactResponse& r, cons
 }
 
 }  // namespace
+
+Vector9 alpha_gradient(const element::Chord& chord, double alpha, double rho) {
+  const Vector2d e(chord.cos, chord.sin), n(-chord.sin, chord.cos);
+  const double l = chord.length;
+  return spread(((alpha - 1.0) / l) * e - (rho / (l * l)) * n, (rho / (l * l)) * n - (alpha / l) * e, e / l);
+}
+
+Matrix9 alpha_hessian(const element::Chord& chord, double alpha, double rho) {
+  const Vector2d e(chord.cos, chord.sin), n(-chord.sin, chord.cos), zero = Vector2d::Zero();
+  const double l = chord.length;
+  const Vector9 a1 = spread(-n, n, zero), a2 = spread(-e, zero, e);  // n·dΔ, e·dr
+  const Vector9 a3 = spread(-e, e, zero), b2 = spread(-n, zero, n);  // e·dΔ, n·dr
+  auto sym = [](const Vector9& u, const Vector9& v) -> Matrix9 { return u * v.transpose() + v * u.transpose(); };
+  return (-sym(a2, a3) + sym(b2, a1) - (2.0 * rho / l) * sym(a1, a3) +
+          2.0 * alpha * (a3 * a3.transpose() - a1 * a1.transpose())) / (l * l);
+}
 
 ShapeSlopeTerms shape_slope_terms(const element::SectionStiffness& section, double l0, double alpha) {
   const double s = std::clamp(alpha, 0.0, 1.0), psi = section.shear_flexibility, span = l0 * l0 + 12.0 * psi;

@@ -32,6 +32,11 @@ struct ShapeSlopeTerms {
 };
 ShapeSlopeTerms shape_slope_terms(const element::SectionStiffness& section, double l0, double alpha);
 
+/// ∂α/∂x of a contact node at α, its distance ρ = r·n from the chord, on the translations of
+/// i, j, c (N10, FORMULATION §2), and ∂²α/∂x² (N11); shared with the k-point element.
+Vector9 alpha_gradient(const element::Chord& chord, double alpha, double rho);
+Matrix9 alpha_hessian(const element::Chord& chord, double alpha, double rho);
+
 /// The deflected normal at the contact point of a state (N2–N6).
 struct DeflectedNormal {
   double slope = 0.0;  ///< w' = w_α / l: the shape's (mean) slope at α against the current chord

@@ -28,6 +28,21 @@ InfluenceTerms influence_terms(double psi, double l0, double u, double v, double
   return t;
 }
 
+/// A's second partial derivatives (A is linear in m: ∂²A/∂m² = 0), N17.
+struct InfluenceSecondTerms {
+  double uu = 0.0, vv = 0.0, uv = 0.0, um = 0.0, vm = 0.0;
+};
+InfluenceSecondTerms influence_second_terms(double psi, double l0, double u, double v, double m) {
+  InfluenceSecondTerms t;
+  t.uu = 6.0 * l0 * m * v * v + 12.0 * u * v * v * v + 36.0 * psi * v * (u + v + m);  // N17
+  t.vv = 6.0 * l0 * m * u * u + 12.0 * u * u * u * v + 36.0 * psi * u * (u + v + m);
+  t.uv = 12.0 * l0 * m * u * v + 18.0 * u * u * v * v +
+         6.0 * psi * (3.0 * u * u + 3.0 * v * v + 12.0 * u * v + 6.0 * m * (u + v)) + 72.0 * psi * psi;
+  t.um = 6.0 * l0 * u * v * v + 18.0 * psi * v * (2.0 * u + v);
+  t.vm = 6.0 * l0 * u * u * v + 18.0 * psi * u * (2.0 * v + u);
+  return t;
+}
+
 double influence_denominator(const element::SectionStiffness& section, double l0) {
   return 6.0 * section.EI * l0 * (l0 * l0 + 12.0 * section.shear_flexibility);  // K5
 }
@@ -84,6 +99,26 @@ double clamped_influence_slope(const element::SectionStiffness& section, double 
   const double as_left = t.du - t.dm, as_right = t.dm - t.dv;
   const double slope = x < other ? as_left : x > other ? as_right : 0.5 * (as_left + as_right);
   return slope / influence_denominator(section, l0);
+}
+
+double clamped_influence_curvature(const element::SectionStiffness& section, double l0, double x, double xi) {
+  if (!(x >= 0.0 && x <= l0)) return 0.0;
+  const double other = std::clamp(xi, 0.0, l0);
+  const double left = std::min(x, other), right = std::max(x, other);
+  const InfluenceSecondTerms t = influence_second_terms(section.shear_flexibility, l0, left, l0 - right, right - left);
+  // N17: x the left point (u = x, m = ξ − x): A_uu − 2A_um; the right point (v = l0 − x,
+  // m = x − ξ): A_vv − 2A_vm (A_mm = 0). Equal where the points meet.
+  const double second = x <= other ? t.uu - 2.0 * t.um : t.vv - 2.0 * t.vm;
+  return second / influence_denominator(section, l0);
+}
+
+double clamped_influence_cross_slope(const element::SectionStiffness& section, double l0, double x, double xi) {
+  if (!(x >= 0.0 && x <= l0) || !(xi >= 0.0 && xi <= l0)) return 0.0;
+  const double left = std::min(x, xi), right = std::max(x, xi);
+  const InfluenceSecondTerms t = influence_second_terms(section.shear_flexibility, l0, left, l0 - right, right - left);
+  // N17: ∂/∂ξ of ∂C/∂x. x left (ξ moves m and v): A_um − A_uv + A_vm; x right (ξ moves u and m):
+  // A_um − A_uv + A_vm as well (A_mm = 0) — one expression, symmetric in x and ξ.
+  return (t.um - t.uv + t.vm) / influence_denominator(section, l0);
 }
 
 double compliance_floor(const element::SectionStiffness& section, double l0, double edge, double min_compliance) {

@@ -21,6 +21,11 @@ namespace tsm::contact {
 double clamped_influence(const element::SectionStiffness& section, double l0, double x, double xi);
 /// ∂C(x, ξ)/∂x at l0 and ξ held (K9); 0 where x lies outside [0, l0].
 double clamped_influence_slope(const element::SectionStiffness& section, double l0, double x, double xi);
+/// Its second derivatives at l0 held (docs/contact-normal.md N17): ∂²C/∂x² (0 where x lies outside
+/// [0, l0]; ξ clamped as above) and ∂²C/∂x∂ξ (0 where x or ξ lies outside). Both are continuous
+/// where the points meet (the two sides differ by a(x − ξ) + b(x − ξ)³), so there either side's.
+double clamped_influence_curvature(const element::SectionStiffness& section, double l0, double x, double xi);
+double clamped_influence_cross_slope(const element::SectionStiffness& section, double l0, double x, double xi);
 
 /// The floor of a point's compliance, max((δ(1−δ) l0)³ / 3EI, min_compliance), δ = edge: what
 /// point_load_law clamps c to next to a node (K10), and the pair floor's bound (K11).

@@ -17,6 +17,7 @@
 
 #include "support/contact_trial.hpp"
 #include "support/end_connections.hpp"
+#include "support/multi_point_trial.hpp"
 #include "tsmframe/contact/contact_element.hpp"
 #include "tsmframe/contact/multi_point_element.hpp"
 
@@ -26,71 +27,14 @@ using namespace tsm::contact;
 using tsm::test::connections;
 using tsm::test::Ends;
 
-/// The element of tests/support/contact_trial.hpp with k contact nodes: the beam element from
-/// (0.3, −0.2) to (1.3, 0.4), turned rigidly by `angle` about node i, stretched by 0.2 %, bent
-/// (θ_i, θ_j); contact node p drawn on the axis at alpha0[p], then moved by push[p] along n and by
-/// slide[p] (in α) along e, its own rotation 0.7 + p.
-struct MultiTrial {
-  MultiPointElementData data;
-  Eigen::VectorXd d;
-  double previous = 0.0;
-};
-
-struct MultiSpec {
-  double psi = 0.0, angle = 0.0, theta_i = 0.0, theta_j = 0.0;
-  std::vector<double> alpha0, push, slide;
-  Ends ends{0.0, 0.0};
-  bool sliding_term = true;
-};
-
-MultiTrial multi_trial(const MultiSpec& p) {
-  MultiTrial s;
-  s.data.initial = tsm::element::initial_chord({0.3, -0.2}, {1.3, 0.4});
-  s.data.section = {.EA = 400.0, .EI = 3.0, .shear_flexibility = p.psi};
-  s.data.k0 = tsm::element::basic_stiffness(s.data.section, s.data.initial.length);
-  s.data.edge = 1e-3;
-  s.data.sliding_term = p.sliding_term;
-  s.data.flexibility_i = p.ends.i;
-  s.data.flexibility_j = p.ends.j;
-  const int k = static_cast<int>(p.alpha0.size());
-  const Eigen::Vector2d chord = s.data.initial.end - s.data.initial.start;
-  const Eigen::Rotation2Dd R(p.angle);
-  const Eigen::Vector2d end = s.data.initial.start + 1.002 * (R * chord);
-  const Eigen::Vector2d e = (R * chord).normalized(), n(-e.y(), e.x());
-  s.d.resize(3 * (2 + k));
-  s.d.head<6>() << 0.0, 0.0, p.angle + p.theta_i, end.x() - s.data.initial.end.x(), end.y() - s.data.initial.end.y(),
-      p.angle + p.theta_j;
-  for (int q = 0; q < k; ++q) {
-    const Eigen::Vector2d start = s.data.initial.start + p.alpha0[q] * chord;
-    s.data.points.push_back({start, 0.0});
-    const Eigen::Vector2d at = s.data.initial.start + (p.alpha0[q] + p.slide[q]) * 1.002 * (R * chord) + p.push[q] * n;
-    s.d.segment<3>(6 + 3 * q) << at.x() - start.x(), at.y() - start.y(), 0.7 + q;
-  }
-  s.previous = p.angle + 0.02;
-  return s;
-}
+using tsm::test::describe;
+using tsm::test::multi_trial;
+using tsm::test::MultiSpec;
+using tsm::test::MultiTrial;
 
 Eigen::MatrixXd finite_difference_tangent(const MultiTrial& s) {
-  const int size = static_cast<int>(s.d.size());
-  Eigen::MatrixXd K(size, size);
-  for (int b = 0; b < size; ++b) {
-    const double h = 1e-6;
-    Eigen::VectorXd plus = s.d, minus = s.d;
-    plus[b] += h;
-    minus[b] -= h;
-    K.col(b) = (multi_point_response(s.data, plus, s.previous).nodal_forces -
-                multi_point_response(s.data, minus, s.previous).nodal_forces) / (2 * h);
-  }
-  return K;
+  return tsm::test::multi_point_finite_difference_tangent(s, multi_point_response);
 }
-
-std::string describe(const MultiSpec& p) {
-  return "psi " + std::to_string(p.psi) + " angle " + std::to_string(p.angle) + " k " + std::to_string(p.alpha0.size()) +
-         " ends " + std::to_string(p.ends.i) + " " + std::to_string(p.ends.j);
-}
-
-/// What gtest prints for a case (its own dump would show the vectors' addresses).
-void PrintTo(const MultiSpec& p, std::ostream* os) { *os << describe(p); }
 
 // ---- k = 1 is today's element ----
 
@@ -225,22 +169,7 @@ TEST(MultiPointElement, ForcesAreSelfEquilibratedAndRigidMotionMakesNone) {
                                       .alpha0 = {0.2, 0.5, 0.75}, .push = {0.03, 0.02, 0.01}, .slide = {0.0, 0.05, 0.0}});
     const MultiPointResponse r = multi_point_response(s.data, s.d, s.previous);
     const Eigen::VectorXd& F = r.nodal_forces;
-    const double scale = F.cwiseAbs().maxCoeff();
-    double fx = 0.0, fy = 0.0, moment = 0.0;
-    for (int node = 0; node < 5; ++node) {
-      const Eigen::Vector2d x = node == 0 ? Eigen::Vector2d(s.data.initial.start + s.d.segment<2>(0))
-                                : node == 1 ? Eigen::Vector2d(s.data.initial.end + s.d.segment<2>(3))
-                                            : Eigen::Vector2d(s.data.points[node - 2].start + s.d.segment<2>(3 * node));
-      fx += F[3 * node];
-      fy += F[3 * node + 1];
-      moment += F[3 * node + 2] + x.x() * F[3 * node + 1] - x.y() * F[3 * node];
-      if (node >= 2) {
-        EXPECT_EQ(F[3 * node + 2], 0.0);  // a contact node takes no moment
-      }
-    }
-    EXPECT_NEAR(fx, 0.0, 1e-12 * scale);
-    EXPECT_NEAR(fy, 0.0, 1e-12 * scale);
-    EXPECT_NEAR(moment, 0.0, 3e-12 * scale);
+    tsm::test::expect_multi_point_self_equilibrated(s.data, s.d, F);
     // Y_p acts as Y_p · point_u.col(p), the rest is the plain element's.
     const Eigen::VectorXd plain = multi_point_equilibrium_matrix(r.chord, r.alpha) *
                                   (Eigen::VectorXd(6) << r.forces[0], s.data.k0.bottomRightCorner<2, 2>() *
