@@ -200,8 +200,8 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
          m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"gap", 0.05}},
                                       {{"node", 6}, {"members", "all"}, {"gap", 0.05}, {"frame", "cantilever"}}});
        },
-       "contacts[1]: rests on element 3, as contacts[0] does: a cantilever-frame contact, or one along the deflected normal, "
-       "has its element to itself (give that member more divisions, or use the chord frame and normal)"},
+       "contacts[1]: rests on element 3, as contacts[0] does: a cantilever-frame contact has its element to itself (give "
+       "that member more divisions, or use the chord frame)"},
       {"unknown normal",
        [](json& m) {
          m["nodes"].push_back({{"id", 3}, {"x", 2.0}, {"y", 1.0}});

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -30,6 +31,8 @@ struct MultiSpec {
   std::vector<double> alpha0, push, slide;
   Ends ends{0.0, 0.0};
   bool sliding_term = true;
+  ContactNormal normal = ContactNormal::chord;  ///< every point's normal …
+  std::vector<int> chord_points;                ///< … but these points' (a mixed element)
 };
 
 inline MultiTrial multi_trial(const MultiSpec& p) {
@@ -51,7 +54,8 @@ inline MultiTrial multi_trial(const MultiSpec& p) {
       p.angle + p.theta_j;
   for (int q = 0; q < k; ++q) {
     const Eigen::Vector2d start = s.data.initial.start + p.alpha0[q] * chord;
-    s.data.points.push_back({start, 0.0});
+    const bool chord_point = std::find(p.chord_points.begin(), p.chord_points.end(), q) != p.chord_points.end();
+    s.data.points.push_back({start, 0.0, chord_point ? ContactNormal::chord : p.normal});
     const Eigen::Vector2d at = s.data.initial.start + (p.alpha0[q] + p.slide[q]) * 1.002 * (R * chord) + p.push[q] * n;
     s.d.segment<3>(6 + 3 * q) << at.x() - start.x(), at.y() - start.y(), 0.7 + q;
   }

@@ -2,7 +2,9 @@
 // The contact element of one element at a state: the beam element with every contact point on
 // it (issue 27), what assembly evaluates. One point is the paper's three-node element in its
 // contact's frame (contact_response.hpp, Eq. 6–9 exactly); several are the k-point element in
-// the chord frame (multi_point_element.hpp). Either way the response has the k-point form.
+// the chord frame (multi_point_element.hpp), with the force of each point that asks for it along
+// the bent beam's normal (multi_point_deflected_normal.hpp). Either way the response has the
+// k-point form.
 
 #include <vector>
 

@@ -105,10 +105,18 @@ Slopes shape_slopes(const MultiPointElementData& data, const MultiPointResponse&
   }
   Slopes w;
   w.value = -Dh.transpose() * own.theta + S * Y;  // N16
-  if (!with_rates) return w;
-  w.d = -Dh.transpose() * own.d + S * dY;  // N19
-  w.d_alpha = -Dh.transpose() * own.d_alpha + S * law.forces.dpoint_forces + own_rate;
-  w.d_alpha.diagonal() -= DDh.transpose() * own.theta;
+  if (with_rates) {
+    w.d = -Dh.transpose() * own.d + S * dY;  // N19
+    w.d_alpha = -Dh.transpose() * own.d_alpha + S * law.forces.dpoint_forces + own_rate;
+    w.d_alpha.diagonal() -= DDh.transpose() * own.theta;
+  }
+  for (int p = 0; p < k; ++p) {  // a chord point: w_α,p ≡ 0, its force along n whatever the shape
+    if (data.points[p].normal == ContactNormal::deflected) continue;
+    w.value[p] = 0.0;
+    if (!with_rates) continue;
+    w.d.row(p).setZero();
+    w.d_alpha.row(p).setZero();
+  }
   return w;
 }
 

@@ -14,9 +14,8 @@
 // (N16). The beam's own law is read without the compliance floors (§1, "Where the direction is
 // read"), and beyond an element end a point's direction is held at the end's. The nodal forces are
 // multi_point_response's less Σ_p T_p ∂α_p/∂x, T_p = Y_p w_α,p (N18).
-//
-// Not wired into the solver yet (contact_response.cpp / active_contact.cpp use the chord's normal
-// for k ≥ 2).
+// A point whose ContactPointData::normal is the chord's keeps its force along n (its w_α held at
+// 0), so points of both kinds may share an element. Used by active_contact.cpp for k ≥ 2.
 
 #include <Eigen/Core>
 

@@ -16,6 +16,7 @@
 #include "tsmframe/contact/multi_point_law.hpp"
 #include "tsmframe/element/chord.hpp"
 #include "tsmframe/element/force_law.hpp"
+#include "tsmframe/model/model.hpp"
 
 namespace tsm::contact {
 
@@ -23,6 +24,9 @@ namespace tsm::contact {
 struct ContactPointData {
   Eigen::Vector2d start = Eigen::Vector2d::Zero();  ///< X_c, the contact node as drawn
   double offset = 0.0;  ///< δy at which Y = 0 on a straight beam (side · gap)
+  /// The normal its force acts along: the chord's (this element) or the bent beam's
+  /// (multi_point_deflected_normal.hpp, which keeps a chord point's force along the chord's).
+  ContactNormal normal = ContactNormal::chord;
 };
 
 /// What does not change while the contacts sit on one element (ContactElementData for k points).

@@ -13,11 +13,8 @@
 
 namespace tsm::contact {
 
-/// Whether a contact's element carries it alone: the cantilever frame has one point per element,
-/// and so has the force along the bent beam's normal until the k-point element has that form.
-inline bool alone(const ContactCandidates& contact) {
-  return contact.frame == ContactFrame::cantilever || contact.normal == ContactNormal::deflected;
-}
+/// Whether a contact's element carries it alone (keeps_element_to_itself, model.hpp).
+inline bool alone(const ContactCandidates& contact) { return keeps_element_to_itself(contact.frame); }
 
 class Occupancy {
  public:

@@ -325,15 +325,12 @@ class Reader {
       const auto r = resting_contact(model_, model_.contacts[k]);
       if (!r) continue;
       const int other = resting_on[r->element];
-      // The cantilever frame, and the force along the deflected normal, have one point per element.
-      const auto alone = [&](int j) {
-        return model_.contacts[j].frame == ContactFrame::cantilever || model_.contacts[j].normal == ContactNormal::deflected;
-      };
+      const auto alone = [&](int j) { return keeps_element_to_itself(model_.contacts[j].frame); };
       if (other >= 0 && (alone(k) || alone(other)))
         fail("contacts[" + std::to_string(k) + "]",
              "rests on element " + std::to_string(model_.elements[r->element].id) + ", as contacts[" + std::to_string(other) +
-                 "] does: a cantilever-frame contact, or one along the deflected normal, has its element to itself (give "
-                 "that member more divisions, or use the chord frame and normal)");
+                 "] does: a cantilever-frame contact has its element to itself (give "
+                 "that member more divisions, or use the chord frame)");
       if (other < 0 || alone(k)) resting_on[r->element] = k;
     }
   }

@@ -3,6 +3,7 @@
 // vertex (two contact elements at one node).
 #include <gtest/gtest.h>
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -81,17 +82,21 @@ TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
 
 TEST(ContactAssembly, TangentWithSeveralPointsOnOneElementMatchesFiniteDifferences) {
   // Three posts' free bottoms on the cantilever's third element (1/3 … 1/2), pressed into a bent,
-  // rotated beam: one contact element with three points, their nodes coupled through the beam.
+  // rotated beam: one contact element with three points, their nodes coupled through the beam —
+  // along the chord's normal, along the bent beam's, and mixed (the middle point the chord's).
+  const char* normals[3][3] = {{"chord", "chord", "chord"}, {"deflected", "deflected", "deflected"}, {"deflected", "chord", "deflected"}};
+  for (const auto& normal : normals)
   for (const char* element : {"euler-bernoulli", "timoshenko"}) {
+    SCOPED_TRACE(std::string(element) + ", normals " + normal[0] + " " + normal[1] + " " + normal[2]);
     json m = post_on_cantilever(element, 0.36);
     const double xs[3] = {0.36, 0.40, 0.47};
-    m["contacts"] = json::array({{{"node", 100}, {"members", {0}}}});
+    m["contacts"] = json::array({{{"node", 100}, {"members", {0}}, {"normal", normal[0]}}});
     for (int p = 1; p < 3; ++p) {
       m["nodes"].push_back({{"id", 100 + p}, {"x", xs[p]}, {"y", 0.0}});
       m["nodes"].push_back({{"id", 11 + 10 * p}, {"x", xs[p]}, {"y", 0.5}});
       m["members"].push_back({{"from", 11 + 10 * p}, {"to", 100 + p}, {"divisions", 2}, {"material", "m"}, {"section", "s"}});
       m["supports"].push_back({{"node", 11 + 10 * p}, {"type", "fixed"}});
-      m["contacts"].push_back({{"node", 100 + p}, {"members", {0}}});
+      m["contacts"].push_back({{"node", 100 + p}, {"members", {0}}, {"normal", normal[p]}});
     }
     const tsm::Model model = tsm::io::read_model(m);
     tsm::assembly::DofMap dofs(model);

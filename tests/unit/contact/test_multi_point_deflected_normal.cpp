@@ -29,9 +29,14 @@ using namespace tsm::contact;
 using tsm::test::connections;
 using tsm::test::describe;
 using tsm::test::Ends;
-using tsm::test::multi_trial;
 using tsm::test::MultiSpec;
 using tsm::test::MultiTrial;
+
+/// The trial element with every point's force along the bent beam's normal, but `chord_points`'.
+MultiTrial deflected_trial(MultiSpec p) {
+  p.normal = tsm::ContactNormal::deflected;
+  return tsm::test::multi_trial(p);
+}
 
 MultiPointResponse respond(const MultiTrial& s, bool with_tangent = true) {
   return multi_point_deflected_response(s.data, s.d, s.previous, with_tangent);
@@ -113,7 +118,7 @@ TEST(MultiPointDeflectedNormal, OnePointIsTheDeflectedNormalElementInEveryField)
             t.data.flexibility_j = f.j;
             const ContactResponse one = deflected_normal_response(t.data, t.d, t.previous);
             const MultiPointElementData data{.initial = t.data.initial, .section = t.data.section, .k0 = t.data.k0,
-                                             .points = {{t.data.contact_start, t.data.offset}}, .edge = t.data.edge,
+                                             .points = {{t.data.contact_start, t.data.offset, tsm::ContactNormal::deflected}}, .edge = t.data.edge,
                                              .min_compliance = t.data.min_compliance, .sliding_term = sliding,
                                              .flexibility_i = f.i, .flexibility_j = f.j};
             const MultiPointResponse r = multi_point_deflected_response(data, t.d, t.previous);
@@ -154,7 +159,7 @@ TEST_P(MultiPointDeflectedTangent, MatchesFiniteDifferencesWithTheSlidingTerms) 
                        connections[5]}) {
     MultiSpec p = GetParam();
     p.ends = f;
-    const MultiTrial s = multi_trial(p);
+    const MultiTrial s = deflected_trial(p);
     const int k = s.data.size();
     const MultiPointResponse r = respond(s);
     ASSERT_GT(r.forces.tail(k).cwiseAbs().minCoeff(), 0.05) << "every point loaded";
@@ -201,18 +206,44 @@ INSTANTIATE_TEST_SUITE_P(
         MultiSpec{.psi = 0.01, .angle = 1.5, .theta_i = 0.2, .theta_j = -0.3, .alpha0 = {0.35, 1.0},
                   .push = {2e-2, 1e-8}, .slide = {0.0, 0.02}},
         MultiSpec{.psi = 0.0, .angle = -1.1, .theta_i = 0.25, .theta_j = 0.15, .alpha0 = {0.0, 0.4, 0.75},
-                  .push = {-1e-8, -2e-2, -1e-2}, .slide = {-0.02, 0.0, 0.0}}),
+                  .push = {-1e-8, -2e-2, -1e-2}, .slide = {-0.02, 0.0, 0.0}},
+        // mixed elements: points kept along the chord's normal beside points along the bent beam's
+        MultiSpec{.psi = 0.0, .angle = 1.2, .theta_i = 0.2, .theta_j = -0.1, .alpha0 = {0.15, 0.45, 0.8},
+                  .push = {1e-2, 3e-2, 1.5e-2}, .slide = {0.02, -0.05, 0.03}, .chord_points = {1}},
+        MultiSpec{.psi = 0.01, .angle = -1.7, .theta_i = -0.2, .theta_j = 0.3, .alpha0 = {0.2, 0.5, 0.7},
+                  .push = {-1e-2, -2e-2, -1e-2}, .slide = {0.0, 0.03, -0.02}, .chord_points = {0, 2}}),
     [](const ::testing::TestParamInfo<MultiSpec>& info) {
       return "k" + std::to_string(info.param.alpha0.size()) + (info.param.psi > 0.0 ? "Timoshenko" : "EulerBernoulli") +
              std::to_string(info.index);
     });
+
+TEST(MultiPointDeflectedNormal, OnAMixedElementAChordPointPushesAlongTheChordsNormalAndTheOthersAlongTheShapes) {
+  for (double psi : {0.0, 0.01}) {
+    const MultiTrial s = deflected_trial({.psi = psi, .angle = 1.2, .theta_i = 0.2, .theta_j = -0.1, .alpha0 = {0.15, 0.45, 0.8},
+                                          .push = {1e-2, 3e-2, 1.5e-2}, .slide = {0.0, 0.0, 0.0}, .chord_points = {1}});
+    const MultiPointResponse r = respond(s);
+    const MultiTrial all = deflected_trial({.psi = psi, .angle = 1.2, .theta_i = 0.2, .theta_j = -0.1,
+                                            .alpha0 = {0.15, 0.45, 0.8}, .push = {1e-2, 3e-2, 1.5e-2}, .slide = {0.0, 0.0, 0.0}});
+    const Eigen::VectorXd w = multi_point_shape_slopes(all.data, respond(all)) / r.chord.length;
+    const Eigen::Vector2d e(r.chord.cos, r.chord.sin), n(-r.chord.sin, r.chord.cos);
+    for (int p = 0; p < 3; ++p) {
+      const Eigen::Vector2d force = r.nodal_forces.segment<2>(6 + 3 * p);
+      const double Y = r.forces[3 + p];
+      // point 1: Y n exactly; points 0 and 2: Y (n − w' e), w' the bent shape's slope (N3), not 0
+      const Eigen::Vector2d expected = p == 1 ? Eigen::Vector2d(Y * n) : Eigen::Vector2d(Y * (n - w[p] * e));
+      EXPECT_LE((force - expected).norm(), 1e-12 * std::abs(Y)) << "psi " << psi << " point " << p;
+      EXPECT_GT(std::abs(w[p]), 1e-2) << "a bent shape at point " << p;
+      EXPECT_NEAR(r.force_per_Y[p], p == 1 ? 1.0 : std::sqrt(1.0 + w[p] * w[p]), 1e-12);
+    }
+  }
+}
 
 TEST(MultiPointDeflectedNormal, TangentWithAPairOnTheFloorMatchesFiniteDifferences) {
   // Two points 5e-4 apart: the pair floor binds in the law (K11); the direction reads the raw beam.
   double worst = 0.0;
   for (double psi : {0.0, 1e-6, 0.01})
     for (const Ends f : {Ends{0.0, 0.0}, connections[4]}) {
-      MultiTrial s = multi_trial({.psi = psi, .angle = 1.3, .theta_i = 0.2, .theta_j = -0.1, .alpha0 = {0.4, 0.4005, 0.7},
+      MultiTrial s = deflected_trial({.psi = psi, .angle = 1.3, .theta_i = 0.2, .theta_j = -0.1, .alpha0 = {0.4, 0.4005, 0.7},
                                   .push = {2e-2, 2.1e-2, 1e-2}, .slide = {0.0, 0.0, 0.0}, .ends = f});
       s.data.edge = 1e-2;
       const MultiPointResponse r = respond(s);
@@ -233,7 +264,7 @@ TEST(MultiPointDeflectedNormal, StraightUnloadedElementIsTheChordElementInEveryF
   for (double psi : {0.0, 0.01})
     for (double angle : {0.0, 1.2, -2.6})
       for (const Ends f : {Ends{0.0, 0.0}, connections[0], connections[2], connections[4]}) {
-        const MultiTrial s = multi_trial({.psi = psi, .angle = angle, .alpha0 = {0.2, 0.5, 0.8}, .push = {0.0, 0.0, 0.0},
+        const MultiTrial s = deflected_trial({.psi = psi, .angle = angle, .alpha0 = {0.2, 0.5, 0.8}, .push = {0.0, 0.0, 0.0},
                                           .slide = {0.04, -0.03, 0.0}, .ends = f});
         const MultiPointResponse r = respond(s), chord = multi_point_response(s.data, s.d, s.previous);
         SCOPED_TRACE(describe({.psi = psi, .angle = angle, .ends = f}));
@@ -286,7 +317,7 @@ TEST(MultiPointDeflectedNormal, EachForceIsNormalToTheShapesTangentAtItsPoint) {
         MultiSpec spec = p;
         spec.psi = psi;
         spec.ends = f;
-        const MultiTrial s = multi_trial(spec);
+        const MultiTrial s = deflected_trial(spec);
         const MultiPointResponse r = respond(s, false);
         const Eigen::VectorXd slopes = multi_point_shape_slopes(s.data, r);
         const Eigen::Vector2d e(r.chord.cos, r.chord.sin), n(-r.chord.sin, r.chord.cos);
@@ -320,7 +351,7 @@ TEST(MultiPointDeflectedNormal, ForcesAreSelfEquilibratedAndRigidMotionMakesNone
   double worst = 0.0;
   for (double psi : {0.0, 0.01})
     for (const Ends f : {Ends{0.0, 0.0}, connections[2], connections[4]}) {
-      const MultiTrial s = multi_trial({.psi = psi, .angle = 1.3, .theta_i = 0.2, .theta_j = -0.15,
+      const MultiTrial s = deflected_trial({.psi = psi, .angle = 1.3, .theta_i = 0.2, .theta_j = -0.15,
                                         .alpha0 = {0.2, 0.5, 0.75}, .push = {0.03, 0.02, 0.01}, .slide = {0.0, 0.05, 0.0},
                                         .ends = f});
       const MultiPointResponse r = respond(s);
@@ -358,7 +389,7 @@ TEST(MultiPointDeflectedNormal, ForcesAreSelfEquilibratedAndRigidMotionMakesNone
       }
     }
   for (double angle : {0.0, 0.7, -2.9}) {  // rigid motion from the drawn state: no force
-    MultiTrial s = multi_trial({.psi = 0.01, .angle = angle, .alpha0 = {0.2, 0.5, 0.75}, .push = {0, 0, 0}, .slide = {0, 0, 0}});
+    MultiTrial s = deflected_trial({.psi = 0.01, .angle = angle, .alpha0 = {0.2, 0.5, 0.75}, .push = {0, 0, 0}, .slide = {0, 0, 0}});
     const Eigen::Rotation2Dd R(angle);
     const Eigen::Vector2d shift(0.4, -0.3), chord = s.data.initial.end - s.data.initial.start;
     s.d.segment<2>(0) = shift;

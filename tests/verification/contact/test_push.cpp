@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -171,65 +172,95 @@ TEST_P(LargePush, MatchesTheElasticaWithContact) {
   for (const StepRecord& s : r.steps) expect_equilibrium(model, s);
 }
 
-// ---- A tip-loaded cantilever resting on a rigid point: the contact force's normal ----
-// Inextensible cantilever (EI = 1, L = 1) under a tip load P down, resting on a point fixed at
-// (a, h) below it; the contact force R is normal to the beam there. Shooting on (R, θc, x_tip):
-// EI θ' = M(s) = −P (x_tip − x) + [before the point] ((a − x) Fy − (h − y) Fx), F = R (−sin θc,
-// cos θc); at x = a, y = h and θ = θc; at s = 1, x = x_tip.
-/// The shooting residuals (y − h and θ − θc at x = a, x(1) − x_tip) for tip load P.
-Eigen::Vector3d resting_cantilever_residual(double P, double a, double h, const Eigen::Vector3d& u) {
-  const double R = u[0], theta_c = u[1], x_tip = u[2];
-  const double Fx = -R * std::sin(theta_c), Fy = R * std::cos(theta_c);
-  bool beyond = false;
+// ---- A tip-loaded cantilever resting on rigid points: the contact forces' normal ----
+// Inextensible cantilever (EI = 1, L = 1) under a tip load P down, resting on points fixed at
+// (a_k, h_k) below it, a_1 < a_2 < …; each contact force R_k is normal to the beam there.
+// Shooting on (R_k, θ_k, x_tip): EI θ' = M(s) = −P (x_tip − x) + Σ over the points not yet passed
+// ((a_k − x) Fy_k − (h_k − y) Fx_k), F_k = R_k (−sin θ_k, cos θ_k); at x = a_k, y = h_k and θ = θ_k;
+// at s = 1, x = x_tip.
+/// The shooting residuals (y − h_k and θ − θ_k at x = a_k, then x(1) − x_tip) for tip load P;
+/// u = (R_1 … R_n, θ_1 … θ_n, x_tip).
+Eigen::VectorXd resting_cantilever_residual(double P, const std::vector<Eigen::Vector2d>& points, const Eigen::VectorXd& u) {
+  const int count = static_cast<int>(points.size());
+  const double x_tip = u[2 * count];
+  int passed = 0;
   auto f = [&](const std::array<double, 3>& q) {
-    const double M = -P * (x_tip - q[0]) + (beyond ? 0.0 : (a - q[0]) * Fy - (h - q[1]) * Fx);
+    double M = -P * (x_tip - q[0]);
+    for (int k = passed; k < count; ++k) {
+      const double Fx = -u[k] * std::sin(u[count + k]), Fy = u[k] * std::cos(u[count + k]);
+      M += (points[k].x() - q[0]) * Fy - (points[k].y() - q[1]) * Fx;
+    }
     return std::array<double, 3>{std::cos(q[2]), std::sin(q[2]), M};
   };
   const int n = 4000;
   const double ds = 1.0 / n;
   std::array<double, 3> q = {0.0, 0.0, 0.0};
-  Eigen::Vector3d r(1.0, 1.0, 0.0);
-  for (int k = 0; k < n; ++k) {
-    std::array<double, 3> next = rk4_step(f, q, ds);
-    if (!beyond && next[0] >= a) {  // the point lies within this step: land on x = a, then go on
-      double lo = 0.0, hi = ds;
+  Eigen::VectorXd r = Eigen::VectorXd::Ones(2 * count + 1);
+  for (int step = 0; step < n; ++step) {
+    double left = ds;  // of this step
+    std::array<double, 3> next = rk4_step(f, q, left);
+    while (passed < count && next[0] >= points[passed].x()) {  // a point within the step: land on it, go on
+      const double a = points[passed].x();
+      double lo = 0.0, hi = left;
       for (int it = 0; it < 60; ++it) {
         const double mid = 0.5 * (lo + hi);
         (rk4_step(f, q, mid)[0] < a ? lo : hi) = mid;
       }
-      const std::array<double, 3> at = rk4_step(f, q, 0.5 * (lo + hi));
-      r[0] = at[1] - h;
-      r[1] = at[2] - theta_c;
-      beyond = true;
-      next = rk4_step(f, at, ds - 0.5 * (lo + hi));
+      q = rk4_step(f, q, 0.5 * (lo + hi));
+      left -= 0.5 * (lo + hi);
+      r[passed] = q[1] - points[passed].y();
+      r[count + passed] = q[2] - u[count + passed];
+      ++passed;
+      next = rk4_step(f, q, left);
     }
     q = next;
   }
-  r[2] = q[0] - x_tip;
+  r[2 * count] = q[0] - x_tip;
   return r;
 }
 
-/// The contact force R: damped Newton on (R, θc, x_tip), the tip load raised from just past
-/// the touch (P = 0.5: it touches at P ≈ 0.48) to P in steps of 0.5.
-double resting_cantilever_force(double P, double a, double h) {
-  Eigen::Vector3d u(0.05, -0.15, 1.0);
+/// The contact forces R_k: damped Newton on (R_k, θ_k, x_tip), the tip load raised from P = 0.5
+/// to P in steps of 0.5 (every point held two-sided on the way: a force may pass through zero).
+Eigen::VectorXd resting_cantilever_forces(double P, const std::vector<Eigen::Vector2d>& points) {
+  const int count = static_cast<int>(points.size());
+  Eigen::VectorXd u(2 * count + 1);
+  u << Eigen::VectorXd::Constant(count, 0.05 / count), Eigen::VectorXd::Constant(count, -0.15), 1.0;
   for (double load = 0.5; load <= P + 1e-12; load += 0.5)
     for (int it = 0; it < 60; ++it) {
-      const Eigen::Vector3d r = resting_cantilever_residual(load, a, h, u);
+      const Eigen::VectorXd r = resting_cantilever_residual(load, points, u);
       if (r.norm() < 1e-11) break;
-      Eigen::Matrix3d J;
-      for (int c = 0; c < 3; ++c) {
-        Eigen::Vector3d v = u;
+      Eigen::MatrixXd J(r.size(), u.size());
+      for (int c = 0; c < u.size(); ++c) {
+        Eigen::VectorXd v = u;
         const double step = 1e-7 * std::max(1.0, std::abs(u[c]));
         v[c] += step;
-        J.col(c) = (resting_cantilever_residual(load, a, h, v) - r) / step;
+        J.col(c) = (resting_cantilever_residual(load, points, v) - r) / step;
       }
-      const Eigen::Vector3d du = J.colPivHouseholderQr().solve(r);
+      const Eigen::VectorXd du = J.colPivHouseholderQr().solve(r);
       double damping = 1.0;
-      while (damping > 1e-3 && resting_cantilever_residual(load, a, h, u - damping * du).norm() >= r.norm()) damping *= 0.5;
+      while (damping > 1e-3 && resting_cantilever_residual(load, points, u - damping * du).norm() >= r.norm()) damping *= 0.5;
       u -= damping * du;
     }
-  return u[0];
+  return u.head(count);
+}
+
+/// The cantilever of `divisions` Euler–Bernoulli elements resting on rigid points, `normal` for each.
+json resting_cantilever(int divisions, double P, const std::vector<Eigen::Vector2d>& points, const char* normal) {
+  BeamSpec b;
+  b.divisions = divisions;
+  b.A = 1e7;  // inextensible
+  json m = beam_model(b);
+  m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}});
+  m["contacts"] = json::array();
+  for (size_t k = 0; k < points.size(); ++k) {
+    const int id = 100 + static_cast<int>(k);
+    m["nodes"].push_back({{"id", id}, {"x", points[k].x()}, {"y", points[k].y()}});
+    m["supports"].push_back({{"node", id}, {"type", "fixed"}});
+    m["contacts"].push_back({{"node", id}, {"members", "all"}, {"normal", normal}});
+  }
+  m["loads"] = json::array({{{"node", 2}, {"fy", -P}}});
+  m["analysis"] = {{"control", {{"type", "load"}, {"steps", 20}}}, {"cutback", true}};
+  return m;
 }
 
 TEST(RestingCantileverNormal, TheForceAlongTheBentBeamsNormalConvergesAsHSquared) {
@@ -237,23 +268,15 @@ TEST(RestingCantileverNormal, TheForceAlongTheBentBeamsNormalConvergesAsHSquared
   // (0.5, −0.05) L, meshed with 10 … 80 Euler–Bernoulli elements: the contact force against the
   // exact elastica's with the force along the chord's normal (the paper's) and along the bent
   // beam's ("normal": "deflected", issue 27 part 2).
-  const double P = 10.0, a = 0.5, h = -0.05;
-  const double exact = resting_cantilever_force(P, a, h);
+  const double P = 10.0;
+  const std::vector<Eigen::Vector2d> point = {{0.5, -0.05}};
+  const double exact = resting_cantilever_forces(P, point)[0];
   std::array<std::array<double, 4>, 2> error{};
   const int meshes[4] = {10, 20, 40, 80};
   for (int normal = 0; normal < 2; ++normal)
     for (int q = 0; q < 4; ++q) {
-      BeamSpec b;
-      b.divisions = meshes[q];
-      b.A = 1e7;  // inextensible
-      json m = beam_model(b);
-      m["nodes"].push_back({{"id", 100}, {"x", a}, {"y", h}});
-      m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 100}, {"type", "fixed"}}});
-      m["loads"] = json::array({{{"node", 2}, {"fy", -P}}});
-      m["contacts"] = json::array({{{"node", 100}, {"members", "all"}, {"normal", normal == 0 ? "chord" : "deflected"}}});
-      m["analysis"] = {{"control", {{"type", "load"}, {"steps", 20}}}, {"cutback", true}};
       tsm::Model model;
-      const RunResult r = run(m, model);
+      const RunResult r = run(resting_cantilever(meshes[q], P, point, normal == 0 ? "chord" : "deflected"), model);
       ASSERT_EQ(r.status, tsm::solver::Status::converged) << meshes[q] << ": " << r.message;
       error[normal][q] = contact_of(r.steps.back()).force / exact - 1.0;
       std::printf("[figure] %d elements, %s normal: contact force %.8g, exact %.8g, error %+.3e\n", meshes[q],
@@ -266,6 +289,38 @@ TEST(RestingCantileverNormal, TheForceAlongTheBentBeamsNormalConvergesAsHSquared
     EXPECT_GT(std::abs(error[0][q]), 1e-3) << "chord, " << meshes[q];            // the paper's stays off
   }
   EXPECT_GT(error[0][1], 0.015);  // the issue's 1.8 % at 20 elements
+}
+
+TEST(RestingCantileverNormal, TwoPointsOnOneElementPushAlongTheBentBeamsNormalToo) {
+  // The same cantilever resting on two rigid points 0.06 apart: both on one element with 10
+  // elements (the k-point element, k = 2), each on its own with 20 … 80. Each contact force
+  // against the exact elastica's falls as h² along the bent beam's normal through the change.
+  const double P = 10.0;
+  const std::vector<Eigen::Vector2d> points = {{0.42, -0.025}, {0.48, -0.055}};
+  const Eigen::VectorXd exact = resting_cantilever_forces(P, points);
+  ASSERT_GT(exact.minCoeff(), 0.5 * exact.maxCoeff()) << "both points carry the beam: " << exact.transpose();
+  std::array<std::array<double, 4>, 2> error{};
+  const int meshes[4] = {10, 20, 40, 80};
+  for (int normal = 0; normal < 2; ++normal)
+    for (int q = 0; q < 4; ++q) {
+      tsm::Model model;
+      const RunResult r = run(resting_cantilever(meshes[q], P, points, normal == 0 ? "chord" : "deflected"), model);
+      ASSERT_EQ(r.status, tsm::solver::Status::converged) << meshes[q] << ": " << r.message;
+      const auto& contacts = r.steps.back().contacts;
+      ASSERT_EQ(contacts.size(), 2u);
+      EXPECT_EQ(contacts[0].element == contacts[1].element, meshes[q] == 10) << "both points on one element";
+      for (int k = 0; k < 2; ++k) error[normal][q] = std::max(error[normal][q], std::abs(contacts[k].force / exact[k] - 1.0));
+      std::printf("[figure] %d elements, %s normal: forces %.8g %.8g, exact %.8g %.8g, worst error %.3e\n", meshes[q],
+                  normal == 0 ? "chord" : "deflected", contacts[0].force, contacts[1].force, exact[0], exact[1],
+                  error[normal][q]);
+    }
+  for (int q = 0; q < 4; ++q) {
+    const double h2 = (10.0 / meshes[q]) * (10.0 / meshes[q]);
+    EXPECT_LT(error[1][q], 1.5e-2 * h2) << "deflected, " << meshes[q];  // within 1.5 % (h / 0.1)²
+    if (q > 0) EXPECT_NEAR(error[1][q - 1] / error[1][q], 4.0, 0.6) << "deflected, " << meshes[q];  // h²
+  }
+  EXPECT_GT(error[0][0], 2.0 * error[1][0]);  // the k-point element along the chord's normal is off more
+  EXPECT_GT(error[0][3], 10.0 * error[1][3]);
 }
 
 INSTANTIATE_TEST_SUITE_P(Formulations, LargePush,
