@@ -47,7 +47,7 @@ std::vector<ContactState> ContactSet::initial_states() const {
 std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<ContactState>& states) const {
   std::vector<ActiveContact> active;
   std::vector<int> place;  // per element: its place in `active`, −1 none (made only when needed)
-  const auto add_point = [&](int k, bool vertex, int element, int side) {
+  const auto add_point = [&](int k, bool vertex, int element, int side, bool entering) {
     const ContactCandidates& contact = geometry_.contact(k);
     if (place.empty()) place.assign(geometry_.model().elements.size(), -1);
     if (place[element] < 0) {
@@ -57,12 +57,13 @@ std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<Contact
     ActiveContact& a = active[place[element]];
     a.points.push_back({k, vertex, contact.node});
     a.data.push_back(geometry_.element_data(contact, element, side));
+    if (entering) a.data.back().normal = ContactNormal::chord;
   };
   for (int k = 0; k < contact_count(); ++k) {
     const ContactState& s = states[k];
     if (!s.active) continue;
-    add_point(k, false, s.element, s.side);
-    if (s.vertex) add_point(k, true, s.vertex->element, s.vertex->side);
+    add_point(k, false, s.element, s.side, s.entering);
+    if (s.vertex) add_point(k, true, s.vertex->element, s.vertex->side, s.entering);
   }
   return active;
 }
@@ -90,12 +91,14 @@ ContactChanges ContactSet::update(const Eigen::VectorXd& D, const std::vector<do
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
     ContactState& state = states[k];
+    const int before = state.active ? state.element : -1;
     if (state.active) {
       update_active(contact, D, rotations, at_convergence, state, occupancy, changes);
     } else if (const std::optional<HandOver> touched = detect(geometry_, contact, D, rotations, frames, state, occupancy)) {
       ++changes.activated;
       add(*touched, changes);
     }
+    state.entering = state.active && state.element != before;
     occupancy.set_touching(contact.node, state.active ? state.element : -1);
   }
   return changes;

@@ -50,7 +50,8 @@ class ContactSet {
   /// in touch where a node rests on an element as drawn (model/resting_contact).
   std::vector<ContactState> initial_states() const;
   /// The contact elements of the active contacts: one per element with points on it (a vertex
-  /// is a point on each of its two elements), in the order of their first points' contacts.
+  /// is a point on each of its two elements), in the order of their first points' contacts; an
+  /// entering point (ContactState::entering) along the chord's normal.
   std::vector<ActiveContact> active_contacts(const std::vector<ContactState>& states) const;
   /// Reads the evaluations of the active contacts into their states (α, Y, compression) without
   /// changing the active set: the evaluation that stands.

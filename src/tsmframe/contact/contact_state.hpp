@@ -77,6 +77,11 @@ struct ContactState {
   double force = 0.0; ///< compression −side·Y (≥ 0 when converged); at a vertex, of the resultant
   double Y = 0.0;     ///< the element force Y (chord frame, Eq. 6–9)
   std::optional<Vertex> vertex;  ///< resting on a beam node between two elements (vertex.hpp)
+  /// Started, or handed to another element, at the last update: until the next update its force
+  /// acts along the chord's normal whatever its `normal` (its Y, read from how far the iterate
+  /// took the node through the beam, is not yet the beam's, and would turn a deflected normal by
+  /// ½ c_α Y / l, N16, arbitrarily far).
+  bool entering = false;
   ContactReference reference;
   StepMemory step;
 };

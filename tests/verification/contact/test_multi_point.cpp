@@ -178,6 +178,40 @@ TEST(MultiPointContact, ACoarseBeamUnderAFineOneCarriesTheContactForcesAFineBeam
   EXPECT_NEAR(total_a, total_b, 1e-6 * total_b);
 }
 
+TEST(MultiPointContact, ACoarseTimoshenkoBeamUnderAFineOneAlongTheBentBeamsNormal) {
+  // The same press with the force along the bent beam's normal: a coarse lower beam (10 and 20
+  // elements, ten and five points on each) carries the 400-element one's contact forces as closely
+  // as along the chord's normal (what is left is the gap measured along the chord's normal), and
+  // every mesh settles at first touch (ContactState::entering: before it, a point touching next
+  // to a node of these Timoshenko beams, whose compliance there is tiny, turned its normal by
+  // its first, penetration-made Y and hopped across the node).
+  const auto pressed = [](int lower) {
+    json m = pressed_beams(-2000.0, 10, lower, 100);
+    m["nodes"][2]["y"] = m["nodes"][3]["y"] = 0.011;
+    m["contacts"][0]["gap"] = 0.001;
+    m["contacts"][0]["normal"] = "deflected";
+    return m;
+  };
+  for (int lower : {10, 20}) {
+    const CoarseAndFine runs(pressed(lower), pressed(400));
+    ASSERT_TRUE(runs.converged()) << lower;
+    const auto& a = runs.coarse.steps.back().contacts;
+    const auto& b = runs.fine.steps.back().contacts;
+    ASSERT_EQ(a.size(), b.size());
+    double largest = 0.0, worst = 0.0, total_a = 0.0, total_b = 0.0;
+    for (size_t k = 0; k < a.size(); ++k) largest = std::max(largest, b[k].force);
+    for (size_t k = 0; k < a.size(); ++k) {
+      worst = std::max(worst, std::abs(a[k].force - b[k].force));
+      total_a += a[k].force;
+      total_b += b[k].force;
+    }
+    std::printf("[figure] %d lower elements: worst %.2e of the largest force, totals %.1e apart\n", lower,
+                worst / largest, total_a / total_b - 1.0);
+    EXPECT_LT(worst, (lower == 10 ? 5e-4 : 2e-4) * largest) << lower;
+    EXPECT_NEAR(total_a, total_b, (lower == 10 ? 3e-6 : 1e-6) * total_b) << lower;
+  }
+}
+
 TEST(MultiPointContact, EveryControlEndsOnTheClosedForm) {
   // Three loaded pushers: one resting on the beam node at 10/3 (a leaf spring's roller on a node
   // of the beam another roller touches: the point of an element at its end), two within the middle
