@@ -105,41 +105,55 @@ class Vtk(unittest.TestCase):
     def test_a_vertex_shows_the_resultant_at_its_own_node(self):
         # A pinned beam pushed down 0.5 m on its mid-span node (a vertex: both elements at the node
         # in contact), with an idle contact node listed first: the contact point's arrays belong to
-        # the active contact's node, and its force is the resultant of both elements' pushes.
+        # the active contact's node, and its force is the resultant of both elements' pushes —
+        # along the chords' normals or the bent beam's. Pushed within an element instead (x = 5.2),
+        # the force along the bent beam's normal leans: it is still the pusher's support reaction.
+        import json
+        for normal in ("chord", "deflected"):
+            for x in (5.0, 5.2):
+                with self.subTest(normal=normal, x=x):
+                    self.check_contact_force_drawn(normal, x)
+
+    def check_contact_force_drawn(self, normal, x):
         import json
         model = {
             "materials": {"steel": {"E": 2e11, "G": 7.7e10}},
             "sections": {"s": {"A": 0.004, "I": 2e-5, "shear_area": 0.002}},
             "nodes": [{"id": 1, "x": 0.0, "y": 0.0}, {"id": 2, "x": 10.0, "y": 0.0},
-                      {"id": 9, "x": 5.0, "y": 0.001}, {"id": 7, "x": 5.0, "y": 3.0}],
+                      {"id": 9, "x": x, "y": 0.001}, {"id": 7, "x": 5.0, "y": 3.0}],
             "members": [{"from": 1, "to": 2, "divisions": 20, "element": "timoshenko", "material": "steel", "section": "s"}],
             "supports": [{"node": 1, "type": "pinned"}, {"node": 2, "type": "pinned"},
                          {"node": 9, "fix": ["ux"]}, {"node": 7, "type": "fixed"}],
             "prescribed": [{"node": 9, "uy": -0.5}],
-            "contacts": [{"node": 7, "members": "all"}, {"node": 9, "members": "all"}],
+            "contacts": [{"node": 7, "members": "all"}, {"node": 9, "members": "all", "normal": normal}],
             "analysis": {"control": {"type": "load", "steps": 5}},
         }
         path = os.path.join(self.dir.name, "vertex.json")
         with open(path, "w") as f:
             json.dump(model, f)
-        out = os.path.join(self.dir.name, "vertex")
+        out = os.path.join(self.dir.name, "vertex-%s-%g" % (normal, x))
         r = run("run", path, "--out", out, "--vtk", "-q")
         self.assertEqual(r.returncode, 0, r.stderr)
         with open(os.path.join(out, "results.json")) as f:
             last = json.load(f)["steps"][-1]
         [contact] = last["contacts"]
-        self.assertEqual((contact["node"], contact["xi"]), (9, 1))
-        self.assertIn("also", contact)
+        self.assertEqual(contact["node"], 9)
         files = [d.get("file") for d in ET.parse(os.path.join(out, "vtk", "results.pvd")).getroot().iter("DataSet")]
         piece, points, point_data, cell_data = read_vtu(os.path.join(out, "vtk", files[-1]))
         self.assertEqual(int(piece.get("NumberOfCells")), 20 + 1)
         self.assertAlmostEqual(point_data["displacement"][-1][1], -0.5, places=12)  # node 9's, not node 7's
         force = point_data["contact_force"][-1]
         reaction = last["reactions"]["9"]
-        self.assertAlmostEqual(force[1], reaction[1], delta=1e-9 * abs(reaction[1]))  # the push on the beam, which the pusher's support supplies
-        self.assertLess(abs(force[0]), 1e-9 * abs(force[1]))  # symmetric
+        # the push on the beam, which the pusher's support supplies
+        self.assertAlmostEqual(force[1], reaction[1], delta=1e-9 * abs(reaction[1]))
+        self.assertAlmostEqual(force[0], reaction[0], delta=1e-9 * abs(reaction[1]))
         self.assertAlmostEqual(math.hypot(*force[:2]), contact["force"], delta=1e-9 * contact["force"])
-        self.assertEqual(sum(1 for y in cell_data["Y"][:20] if y[0] != 0.0), 2)  # both elements carry Y
+        if x == 5.0:
+            self.assertEqual((contact["xi"], "also" in contact), (1, True))
+            self.assertLess(abs(force[0]), 1e-9 * abs(force[1]))  # symmetric
+            self.assertEqual(sum(1 for y in cell_data["Y"][:20] if y[0] != 0.0), 2)  # both elements carry Y
+        elif normal == "deflected":
+            self.assertGreater(abs(force[0]), 1e-3 * abs(force[1]))  # the bent beam's normal leans
 
 
 def off_chord(points):

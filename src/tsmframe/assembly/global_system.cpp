@@ -319,7 +319,8 @@ void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen
       contact::active_contact_response(a, gather(displacements, g), previous_rotations[a.element], with_tangent);
   out.chord_rotations[a.element] = r.chord.rotation;
   for (int p = 0; p < a.size(); ++p)
-    out.contacts.push_back({a.points[p].contact, a.points[p].vertex, r.alpha[p], r.forces[3 + p], r.force_per_Y[p]});
+    out.contacts.push_back({a.points[p].contact, a.points[p].vertex, r.alpha[p], r.forces[3 + p], r.force_per_Y[p],
+                            r.nodal_forces.segment<2>(6 + 3 * p)});
   for (int k = 0; k < size; ++k) out.internal_force[g[k]] += r.nodal_forces[k];
   if (!with_tangent) return;
   // The symmetric part joins the node blocks (i, j, then each point's node; each node pair once,

@@ -68,23 +68,24 @@ std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<Contact
   return active;
 }
 
-void ContactSet::record(const Eigen::VectorXd& D, const std::vector<double>& rotations,
-                        const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states) const {
+void ContactSet::record(const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states) const {
   for (const ContactEvaluation& e : evaluated) {
     if (e.vertex) continue;
     ContactState& state = states[e.contact];
     state.alpha = e.alpha;
     state.Y = e.Y;
     state.force = -state.side * state.Y * e.force_per_Y;
+    state.push[0] = e.push.x();
+    state.push[1] = e.push.y();
   }
   for (const ContactEvaluation& e : evaluated)  // a vertex's second element, with its first read
-    if (e.vertex) read_vertex(geometry_, D, rotations, e.Y, states[e.contact]);
+    if (e.vertex) read_vertex(geometry_.model(), e.Y, e.push, states[e.contact]);
 }
 
 ContactChanges ContactSet::update(const Eigen::VectorXd& D, const std::vector<double>& rotations,
                                   const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states,
                                   bool at_convergence) const {
-  record(D, rotations, evaluated, states);
+  record(evaluated, states);
   ContactChanges changes;
   Occupancy occupancy(geometry_, states);
   ChordFrames frames(geometry_, D);

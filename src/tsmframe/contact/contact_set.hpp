@@ -30,6 +30,7 @@ struct ContactEvaluation {
   double alpha = 0.0;
   double Y = 0.0;
   double force_per_Y = 1.0;  ///< MultiPointResponse::force_per_Y: the compression is −side · Y · this
+  Eigen::Vector2d push = Eigen::Vector2d::Zero();  ///< the element's nodal force on the contact node: Y n, or Y ν
 };
 
 /// Changes made by one update().
@@ -53,10 +54,9 @@ class ContactSet {
   /// is a point on each of its two elements), in the order of their first points' contacts; an
   /// entering point (ContactState::entering) along the chord's normal.
   std::vector<ActiveContact> active_contacts(const std::vector<ContactState>& states) const;
-  /// Reads the evaluations of the active contacts into their states (α, Y, compression) without
-  /// changing the active set: the evaluation that stands.
-  void record(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
-              const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states) const;
+  /// Reads the evaluations of the active contacts into their states (α, Y, compression, push)
+  /// without changing the active set: the evaluation that stands.
+  void record(const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states) const;
   /// Records the evaluations, then runs the life cycle at `displacements` (chord rotations of
   /// that evaluation). A pull releases a contact only `at_convergence` — Newton asks for it once
   /// the residual has converged: an unconverged iterate's Y is no evidence of pulling (a stiff

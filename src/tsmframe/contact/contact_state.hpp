@@ -76,6 +76,9 @@ struct ContactState {
   double alpha = 0.0; ///< α = l_ic / l at the last evaluation
   double force = 0.0; ///< compression −side·Y (≥ 0 when converged); at a vertex, of the resultant
   double Y = 0.0;     ///< the element force Y (chord frame, Eq. 6–9)
+  /// The push the node gives the beam(s) (x, y): Y along the chord's normal or the bent beam's;
+  /// at a vertex, both elements' together.
+  double push[2] = {0.0, 0.0};
   std::optional<Vertex> vertex;  ///< resting on a beam node between two elements (vertex.hpp)
   /// Started, or handed to another element, at the last update: until the next update its force
   /// acts along the chord's normal whatever its `normal` (its Y, read from how far the iterate

@@ -41,15 +41,15 @@ void enter_vertex(const Model& model, int node, int to, int to_side, ContactStat
   state.alpha = model.elements[state.element].end == node ? 1.0 : 0.0;
 }
 
-void read_vertex(const ContactGeometry& geometry, const Eigen::VectorXd& D, const std::vector<double>& rotations,
-                 double partner_Y, ContactState& state) {
+void read_vertex(const Model& model, double partner_Y, const Eigen::Vector2d& partner_push, ContactState& state) {
   Vertex& v = *state.vertex;
   v.Y = partner_Y;
-  state.alpha = geometry.model().elements[state.element].end == vertex_node(geometry.model(), state) ? 1.0 : 0.0;
-  const Eigen::Vector2d push = state.Y * geometry.chord_normal(state.element, D, rotations) +
-                               v.Y * geometry.chord_normal(v.element, D, rotations);
+  state.alpha = model.elements[state.element].end == vertex_node(model, state) ? 1.0 : 0.0;
+  state.push[0] += partner_push.x();
+  state.push[1] += partner_push.y();
   const double compression = -state.side * state.Y - v.side * v.Y;
-  state.force = compression >= 0.0 ? push.norm() : -push.norm();
+  const double push = std::hypot(state.push[0], state.push[1]);
+  state.force = compression >= 0.0 ? push : -push;
 }
 
 bool open_vertex(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& D,

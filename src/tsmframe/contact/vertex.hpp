@@ -34,8 +34,7 @@ void enter_vertex(const Model& model, int node, int to, int to_side, ContactStat
 /// The vertex's second contact element's force, read with the first's (already in `state`): the
 /// contact is reported on the element ending at the node, at its end, with the compression of
 /// the resultant of both forces.
-void read_vertex(const ContactGeometry& geometry, const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
-                 double partner_Y, ContactState& state);
+void read_vertex(const Model& model, double partner_Y, const Eigen::Vector2d& partner_push, ContactState& state);
 
 /// At a converged iterate: a vertex where a side pulls opens — that side lets go (both: the
 /// contact is released). Returns whether it opened; the elements it leaves are left in `occupancy`.

@@ -45,25 +45,13 @@ void write_vtu(const std::string& path, const Model& model, const solver::StepRe
   };
   std::vector<ContactPoint> contacts;
   std::vector<double> element_Y(model.elements.size(), 0.0);
-  // J S puts +Y n on node c: the force the element needs there, i.e. the push the node gives the beam.
-  const auto push = [&](int element, double Y) -> Eigen::Vector2d {
-    const Element& e = model.elements[element];
-    const Eigen::Vector2d xi = model.nodes[e.start].position + D.segment<2>(dofs_per_node * e.start);
-    const Eigen::Vector2d xj = model.nodes[e.end].position + D.segment<2>(dofs_per_node * e.end);
-    const Eigen::Vector2d t = (xj - xi).normalized();
-    return Y * Eigen::Vector2d(-t.y(), t.x());
-  };
   for (size_t k = 0; k < step.contacts.size(); ++k) {
     const solver::ContactPoint& c = step.contacts[k];
     if (c.element < 0) continue;
     element_Y[c.element] = c.Y;
-    Eigen::Vector2d force = push(c.element, c.Y);
-    if (c.partner >= 0) {  // a vertex: both elements push
-      element_Y[c.partner] = c.partner_Y;
-      force += push(c.partner, c.partner_Y);
-    }
+    if (c.partner >= 0) element_Y[c.partner] = c.partner_Y;  // a vertex: both elements push
     const int node = model.contacts[k].node;
-    contacts.push_back({node, model.nodes[node].position + D.segment<2>(dofs_per_node * node), force, c.Y});
+    contacts.push_back({node, model.nodes[node].position + D.segment<2>(dofs_per_node * node), c.push, c.Y});
   }
   const size_t per = curve_segments + 1, n_points = curves.size() * per + contacts.size();
   const size_t n_cells = curves.size() + contacts.size();

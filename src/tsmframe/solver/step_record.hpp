@@ -21,6 +21,9 @@ struct ContactPoint {
   double Y = 0.0;      ///< Y of the contact element (chord frame)
   int partner = -1;    ///< at a vertex (a beam node, both elements in contact): the other element
   double partner_Y = 0.0;  ///< … and its Y
+  /// The push the contact node gives the beam (at a vertex, both elements'), along the normal
+  /// its contact asks for.
+  Eigen::Vector2d push = Eigen::Vector2d::Zero();
 };
 
 struct StepRecord {

@@ -69,7 +69,7 @@ bool TsmProblem::evaluate(State& state, bool contacts_only) {
     reversals_ += changes.reversed;
   }
   // α and force of the evaluation that stands (update() has set them unless the passes ran out).
-  contacts_->record(state.displacements, state.chord_rotations, eval_.contacts, state.contacts);
+  contacts_->record(eval_.contacts, state.contacts);
   return changed;
 }
 
@@ -323,7 +323,9 @@ std::vector<ContactPoint> TsmProblem::contact_points(const State& state) const {
   std::vector<ContactPoint> points;
   for (const contact::ContactState& c : state.contacts) {
     ContactPoint p;
-    if (c.active) p = {c.element, c.alpha, c.force, c.Y, c.vertex ? c.vertex->element : -1, c.vertex ? c.vertex->Y : 0.0};
+    if (c.active)
+      p = {c.element, c.alpha, c.force, c.Y, c.vertex ? c.vertex->element : -1, c.vertex ? c.vertex->Y : 0.0,
+           Eigen::Vector2d(c.push[0], c.push[1])};
     points.push_back(p);
   }
   return points;

@@ -31,10 +31,6 @@ TEST(ContactVertex, ASidePullingAtAConvergedIterateLetsGoAndBothPullingRelease) 
   using E = tsm::contact::ContactEvaluation;
   {
     auto states = v.states;  // both press: nothing changes, even at a converged iterate
-    EXPECT_FALSE(tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, 5.0}, E{0, true, 0.0, 3.0}}, states, true).any());
-    ASSERT_TRUE(states[0].vertex);
-    EXPECT_EQ(states[0].vertex->element, v.starting);
-    // Reported: the compression of the resultant 5 n_ending + 3 n_starting (chord normals).
     const auto normal = [&](int element) {
       const tsm::Element& f = v.model.elements[element];
       const Eigen::Vector2d a = v.model.nodes[f.start].position + v.D.segment<2>(3 * f.start);
@@ -42,6 +38,12 @@ TEST(ContactVertex, ASidePullingAtAConvergedIterateLetsGoAndBothPullingRelease) 
       const Eigen::Vector2d t = (b - a).normalized();
       return Eigen::Vector2d(-t.y(), t.x());
     };
+    // Each element's push on the node (its nodal force there: here along its chord's normal).
+    const E first{0, false, 1.0, 5.0, 1.0, 5.0 * normal(v.ending)}, second{0, true, 0.0, 3.0, 1.0, 3.0 * normal(v.starting)};
+    EXPECT_FALSE(tracker.update(v.D, e.chord_rotations, {first, second}, states, true).any());
+    ASSERT_TRUE(states[0].vertex);
+    EXPECT_EQ(states[0].vertex->element, v.starting);
+    // Reported: the compression of the resultant of the pushes, 5 n_ending + 3 n_starting.
     const double resultant = (5.0 * normal(v.ending) + 3.0 * normal(v.starting)).norm();
     EXPECT_LT(resultant, 7.999);  // the chords meet at an angle (0.1 rad here)
     EXPECT_NEAR(states[0].force, resultant, 1e-12 * resultant);

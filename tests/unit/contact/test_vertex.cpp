@@ -55,15 +55,19 @@ TEST(ContactVertex, AVertexIsReportedOnTheElementEndingAtTheNodeAtItsEnd) {
 
 TEST(ContactVertex, ItsForceIsTheCompressionOfBothElementsResultant) {
   // The beam kinked at x = 0.5 (v = a x²): the chords' normals meet at an angle, and the
-  // reported force is the length of Y₁ n₁ + Y₂ n₂, signed by the compression −Σ side·Y.
+  // reported force is the length of both elements' pushes, Y₁ n₁ + Y₂ n₂ (along the chords'
+  // normals; the bent beam's are the elements' to give), signed by the compression −Σ side·Y.
   ContactFixture f(0.5, 0.0);
   f.bend_beam(0.4);
   const ContactGeometry geometry(f.model);
   ContactState state = at_vertex(geometry, f);
   state.Y = -3.0;  // side +1: compression 3
-  tsm::contact::read_vertex(geometry, f.D, f.rotations, -2.0, state);
   const Eigen::Vector2d n1 = geometry.chord_normal(1, f.D, f.rotations), n2 = geometry.chord_normal(2, f.D, f.rotations);
+  state.push[0] = -3.0 * n1.x();
+  state.push[1] = -3.0 * n1.y();
+  tsm::contact::read_vertex(f.model, -2.0, -2.0 * n2, state);
   EXPECT_NEAR(state.force, (-3.0 * n1 - 2.0 * n2).norm(), 1e-14);
+  EXPECT_NEAR(state.push[0], (-3.0 * n1 - 2.0 * n2).x(), 1e-15);
   EXPECT_LT(state.force, 5.0);  // less than the sum: the normals differ
   EXPECT_EQ(state.vertex->Y, -2.0);
   EXPECT_EQ(state.alpha, 1.0);
