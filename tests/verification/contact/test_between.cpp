@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -158,6 +159,71 @@ TEST(ContactBetween, NodesRestingOnEachOtherPressOnce) {
   }
   // The upper beam's 10 kN, all through the contacts (the normals lean by the slopes, ~10⁻³).
   EXPECT_NEAR(total, 1e4, 1e-4 * 1e4);
+}
+
+/// Two equal shallow arcs (span 2 m, rise 0.2 m) drawn crown to crown, the lower one's ends
+/// pinned, the upper one's pushed down 5 cm; `lower` and `upper` elements (odd: each crown lies
+/// within an element), one "between" entry.
+json arcs_crown_to_crown(int lower, int upper) {
+  const double R = 2.6, sweep = 2.0 * std::asin(1.0 / R);
+  const auto arc = [&](int from, int to, double centre_y, int divisions) {
+    return json{{"from", from}, {"to", to}, {"arc", {{"center", {0.0, centre_y}}, {"sweep", sweep}}},
+                {"divisions", divisions}, {"material", "steel"}, {"section", "s"}};
+  };
+  return {{"materials", {{"steel", {{"E", 2e11}, {"nu", 0.3}}}}},
+          {"sections", {{"s", {{"A", 1e-3}, {"I", 1e-7}}}}},
+          {"nodes", json::array({{{"id", 1}, {"x", 1.0}, {"y", 0.0}}, {{"id", 2}, {"x", -1.0}, {"y", 0.0}},
+                                 {{"id", 3}, {"x", -1.0}, {"y", 0.4}}, {{"id", 4}, {"x", 1.0}, {"y", 0.4}}})},
+          {"members", json::array({arc(1, 2, 0.2 - R, lower), arc(3, 4, 0.2 + R, upper)})},
+          {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "pinned"}},
+                                    {{"node", 3}, {"fix", {"ux"}}}, {{"node", 4}, {"fix", {"ux"}}}})},
+          {"prescribed", json::array({{{"node", 3}, {"uy", -0.05}}, {{"node", 4}, {"uy", -0.05}}})},
+          {"contacts", json::array({{{"between", {{0}, {1}}}}})},
+          {"analysis", {{"control", {{"type", "load"}, {"steps", 10}}}}}};
+}
+
+TEST(ContactBetween, TwoArcsPressedCrownToCrownTouchAtInteriorPointsOfBoth) {
+  // The second case. Swapping the meshes mirrors the problem about the line between the
+  // arcs: the same forces to rounding. The push the upper supports need converges with the mesh
+  // (against 81 / 83 elements), and on the finer meshes nodes of both arcs carry contact — each
+  // pressing on the other arc between its nodes, none through it.
+  struct Run {
+    tsm::Model model;
+    tsm::solver::RunResult r;
+    double push() const {
+      const Eigen::VectorXd& reactions = r.steps.back().reactions;
+      return -(reactions[3 * model.node_index(3) + 1] + reactions[3 * model.node_index(4) + 1]);
+    }
+  };
+  const auto solve = [](int lower, int upper) {
+    Run out;
+    out.r = run(arcs_crown_to_crown(lower, upper), out.model);
+    return out;
+  };
+  const Run a = solve(9, 11), b = solve(11, 9), fine = solve(81, 83);
+  for (const Run* x : {&a, &b, &fine}) ASSERT_EQ(x->r.status, tsm::solver::Status::converged) << x->r.message;
+  EXPECT_NEAR(a.push(), b.push(), 1e-9 * a.push());  // mirrored
+  EXPECT_GT(a.push(), 5e4);
+  for (int divisions : {21, 41}) {
+    const Run x = solve(divisions, divisions + 2);
+    ASSERT_EQ(x.r.status, tsm::solver::Status::converged) << x.r.message;
+    std::printf("[figure] %d / %d elements: push %.2f N, the 81 / 83 mesh's %.2f N\n", divisions, divisions + 2, x.push(), fine.push());
+    EXPECT_NEAR(x.push(), fine.push(), (divisions == 21 ? 1e-2 : 1e-3) * fine.push());
+  }
+  int lower_nodes = 0, upper_nodes = 0;
+  const auto& contacts = fine.r.steps.back().contacts;
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    if (contacts[k].element < 0) continue;
+    const bool on_upper = fine.model.elements[contacts[k].element].member == 1;
+    (on_upper ? lower_nodes : upper_nodes) += 1;
+    EXPECT_GT(contacts[k].alpha, 0.0);  // between the touched arc's nodes
+    EXPECT_LT(contacts[k].alpha, 1.0);
+  }
+  EXPECT_GT(lower_nodes, 0);
+  EXPECT_GT(upper_nodes, 0);
+  // Every contact in compression.
+  for (const auto& c : contacts)
+    if (c.element >= 0) EXPECT_GE(c.force, 0.0);
 }
 
 }  // namespace
