@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "support/dense.hpp"
+#include "support/unbalanced_jacobian.hpp"
 #include "support/models.hpp"
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/assembly/global_system.hpp"
@@ -60,21 +61,7 @@ void check_tangent(const json& m, double free_end_pressure) {
   const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent(), system.follower_rank_one());
   const Eigen::MatrixXd symmetric = dense_tangent(dofs, system.tangent());
   EXPECT_EQ(system.follower_rank_one().empty(), closed) << "skew terms only where a loaded stretch ends";
-  const int n = dofs.free_count();
-  Eigen::MatrixXd J(n, n);
-  const double h = 1e-6;
-  for (int c = 0; c < n; ++c) {
-    Eigen::VectorXd plus = D, minus = D;
-    plus[dofs.dof(c)] += h;
-    minus[dofs.dof(c)] -= h;
-    tsm::assembly::Evaluation ep, em;
-    std::vector<double> rp = e.chord_rotations, rm = e.chord_rotations;
-    system.evaluate(plus, rp, false, ep);
-    system.evaluate(minus, rm, false, em);
-    const Eigen::VectorXd fp = ep.internal_force - lambda * ep.reference_load;
-    const Eigen::VectorXd fm = em.internal_force - lambda * em.reference_load;
-    for (int r = 0; r < n; ++r) J(r, c) = (fp[dofs.dof(r)] - fm[dofs.dof(r)]) / (2 * h);
-  }
+  const Eigen::MatrixXd J = tsm::test::unbalanced_force_jacobian(system, dofs, D, e.chord_rotations, lambda);
   // The tangent with its rank-one terms is the Jacobian; its block part the Jacobian's symmetric
   // part. An open arch's load is not conservative: the skew part is its free end's λ (p/2) R.
   EXPECT_LE((K - J).cwiseAbs().maxCoeff(), 1e-6 * K.cwiseAbs().maxCoeff());

@@ -11,6 +11,7 @@
 #include <cstdio>
 
 #include "support/dense.hpp"
+#include "support/unbalanced_jacobian.hpp"
 #include "support/models.hpp"
 #include "support/rk4.hpp"
 #include "tsmframe/assembly/dof_map.hpp"
@@ -97,21 +98,7 @@ TEST(FollowerPointLoad, TheTangentWithItsRankOneTermsIsTheJacobian) {
   system.evaluate(D, rotations, true, e);
   EXPECT_EQ(system.follower_rank_one().size(), 2u) << "one rank-one term per follower point load";
   const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent(), system.follower_rank_one());
-  const int n = dofs.free_count();
-  Eigen::MatrixXd J(n, n);
-  const double h = 1e-6;
-  for (int c = 0; c < n; ++c) {
-    Eigen::VectorXd plus = D, minus = D;
-    plus[dofs.dof(c)] += h;
-    minus[dofs.dof(c)] -= h;
-    tsm::assembly::Evaluation ep, em;
-    std::vector<double> rp = e.chord_rotations, rm = e.chord_rotations;
-    system.evaluate(plus, rp, false, ep);
-    system.evaluate(minus, rm, false, em);
-    const Eigen::VectorXd fp = ep.internal_force - lambda * ep.reference_load;
-    const Eigen::VectorXd fm = em.internal_force - lambda * em.reference_load;
-    for (int r = 0; r < n; ++r) J(r, c) = (fp[dofs.dof(r)] - fm[dofs.dof(r)]) / (2 * h);
-  }
+  const Eigen::MatrixXd J = tsm::test::unbalanced_force_jacobian(system, dofs, D, e.chord_rotations, lambda);
   EXPECT_LE((K - J).cwiseAbs().maxCoeff(), 1e-6 * K.cwiseAbs().maxCoeff());
   // Without the rank-one terms the tangent misses the load's turning: the test can fail.
   EXPECT_GT((dense_tangent(dofs, system.tangent()) - J).cwiseAbs().maxCoeff(), 0.1 * lambda * 0.7);
