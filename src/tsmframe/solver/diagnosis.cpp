@@ -184,8 +184,8 @@ std::string stepped_failure_text(const RunFailure& failure, const Model& model) 
      << failure.from << " -> " << failure.to << ") failed: " << step_failure_text(failure.step_failure, model);
   if (failure.cutbacks > 0) os << ", after " << failure.cutbacks << " cutbacks in a row";
   std::string text = os.str();
-  // Cutback could not halve it again: the step was already the smallest max_cutbacks allows
-  // since an earlier failure (the halvings count restarts once a step converges).
+  // Cutback could not halve it again: the step was the smallest max_cutbacks allows, reached with
+  // halvings to spare (the halvings count restarts once a step converges).
   if (failure.smallest_step)
     text += ", a step already the smallest cutback allows (1/2^" + std::to_string(failure.max_cutbacks) + " of a nominal step)";
   text += limit_point_text(failure);

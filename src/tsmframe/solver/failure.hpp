@@ -69,8 +69,9 @@ struct RunFailure {
   double from = 0.0, to = 0.0;
   int cutbacks = 0;             ///< halvings in a row before the attempt that failed last
   StepFailure step_failure;     ///< why that attempt failed
-  /// The step was already the smallest max_cutbacks halvings of a nominal step allow, after an
-  /// earlier failure (cutback could not halve it again).
+  /// The step was the smallest max_cutbacks halvings of a nominal step allow, with fewer than
+  /// max_cutbacks halvings in a row (reached since an earlier failure, or now): cutback could not
+  /// halve it again.
   bool smallest_step = false;
   int max_cutbacks = 0;
   /// Cutback used all max_cutbacks halvings in a row; `first_step`: on the path's first step.

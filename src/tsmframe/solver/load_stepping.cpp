@@ -204,7 +204,9 @@ void LoadStepping::give_up(const Attempt& attempt, StepRecord record, const Newt
   failure.cutbacks = halvings_;
   failure.step_failure = outcome.failure;
   failure.max_cutbacks = settings_.max_cutbacks;
-  failure.smallest_step = settings_.cutback && halvings_ == 0 &&
+  // No halving left: the step is at the smallest size, reached now or since an earlier failure,
+  // with halvings in a row to spare (else cutbacks_exhausted says it).
+  failure.smallest_step = settings_.cutback && halvings_ < settings_.max_cutbacks &&
                           attempt.dt / 2.0 < std::ldexp(nominal_, -settings_.max_cutbacks) * (1.0 - 1e-12);
   if (limit_point) failure.limit_point_stiffness = newest_stiffness_ / first_stiffness_;
   failure.cutbacks_exhausted = settings_.cutback && halvings_ >= settings_.max_cutbacks && !limit_point &&

@@ -195,6 +195,22 @@ TEST(ContactResting, ACantileverPressedOntoACantileverSlidesOffAtAMaximumThatLoa
   expect_equilibrium(model, arc.steps.back());
 }
 
+TEST(ContactResting, AStepHalvedOnceToTheSmallestSizeAndFailingThereSaysSo) {
+  // The same press along the bent beams' normals: load control halves a step once, to the
+  // smallest size cutback allows (1/2^10 of a nominal step, an earlier failure having halved
+  // its way down before), and fails there. The run said only "after 1 cutbacks in a row", not
+  // why it stopped: cutback had halvings to spare, but no smaller step to take.
+  json m = overlapping_cantilevers();
+  for (json& c : m["contacts"]) c["normal"] = "deflected";
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::cutback_limit) << r.message;
+  ASSERT_EQ(r.failure.cutbacks, 1) << r.message;  // the case this test is about
+  EXPECT_NE(r.message.find("after 1 cutbacks in a row, a step already the smallest cutback allows (1/2^10 of a nominal step)"),
+            std::string::npos)
+      << r.message;
+}
+
 TEST(ContactResting, ABeamPressedOntoAFarStifferBeamAlongItsLengthLoadsItAsItsContactForcesSay) {
   // The same two beams under 2 kN/m in 10 steps, with the defaults. Found as a user: the first
   // step was cut back to λ = 0.001 and failed there, "the loads are too small against what
