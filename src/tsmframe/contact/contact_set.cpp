@@ -1,5 +1,7 @@
 #include "tsmframe/contact/contact_set.hpp"
 
+#include <algorithm>
+
 #include "tsmframe/contact/detection.hpp"
 #include "tsmframe/contact/release.hpp"
 #include "tsmframe/contact/sides.hpp"
@@ -47,7 +49,7 @@ std::vector<ContactState> ContactSet::initial_states() const {
 std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<ContactState>& states) const {
   std::vector<ActiveContact> active;
   std::vector<int> place;  // per element: its place in `active`, −1 none (made only when needed)
-  const auto add_point = [&](int k, bool vertex, int element, int side, bool entering) {
+  const auto add_point = [&](int k, bool vertex, int element, int side) {
     const ContactCandidates& contact = geometry_.contact(k);
     if (place.empty()) place.assign(geometry_.model().elements.size(), -1);
     if (place[element] < 0) {
@@ -57,14 +59,25 @@ std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<Contact
     ActiveContact& a = active[place[element]];
     a.points.push_back({k, vertex, contact.node});
     a.data.push_back(geometry_.element_data(contact, element, side));
-    if (entering) a.data.back().normal = ContactNormal::chord;
   };
   for (int k = 0; k < contact_count(); ++k) {
     const ContactState& s = states[k];
     if (!s.active) continue;
-    add_point(k, false, s.element, s.side, s.entering);
-    if (s.vertex) add_point(k, true, s.vertex->element, s.vertex->side, s.entering);
+    add_point(k, false, s.element, s.side);
+    if (!s.vertex) continue;
+    // A vertex pushes along both chords' normals: its force may lie anywhere between them, and
+    // its rules (vertex.hpp) are written for those; the bent beams' normals there differ from
+    // them by the end rotations against the chords, which vanish as the mesh is refined.
+    active[place[s.element]].data.back().normal = ContactNormal::chord;
+    add_point(k, true, s.vertex->element, s.vertex->side);
+    active[place[s.vertex->element]].data.back().normal = ContactNormal::chord;
   }
+  // An element a point enters pushes along its chord's normal at all its points: the entering
+  // point's Y, read from how far the predictor ran its node through the beam, would turn the
+  // others' normals too.
+  for (ActiveContact& a : active)
+    if (std::any_of(a.points.begin(), a.points.end(), [&](const ActivePoint& p) { return states[p.contact].entering; }))
+      for (ContactElementData& d : a.data) d.normal = ContactNormal::chord;
   return active;
 }
 

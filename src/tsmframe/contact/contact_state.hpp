@@ -83,7 +83,9 @@ struct ContactState {
   /// Started, or handed to another element, at the last update: until the next update its force
   /// acts along the chord's normal whatever its `normal` (its Y, read from how far the iterate
   /// took the node through the beam, is not yet the beam's, and would turn a deflected normal by
-  /// ½ c_α Y / l, N16, arbitrarily far).
+  /// ½ c_α Y / l, N16, arbitrarily far). Also set for every contact in touch at a step's
+  /// predictor iterate (solver::TsmProblem::evaluate), and it turns every point of its element
+  /// to the chord's normal (ContactSet::active_contacts).
   bool entering = false;
   ContactReference reference;
   StepMemory step;

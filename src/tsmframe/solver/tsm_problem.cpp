@@ -52,6 +52,12 @@ bool TsmProblem::evaluate(State& state, bool contacts_only) {
   system_.set_load_factor(state.load_factor);
   for (int dof : equations_.constrained_dofs) state.displacements[dof] = state.load_factor * model.prescribed(dof);
   bool changed = false;
+  // The predictor runs contact nodes through their beams by as much as the step extrapolates:
+  // Y at its iterate measures that, not the contact force, and along the bent beam's normal it
+  // would turn the normals as much. That iterate pushes along the chords' normals, as a point
+  // entering an element does (ContactState::entering).
+  if (std::exchange(predictor_pending_, false))
+    for (contact::ContactState& c : state.contacts) c.entering = c.entering || c.active;
   for (int pass = 0;; ++pass) {
     const std::vector<contact::ActiveContact> active = active_contacts(state);
     // The rotations are continued in place (one vector, not two): lent to the evaluation.
@@ -135,6 +141,7 @@ void TsmProblem::begin_step(const State& state) {
   // around the node): fail the step so that cutback follows the path in smaller steps. Sliding
   // on in one direction, one element per iterate, is not limited here.
   max_reversals_ = 4 * static_cast<int>(state.contacts.size());
+  predictor_pending_ = true;
 }
 
 std::optional<StepFailure> TsmProblem::after_iterate(const State& state) const {
@@ -214,10 +221,23 @@ std::vector<std::pair<int, int>> TsmProblem::accept(State& state) {
 void TsmProblem::explain(const State& state, StepFailure& failure) const {
   failure.hinged = hinged_;
   failure.contacts = contacts_ != nullptr;
+  const Model& model = system_.model();
+  // A free end: the node ends one element only. A point within contact_at_free_end of one is as
+  // good as off it when the step fails: along the bent beam's normal Newton's iterates there
+  // pass to and fro across the end, the last one on either side of it.
+  constexpr double contact_at_free_end = 1e-3;
+  const auto at_free_end = [&](const contact::ContactState& c) {
+    const Element& e = model.elements[c.element];
+    const int node = c.alpha < contact_at_free_end ? e.start : c.alpha > 1.0 - contact_at_free_end ? e.end : -1;
+    return node >= 0 && std::count_if(model.elements.begin(), model.elements.end(), [node](const Element& other) {
+                          return other.start == node || other.end == node;
+                        }) == 1;
+  };
   for (const int k : holding_contacts_) {
     const contact::ContactState& c = state.contacts[k];
-    // Released, or held at a free end it has gone past (α beyond [0, 1] after the hand-over).
-    if (!c.active || c.alpha < 0.0 || c.alpha > 1.0) {  // the cause first: what Newton then met follows from it
+    // Released, or held at a free end it has gone past (α beyond [0, 1] after the hand-over) or
+    // has reached.
+    if (!c.active || c.alpha < 0.0 || c.alpha > 1.0 || at_free_end(c)) {  // the cause first: what Newton then met follows from it
       failure.lost_resting_contact = k;
       failure.resting_contact_slid_off = c.active;
       return;
