@@ -172,8 +172,9 @@ std::string iterate_failure_text(const StepFailure& f, const Model& model) {
 std::string limit_point_text(const RunFailure& failure) {
   if (!(failure.limit_point_stiffness > 0.0)) return "";
   return "; the load seems to have reached a maximum (a limit point: the current stiffness |Δλ|/‖ΔD‖ is down to " +
-         format_ratio(failure.limit_point_stiffness) +
-         " of the first step's, and the tangent lost its positive definiteness within the step), "
+         format_ratio(failure.limit_point_stiffness) + " of the first step's" +
+         (failure.limit_point_ahead ? " and, falling as it does, reaches nil within the step" : "") +
+         ", and the tangent lost its positive definiteness within the step), "
          "which load control cannot pass: use arc-length control";
 }
 

@@ -77,8 +77,10 @@ struct RunFailure {
   /// Cutback used all max_cutbacks halvings in a row; `first_step`: on the path's first step.
   bool cutbacks_exhausted = false, first_step = false;
   /// > 0: the load seems to have reached a maximum (a limit point), the current stiffness down to
-  /// this fraction of the first step's.
+  /// this fraction of the first step's; `limit_point_ahead`: its square, run on linearly in λ
+  /// through the two newest converged states, reaches nil within the failed step.
   double limit_point_stiffness = 0.0;
+  bool limit_point_ahead = false;
   /// step_limit: the budget, the `until` target and where the watched quantity stands.
   int max_steps = 0;
   double until_value = 0.0, until_now = 0.0;

@@ -93,7 +93,23 @@ class LoadStepping {
   // converged step's secant would not: a deep arch's last step below its maximum still had a
   // quarter of the first step's.
   double first_stiffness_ = 0.0, newest_stiffness_ = 0.0;
+  /// The current stiffness at the two newest converged states a step started from, with their
+  /// load factors: near a smooth maximum k² falls linearly with λ, so the two place it.
+  struct StiffnessAt {
+    double load_factor = 0.0, stiffness = 0.0;
+  };
+  StiffnessAt newest_at_, before_at_;
+  bool maximum_within(double load_factor) const;
 };
+
+/// Whether k² (the current stiffness's square), run on linearly through the two newest
+/// converged states, reaches zero before `load_factor`: a maximum within the step to it.
+bool LoadStepping::maximum_within(double load_factor) const {
+  const double k0 = before_at_.stiffness, k1 = newest_at_.stiffness;
+  const double dl = newest_at_.load_factor - before_at_.load_factor;
+  if (!(k0 > 0.0 && k1 > 0.0 && dl > 0.0 && k1 < k0)) return false;
+  return newest_at_.load_factor + k1 * k1 * dl / (k0 * k0 - k1 * k1) <= load_factor;
+}
 
 LoadStepping::Attempt LoadStepping::next_attempt() const {
   const double next_grid = static_cast<double>(grid_index_ + 1) / control_.steps;
@@ -124,6 +140,8 @@ RunResult LoadStepping::run(State& state) {
     if (!by_displacement_ && outcome.start_stiffness > 0.0) {  // each attempt starts from a converged state
       newest_stiffness_ = outcome.start_stiffness;
       if (first_stiffness_ == 0.0) first_stiffness_ = newest_stiffness_;
+      if (saved_.load_factor() != newest_at_.load_factor) before_at_ = newest_at_;
+      newest_at_ = {saved_.load_factor(), newest_stiffness_};
     }
     if (outcome.status == Status::converged) {
       converged(attempt, std::move(record), outcome, state);
@@ -192,9 +210,13 @@ void LoadStepping::give_up(const Attempt& attempt, StepRecord record, const Newt
   // Cut back: halved in this attempt, or already at the smallest size since an earlier failure
   // (its halvings count restarts once a step converges).
   const bool cut = halvings_ > 0 || attempt.dt < nominal_ * (1.0 - 1e-9);
+  // Near a maximum the stiffness is low, or — where the maximum is flat and the smallest step
+  // reaches past it — falls to nil within the step.
+  const bool ahead = maximum_within(value(attempt.t_end));
   const bool limit_point = !by_displacement_ && cut && outcome.start_negative_pivots == 0 &&
                            outcome.most_negative_pivots > 0 && first_stiffness_ > 0.0 &&
-                           newest_stiffness_ < limit_point_stiffness * first_stiffness_ && !at_element_end();
+                           (newest_stiffness_ < limit_point_stiffness * first_stiffness_ || ahead) &&
+                           !at_element_end();
   RunFailure& failure = result_.failure;
   failure.kind = RunFailure::Kind::step_failed;
   failure.control = by_displacement_ ? RunFailure::Control::controlled_displacement : RunFailure::Control::load_factor;
@@ -208,7 +230,10 @@ void LoadStepping::give_up(const Attempt& attempt, StepRecord record, const Newt
   // with halvings in a row to spare (else cutbacks_exhausted says it).
   failure.smallest_step = settings_.cutback && halvings_ < settings_.max_cutbacks &&
                           attempt.dt / 2.0 < std::ldexp(nominal_, -settings_.max_cutbacks) * (1.0 - 1e-12);
-  if (limit_point) failure.limit_point_stiffness = newest_stiffness_ / first_stiffness_;
+  if (limit_point) {
+    failure.limit_point_stiffness = newest_stiffness_ / first_stiffness_;
+    failure.limit_point_ahead = ahead;
+  }
   failure.cutbacks_exhausted = settings_.cutback && halvings_ >= settings_.max_cutbacks && !limit_point &&
                                outcome.failure.reason != StepFailure::Reason::loads_unresolvable;
   failure.first_step = state.load_factor == 0.0;  // the path's first step

@@ -135,6 +135,13 @@ TEST(ContactResting, PushedThroughBetweenTheEdgesTheLoadPassesAMaximumThatArcLen
   const RunResult off = run(m, model);
   ASSERT_NE(off.status, tsm::solver::Status::converged);
   EXPECT_NE(off.message.find("has slid off the beam's end: nothing else supports it"), std::string::npos) << off.message;
+  // Along the bent beam's normal Newton's last iterates pass to and fro across the free end,
+  // the failing one just inside it (α ~ 1e-5): the run says the same.
+  for (json& c : m["contacts"]) c["normal"] = "deflected";
+  const RunResult off_along_normal = run(m, model);
+  ASSERT_NE(off_along_normal.status, tsm::solver::Status::converged);
+  EXPECT_NE(off_along_normal.message.find("has slid off the beam's end: nothing else supports it"), std::string::npos)
+      << off_along_normal.message;
 }
 
 /// Two overlapping cantilevers of 2 m (EB, 20 elements each): the lower clamped at (0, 0), the
@@ -209,6 +216,11 @@ TEST(ContactResting, AStepHalvedOnceToTheSmallestSizeAndFailingThereSaysSo) {
   EXPECT_NE(r.message.find("after 1 cutbacks in a row, a step already the smallest cutback allows (1/2^10 of a nominal step)"),
             std::string::npos)
       << r.message;
+  // It is the maximum: arc-length control finds it there. The current stiffness at the step's
+  // start is still ~1/5 of the first step's (the maximum is flat), but its square, falling
+  // linearly with λ through the last two converged states, reaches nil within the step.
+  EXPECT_NE(r.message.find("the load seems to have reached a maximum (a limit point"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("reaches nil within the step"), std::string::npos) << r.message;
 }
 
 TEST(ContactResting, ABeamPressedOntoAFarStifferBeamAlongItsLengthLoadsItAsItsContactForcesSay) {
