@@ -375,7 +375,11 @@ TEST_F(Cli, ContactResultsInJsonAndCsv) {
   EXPECT_LT(c["xi"].get<double>(), 1.0);
   EXPECT_GT(c["force"].get<double>(), 0.0);
   ASSERT_EQ(last["element_forces"]["2"].size(), 4u);  // N, M_i, M_j, Y
-  EXPECT_NEAR(last["element_forces"]["2"][3].get<double>(), c["force"].get<double>(), 1e-9 * c["force"].get<double>());
+  // Y is the force's part along the chord's normal: along the bent beam's normal ν = n − w'e the
+  // force is Y √(1 + w'²), w' the small slope against the chord at the point.
+  const double Y = last["element_forces"]["2"][3].get<double>();
+  EXPECT_LE(Y, c["force"].get<double>() * (1.0 + 1e-12));
+  EXPECT_GT(Y, 0.99 * c["force"].get<double>());
   EXPECT_EQ(last["element_forces"]["1"].size(), 3u);
   EXPECT_EQ(r["steps"][0]["contacts"].size(), 0u);  // the first 10 mm do not close the 15 mm gap
   std::ifstream csv(out / "steps.csv");

@@ -10,6 +10,7 @@ void read_contact_law_options(const nlohmann::json& entry, const std::string& pa
     const std::string frame = string(entry["frame"], child(path, "frame"));
     if (frame != "chord" && frame != "cantilever") fail(child(path, "frame"), "unknown frame " + quote_text(frame) + " (expected \"chord\" or \"cantilever\")");
     spec.frame = frame == "cantilever" ? ContactFrame::cantilever : ContactFrame::chord;
+    if (spec.frame == ContactFrame::cantilever) spec.normal = ContactNormal::chord;  // its only one
   }
   if (entry.contains("normal")) {
     const std::string normal = string(entry["normal"], child(path, "normal"));

@@ -81,7 +81,7 @@ struct ContactSpec {
   /// The contact law's beam theory where it overrides the touched element's (none: follow it).
   std::optional<BeamTheory> theory;
   ContactFrame frame = ContactFrame::chord;
-  ContactNormal normal = ContactNormal::chord;
+  ContactNormal normal = ContactNormal::deflected;
   double gap = 0.0;             ///< distance from the centre line at which contact starts
   double edge = -1.0;           ///< compliance clamp zone (contact_force_law); < 0: default per theory
   /// The contact at most this many times as stiff as the stiffest element holding its node, in
