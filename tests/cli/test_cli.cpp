@@ -191,7 +191,7 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
        "the beam's centre line, on the side it supports, and the node or the beam is held (by supports, or by a part that "
        "is) (contact node 5 is drawn 0.02 from the beam's centre line, its gap is 0: a part that only contacts would hold "
        "cannot fall onto them in a static analysis"},
-      {"two contacts resting on one element, one in the cantilever frame",
+      {"two contacts resting on one element in different frames",
        [](json& m) {
          m["nodes"].push_back({{"id", 5}, {"x", 2.2}, {"y", -0.05}});
          m["nodes"].push_back({{"id", 6}, {"x", 2.8}, {"y", -0.05}});
@@ -200,8 +200,8 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
          m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"gap", 0.05}},
                                       {{"node", 6}, {"members", "all"}, {"gap", 0.05}, {"frame", "cantilever"}}});
        },
-       "contacts[1]: rests on element 3, as contacts[0] does: a cantilever-frame contact has its element to itself (give "
-       "that member more divisions, or use the chord frame)"},
+       "contacts[1]: rests on element 3, as contacts[0] does in the other frame: points on one element share its frame "
+       "(give both the same \"frame\")"},
       {"unknown normal",
        [](json& m) {
          m["nodes"].push_back({{"id", 3}, {"x", 2.0}, {"y", 1.0}});

@@ -4,6 +4,7 @@
 
 #include "tsmframe/contact/contact_response.hpp"
 #include "tsmframe/contact/deflected_normal_element.hpp"
+#include "tsmframe/contact/multi_point_cantilever_frame.hpp"
 #include "tsmframe/contact/multi_point_deflected_normal.hpp"
 
 namespace tsm::contact {
@@ -42,6 +43,7 @@ MultiPointElementData multi_point_data(const ActiveContact& contact) {
   data.edge = first.edge;
   data.flexibility_i = first.flexibility_i;
   data.flexibility_j = first.flexibility_j;
+  data.frame = first.frame;  // every point's (occupancy.hpp)
   for (const ContactElementData& point : contact.data) {
     data.points.push_back({point.contact_start, point.offset, point.normal});
     data.min_compliance = std::max(data.min_compliance, point.min_compliance);
@@ -58,6 +60,7 @@ MultiPointResponse active_contact_response(const ActiveContact& contact, const E
     return as_multi_point(data, contact_response(data, d9, previous_rotation, with_tangent), with_tangent);
   }
   const MultiPointElementData data = multi_point_data(contact);
+  if (data.frame == ContactFrame::cantilever) return multi_point_cantilever_response(data, d, previous_rotation, with_tangent);
   const bool any_deflected = std::any_of(data.points.begin(), data.points.end(),
                                          [](const ContactPointData& p) { return p.normal == ContactNormal::deflected; });
   if (any_deflected) return multi_point_deflected_response(data, d, previous_rotation, with_tangent);

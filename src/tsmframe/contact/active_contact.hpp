@@ -2,9 +2,9 @@
 // The contact element of one element at a state: the beam element with every contact point on
 // it (issue 27), what assembly evaluates. One point is the paper's three-node element in its
 // contact's frame (contact_response.hpp, Eq. 6–9 exactly); several are the k-point element in
-// the chord frame (multi_point_element.hpp), with the force of each point that asks for it along
-// the bent beam's normal (multi_point_deflected_normal.hpp). Either way the response has the
-// k-point form.
+// their frame — the chord's (multi_point_element.hpp), with the force of each point that asks for
+// it along the bent beam's normal (multi_point_deflected_normal.hpp), or the cantilever's
+// (multi_point_cantilever_frame.hpp). Either way the response has the k-point form.
 
 #include <vector>
 
@@ -32,7 +32,7 @@ struct ActiveContact {
   int size() const { return static_cast<int>(points.size()); }
 };
 
-/// The k-point element's data from the points' (k ≥ 2; chord frame). Points of different
+/// The k-point element's data from the points' (k ≥ 2; all in one frame). Points of different
 /// contacts share one law: the first point's section, end conditions and edge, the softest
 /// stiffness cap (the largest compliance floor), the sliding term where every point asks for it.
 MultiPointElementData multi_point_data(const ActiveContact& contact);

@@ -4,14 +4,8 @@
 #include <cmath>
 
 namespace tsm::contact {
-namespace {
 
-/// g = (K(Q,Y), K(M,Y)) / K(Y,Y) and its α-derivative (the factor EI/Ω of §2b cancels).
-struct LoadShare {
-  double q = 0.0, m = 0.0, dq = 0.0, dm = 0.0;
-};
-
-LoadShare load_share(double psi, double l0, double alpha) {
+LoadShare cantilever_load_share(double psi, double l0, double alpha) {
   const double s = std::clamp(alpha, 0.0, 1.0), a = s * l0, b = (1.0 - s) * l0, span = l0 * l0 + 12.0 * psi;
   LoadShare g;
   g.q = -(a * a * a + 3.0 * a * a * b + 12.0 * psi * a) / (l0 * span);
@@ -22,8 +16,6 @@ LoadShare load_share(double psi, double l0, double alpha) {
   }
   return g;
 }
-
-}  // namespace
 
 element::Matrix3 cantilever_bending_stiffness(const element::SectionStiffness& section, double l0, double alpha) {
   const double a = alpha * l0, b = (1.0 - alpha) * l0, psi = section.shear_flexibility;
@@ -62,7 +54,7 @@ ContactResponse cantilever_frame_response(const ContactElementData& data, const 
   const Vector4 dd(sj - l0, vj, d[5] - d[2], vc - data.offset);
   r.deformations = dd;
 
-  const LoadShare g = load_share(psi, l0, r.alpha);
+  const LoadShare g = cantilever_load_share(psi, l0, r.alpha);
   const PointLoadLaw law = point_load_law(data.section, l0, r.alpha, data.edge, data.min_compliance);  // c: as the chord element's
   const Eigen::Matrix2d kp = cantilever_stiffness(data.section, l0);
   const Eigen::Vector2d gv(g.q, g.m), bend(dd[1], dd[2]);

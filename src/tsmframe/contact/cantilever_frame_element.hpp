@@ -13,6 +13,14 @@
 
 namespace tsm::contact {
 
+/// The fixed-end forces at j per unit point force Y at α on the element clamped at both ends,
+/// in the cantilever frame: g = (K(Q,Y), K(M,Y)) / K(Y,Y) of §2b (its factor EI/Ω cancels), and
+/// their α-derivatives (0 outside [0, 1], where g holds α clamped). ψ: the section's Ψ.
+struct LoadShare {
+  double q = 0.0, m = 0.0, dq = 0.0, dm = 0.0;
+};
+LoadShare cantilever_load_share(double psi, double l0, double alpha);
+
 /// §2b's bending block (v_j, θ_j, v_c) → (Q, M, Y) at α, as FORMULATION writes it (0 < α < 1).
 element::Matrix3 cantilever_bending_stiffness(const element::SectionStiffness& section, double l0, double alpha);
 

@@ -34,8 +34,8 @@ std::vector<ContactState> ContactSet::initial_states() const {
     // structure held only by its contacts has a tangent to start from (where the element may take
     // no other point, occupancy.hpp, a second one starts at the first update instead).
     if (const auto r = resting_contact(model, model.contacts[k]);
-        r && occupancy.may_join(r->element, alone(contact)) && !pair_in_contact(geometry_, contact, r->element, D, occupancy)) {
-      occupancy.join(r->element, alone(contact));
+        r && occupancy.may_join(r->element, contact.frame) && !pair_in_contact(geometry_, contact, r->element, D, occupancy)) {
+      occupancy.join(r->element, contact.frame);
       occupancy.set_touching(contact.node, r->element);
       states[k].active = true;
       states[k].element = r->element;

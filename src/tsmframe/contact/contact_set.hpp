@@ -68,8 +68,8 @@ class ContactSet {
   /// converged state is then not acceptable.
   bool passed_through(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                       const std::vector<ContactState>& states) const;
-  /// A contact (index) whose node reached an element it may not join — a cantilever-frame
-  /// contact has it to itself (occupancy.hpp) — and that element; {−1, −1} if none.
+  /// A contact (index) whose node reached an element it may not join — points of the other frame
+  /// are on it (occupancy.hpp) — and that element; {−1, −1} if none.
   std::pair<int, int> blocked(const std::vector<ContactState>& states) const;
   /// Lets every contact released during this step whose node has passed through a beam touch
   /// again (the next update() starts it from its side at the step's start); returns how many.

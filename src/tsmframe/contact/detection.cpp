@@ -60,7 +60,7 @@ int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spe
   double first_t = INFINITY;
   for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
     const int f = spec.candidates[ci], side = state.reference.side[ci];
-    if (!occupancy.may_join(f, alone(spec)) || (side != 1 && side != -1)) continue;
+    if (!occupancy.may_join(f, spec.frame) || (side != 1 && side != -1)) continue;
     const double before = side * state.reference.across[ci];
     if (!(before > spec.gap)) continue;
     const Element& e = model.elements[f];
@@ -107,7 +107,7 @@ std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCan
       side = -sign(where.gap);  // it left the centre line: it pushes the way it moves
     }
     if (side != 0 && pair_in_contact(geometry, contact, f, D, occupancy)) continue;
-    if (side != 0 && !occupancy.may_join(f, alone(contact))) {  // a cantilever-frame contact holds it
+    if (side != 0 && !occupancy.may_join(f, contact.frame)) {  // points of the other frame hold it
       state.step.blocked_element = f;
       continue;
     }
@@ -133,7 +133,7 @@ std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCan
   state.side = best_side;
   state.alpha = best_alpha;
   state.force = state.Y = 0.0;
-  occupancy.join(best, alone(contact));
+  occupancy.join(best, contact.frame);
   if (state.alpha < 0.0 || state.alpha > 1.0) return hand_over(geometry, contact, D, rotations, false, state, occupancy);
   return HandOver{};
 }

@@ -38,6 +38,9 @@ struct MultiPointElementData {
   double edge = 1e-2;                 ///< compliance floor near a node and between points (K10, K11)
   double min_compliance = 0.0;        ///< the stiffness cap's compliance floor (0: none)
   bool sliding_term = true;           ///< include Σ_p J (∂S/∂α_p)(∂α_p/∂x)ᵀ in the tangent
+  /// The frame the element is written in (active_contact_response dispatches on it; the
+  /// elements themselves do not read it).
+  ContactFrame frame = ContactFrame::chord;
   /// How the element's ends are joined to its nodes: 0 rigidly, ∞ by a hinge, 1/k by a
   /// rotational spring (K12a, K12b).
   double flexibility_i = 0.0, flexibility_j = 0.0;

@@ -26,7 +26,7 @@ HandOver hand_over(const ContactGeometry& geometry, const ContactCandidates& con
     // (at a joint of three or more members, the one bounding the same sector: a point on a
     // beam's top passes a column below it and goes on along the beam).
     auto [best, to_side] = across(geometry, contact, state.element, state.side, end, D);
-    if (best >= 0 && !occupancy.may_join(best, alone(contact))) best = -1;
+    if (best >= 0 && !occupancy.may_join(best, contact.frame)) best = -1;
     const double best_alpha = best >= 0 ? geometry.locate(contact, best, D, rotations).alpha : 0.0;
     if (best < 0) {  // no element beyond: the point has left the beam's free end …
       if (at_convergence) {  // … but only a converged iterate says so (till then α is held at the end)
@@ -46,13 +46,13 @@ HandOver hand_over(const ContactGeometry& geometry, const ContactCandidates& con
     const bool reverses = state.step.handover_direction != 0 && direction != state.step.handover_direction;
     const double into_to = to.start == end ? best_alpha : 1.0 - best_alpha;  // from the node, < 0: behind it
     if (comes_to_rest_on_node(state, direction, end, edge, beyond_from, into_to)) {
-      occupancy.join(best, alone(contact));
+      occupancy.join(best, contact.frame);
       enter_vertex(model, end, best, to_side, state);
       ++changes.handed_over;
       break;
     }
     occupancy.leave(state.element);
-    occupancy.join(best, alone(contact));
+    occupancy.join(best, contact.frame);
     state.side = to_side;
     if (reverses) {
       ++changes.reversed;

@@ -317,21 +317,19 @@ class Reader {
   }
 
   /// Contacts resting on a beam as drawn start in contact; an element carries any number of
-  /// them, but a cantilever-frame contact one alone (as at every update): two resting on one
-  /// element where one of them is in that frame cannot both hold it.
+  /// them, all in one frame (as at every update): two resting on one element in different frames
+  /// cannot both hold it.
   void check_resting_contacts() {
     std::vector<int> resting_on(model_.elements.size(), -1);
     for (int k = 0; k < static_cast<int>(model_.contacts.size()); ++k) {
       const auto r = resting_contact(model_, model_.contacts[k]);
       if (!r) continue;
       const int other = resting_on[r->element];
-      const auto alone = [&](int j) { return keeps_element_to_itself(model_.contacts[j].frame); };
-      if (other >= 0 && (alone(k) || alone(other)))
+      if (other >= 0 && !shares_element(model_.contacts[k].frame, model_.contacts[other].frame))
         fail("contacts[" + std::to_string(k) + "]",
              "rests on element " + std::to_string(model_.elements[r->element].id) + ", as contacts[" + std::to_string(other) +
-                 "] does: a cantilever-frame contact has its element to itself (give "
-                 "that member more divisions, or use the chord frame)");
-      if (other < 0 || alone(k)) resting_on[r->element] = k;
+                 "] does in the other frame: points on one element share its frame (give both the same \"frame\")");
+      if (other < 0) resting_on[r->element] = k;
     }
   }
 

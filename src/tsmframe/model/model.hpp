@@ -71,9 +71,9 @@ enum class ContactFrame { chord, cantilever };
 /// Eq. 6–9) or its deflected shape's at the contact point (docs/contact-normal.md; issue 27).
 enum class ContactNormal { chord, deflected };
 
-/// Whether a contact in `frame` has its element to itself: the cantilever frame's element has one
-/// contact point by its formulation; the chord frame's any number (issue 27), of either normal.
-inline bool keeps_element_to_itself(ContactFrame frame) { return frame == ContactFrame::cantilever; }
+/// Whether contacts in frames `a` and `b` may have points on one element: an element carries any
+/// number of points (issue 27), all written in one frame (the chord's points of either normal).
+inline bool shares_element(ContactFrame a, ContactFrame b) { return a == b; }
 
 struct ContactSpec {
   int node = 0;                 ///< contact node index

@@ -159,7 +159,7 @@ std::string iterate_failure_text(const StepFailure& f, const Model& model) {
       os << "contact node " << contact_node_id(model, f.blocked_contact) << " reached element "
          << model.elements[f.element].id << ", which contact node "
          << (f.holding_contact >= 0 ? contact_node_id(model, f.holding_contact) : -1)
-         << " has to itself (a cantilever-frame contact has one point per element: give that member more divisions, or use the chord frame)";
+         << " is on in the other frame (points on one element share its frame: give both contacts the same \"frame\")";
       return os.str();
     case Reason::blew_up: return "the unbalanced force blew up";
     case Reason::none:

@@ -25,7 +25,7 @@ struct StepFailure {
     loads_unresolvable,       ///< the residual stays at the rounding level of the internal forces
     contact_passed_through,   ///< a contact node passed through a beam after its contact was released
     end_turned_too_far,       ///< an element end turned past a right angle against its chord
-    contact_blocked,          ///< a contact node reached an element another contact is on
+    contact_blocked,          ///< a contact node reached an element a contact of the other frame is on
     blew_up,                  ///< the unbalanced force or the displacements ran away
     max_iterations,
   } reason = Reason::none;

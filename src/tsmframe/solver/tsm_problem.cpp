@@ -198,8 +198,8 @@ Settlement TsmProblem::at_convergence(State& state) {
     return settlement;
   }
   if (const auto [k, element] = contacts_ ? contacts_->blocked(state.contacts) : std::pair{-1, -1}; k >= 0) {
-    // Its node lies through an element a cantilever-frame contact has to itself (or it is one,
-    // and the element is taken): the state is not acceptable, and no iterate can change that.
+    // Its node lies through an element points of the other frame are on: the state is not
+    // acceptable, and no iterate can change that.
     settlement.kind = Settlement::Kind::failed;
     settlement.failure.reason = StepFailure::Reason::contact_blocked;
     settlement.failure.blocked_contact = k;

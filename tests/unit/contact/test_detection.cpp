@@ -63,24 +63,24 @@ TEST(ContactDetection, ANodeOffTheCentreLineItStartedOnPushesTheWayItMoves) {
   EXPECT_EQ(state.side, 1);  // moved down: it presses down, as from above
 }
 
-TEST(ContactDetection, AnElementACantileverFrameContactHoldsBlocksTheNodeAndSaysWhich) {
+TEST(ContactDetection, AnElementAPointOfTheOtherFrameIsOnBlocksTheNodeAndSaysWhich) {
   ContactFixture f(0.3, 0.1);
   const ContactGeometry geometry(f.model);
   ContactState state = drawn(geometry, f);
   tsm::contact::Occupancy occupied(f.model.elements.size());
-  occupied.join(1, true);  // a cantilever-frame contact: its alone
+  occupied.join(1, tsm::ContactFrame::cantilever);  // a point of the other frame
   f.move_foot(0.0, -0.11);
   EXPECT_FALSE(detect(geometry, f, state, occupied));
   EXPECT_EQ(state.step.blocked_element, 1);
 }
 
 TEST(ContactDetection, ANodeReachingAnElementAnotherPointIsOnJoinsIt) {
-  // Issue 27: an element carries any number of chord-frame points.
+  // Issue 27: an element carries any number of points of one frame.
   ContactFixture f(0.3, 0.1);
   const ContactGeometry geometry(f.model);
   ContactState state = drawn(geometry, f);
   tsm::contact::Occupancy occupied(f.model.elements.size());
-  occupied.join(1, false);
+  occupied.join(1, tsm::ContactFrame::chord);
   f.move_foot(0.0, -0.11);
   ASSERT_TRUE(detect(geometry, f, state, occupied));
   EXPECT_EQ(state.element, 1);

@@ -19,7 +19,7 @@ using tsm::test::ContactFixture;
 ContactState on(const ContactGeometry& geometry, const ContactFixture& f, int element, Occupancy& occupied) {
   const ContactState state = tsm::test::active_state(geometry, f, element);
   occupied = Occupancy(f.model.elements.size());
-  occupied.join(element, false);
+  occupied.join(element, tsm::ContactFrame::chord);
   return state;
 }
 
@@ -75,12 +75,12 @@ TEST(ContactSliding, AtAFreeEndThePointIsHeldUntilAConvergedIterateLetsItGo) {
   EXPECT_EQ(occupied.points(3), 0);
 }
 
-TEST(ContactSliding, AnElementACantileverFrameContactHoldsStopsThePointAsAFreeEndWould) {
+TEST(ContactSliding, AnElementAPointOfTheOtherFrameIsOnStopsThePointAsAFreeEndWould) {
   ContactFixture f(0.3, 0.0);
   const ContactGeometry geometry(f.model);
   Occupancy occupied(0);
   ContactState state = on(geometry, f, 1, occupied);
-  occupied.join(2, true);  // a cantilever-frame contact: the element is its alone
+  occupied.join(2, tsm::ContactFrame::cantilever);  // a point of the other frame
   f.move_foot(0.25, 0.0);
   state.alpha = geometry.locate(geometry.contact(0), 1, f.D, f.rotations).alpha;
   const HandOver h = tsm::contact::hand_over(geometry, geometry.contact(0), f.D, f.rotations, false, state, occupied);
@@ -89,12 +89,12 @@ TEST(ContactSliding, AnElementACantileverFrameContactHoldsStopsThePointAsAFreeEn
 }
 
 TEST(ContactSliding, APointPassesOntoAnElementAnotherPointIsOn) {
-  // Issue 27: an element carries any number of chord-frame points.
+  // Issue 27: an element carries any number of points of one frame.
   ContactFixture f(0.3, 0.0);
   const ContactGeometry geometry(f.model);
   Occupancy occupied(0);
   ContactState state = on(geometry, f, 1, occupied);
-  occupied.join(2, false);  // another contact's point
+  occupied.join(2, tsm::ContactFrame::chord);  // another contact's point
   f.move_foot(0.25, 0.0);
   state.alpha = geometry.locate(geometry.contact(0), 1, f.D, f.rotations).alpha;
   const HandOver h = tsm::contact::hand_over(geometry, geometry.contact(0), f.D, f.rotations, false, state, occupied);

@@ -82,8 +82,8 @@ TEST(ContactVertex, AtAConvergedIterateThePullingSideLetsGoAndBothPullingRelease
     state.Y = Y1;
     state.vertex->Y = Y2;
     occupied = tsm::contact::Occupancy(f.model.elements.size());
-    occupied.join(1, false);
-    occupied.join(2, false);
+    occupied.join(1, tsm::ContactFrame::chord);
+    occupied.join(2, tsm::ContactFrame::chord);
     return tsm::contact::open_vertex(geometry, geometry.contact(0), f.D, f.rotations, state, occupied);
   };
   {  // both press (side +1: Y < 0): it stays
@@ -123,7 +123,7 @@ TEST(ContactVertex, APointHoppingBackAndForthAcrossANodeComesToRestThere) {
   const ContactGeometry geometry(f.model);
   ContactState state = tsm::test::active_state(geometry, f, 1);
   tsm::contact::Occupancy occupied(f.model.elements.size());
-  occupied.join(1, false);
+  occupied.join(1, tsm::ContactFrame::chord);
   for (const double x : {0.52, 0.48, 0.52}) {
     f.move_foot(x - 0.45, 0.0);
     state.alpha = geometry.locate(geometry.contact(0), state.element, f.D, f.rotations).alpha;
@@ -134,8 +134,8 @@ TEST(ContactVertex, APointHoppingBackAndForthAcrossANodeComesToRestThere) {
   EXPECT_EQ(state.vertex->element, 2);
   EXPECT_EQ(occupied.points(1), 1);
   EXPECT_EQ(occupied.points(2), 1);
-  EXPECT_TRUE(occupied.may_join(1, false));  // a point of each element: others may join (issue 27)
-  EXPECT_TRUE(occupied.may_join(2, false));
+  EXPECT_TRUE(occupied.may_join(1, tsm::ContactFrame::chord));  // a point of each element: others may join (issue 27)
+  EXPECT_TRUE(occupied.may_join(2, tsm::ContactFrame::chord));
 }
 
 }  // namespace

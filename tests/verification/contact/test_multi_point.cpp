@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/LU>
+
 #include "support/contact_models.hpp"
 
 namespace {
@@ -65,6 +67,7 @@ struct CoarseAndFine {
 struct Case {
   std::vector<double> x;  ///< the pushers, all over the middle element (10/3 … 20/3)
   const char* element;
+  const char* frame = "chord";  ///< the contacts' frame
 };
 
 class MultiPointPush : public ::testing::TestWithParam<Case> {};
@@ -75,7 +78,9 @@ TEST_P(MultiPointPush, EqualsTheBeamUnderPointLoads) {
   std::vector<double> load;
   for (int p = 0; p < k; ++p) load.push_back(100.0 * (1.0 + 0.3 * p));  // unequal: no symmetry to hide behind
   tsm::Model model;
-  const tsm::solver::RunResult r = run(pushed_beam(c.x, load, c.element), model);
+  json m = pushed_beam(c.x, load, c.element);
+  for (json& contact : m["contacts"]) contact["frame"] = c.frame;
+  const tsm::solver::RunResult r = run(m, model);
   ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
   const bool timoshenko = std::string(c.element) == "timoshenko";
   double largest = 0.0;
@@ -86,7 +91,7 @@ TEST_P(MultiPointPush, EqualsTheBeamUnderPointLoads) {
   }
   ASSERT_GT(largest, 2e-4);  // a millimetre or so: rotations below 1e-3, so geometry adds ~1e-6
   for (int p = 0; p < k; ++p) {
-    SCOPED_TRACE(testing::Message() << c.element << ", k = " << k << ", point " << p);
+    SCOPED_TRACE(testing::Message() << c.element << ", " << c.frame << " frame, k = " << k << ", point " << p);
     const tsm::solver::ContactPoint& point = contact_of(r.steps.back(), p);
     EXPECT_EQ(point.element, 1);  // all on the middle element
     EXPECT_NEAR(point.force, load[p], 1e-5 * load[p]);
@@ -95,9 +100,9 @@ TEST_P(MultiPointPush, EqualsTheBeamUnderPointLoads) {
   expect_equilibrium(model, r.steps.back());
 }
 
-TEST(MultiPointContact, ANodeReachingAnElementACantileverFrameContactHoldsFailsTheStepNamingBoth) {
-  // The cantilever frame has one point per element: pusher 10 rests there in that frame, pusher
-  // 11 is pushed onto the same element from 1 cm above.
+TEST(MultiPointContact, ANodeReachingAnElementAContactOfTheOtherFrameIsOnFailsTheStepNamingBoth) {
+  // Points on one element share its frame: pusher 10 rests there in the cantilever frame, pusher
+  // 11, in the chord frame, is pushed onto the same element from 1 cm above.
   json m = pushed_beam({4.0, 6.0}, {100.0, 0.0}, "euler-bernoulli");
   m["contacts"][0]["frame"] = "cantilever";
   m["nodes"][3]["y"] = 0.01;
@@ -107,40 +112,45 @@ TEST(MultiPointContact, ANodeReachingAnElementACantileverFrameContactHoldsFailsT
   const tsm::solver::RunResult r = run(m, model);
   ASSERT_NE(r.status, tsm::solver::Status::converged);
   EXPECT_NE(r.message.find("contact node 11 reached element"), std::string::npos) << r.message;
-  EXPECT_NE(r.message.find("which contact node 10 has to itself"), std::string::npos) << r.message;
-  // In the chord frame both points share the element.
-  m["contacts"][0].erase("frame");
-  const tsm::solver::RunResult chord = run(m, model);
-  ASSERT_EQ(chord.status, tsm::solver::Status::converged) << chord.message;
-  EXPECT_EQ(contact_of(chord.steps.back(), 0).element, 1);
-  EXPECT_EQ(contact_of(chord.steps.back(), 1).element, 1);
+  EXPECT_NE(r.message.find("which contact node 10 is on in the other frame"), std::string::npos) << r.message;
+  // In one frame, either, both points share the element.
+  for (const char* frame : {"cantilever", "chord"}) {
+    m["contacts"][0]["frame"] = m["contacts"][1]["frame"] = frame;
+    const tsm::solver::RunResult one = run(m, model);
+    ASSERT_EQ(one.status, tsm::solver::Status::converged) << frame << ": " << one.message;
+    EXPECT_EQ(contact_of(one.steps.back(), 0).element, 1) << frame;
+    EXPECT_EQ(contact_of(one.steps.back(), 1).element, 1) << frame;
+  }
 }
 
 TEST(MultiPointContact, TwoPointsSlidingTogetherPassElementEndsAndEndAsLoadsThereDo) {
   // Two loaded pushers 0.4 m apart, both on the first of four elements, dragged 3 m along the
   // beam: in one step both pass the node at 2.5 m in the same iterates; in seven they pass it one
-  // after the other, sharing an element, then one each, then one again. Either way they end as
-  // two point loads at 4.0 and 4.4 do.
-  for (const int steps : {1, 7}) {
-    json m = pushed_beam({1.0, 1.4}, {100.0, 130.0}, "timoshenko");
-    m["members"][0]["divisions"] = 4;
-    m["analysis"]["control"]["steps"] = steps;
-    m["prescribed"] = json::array({{{"node", 10}, {"ux", 3.0}}, {{"node", 11}, {"ux", 3.0}}});
-    tsm::Model model;
-    const tsm::solver::RunResult r = run(m, model);
-    ASSERT_EQ(r.status, tsm::solver::Status::converged) << steps << " steps: " << r.message;
-    const double x[2] = {4.0, 4.4}, P[2] = {100.0, 130.0};
-    for (int p = 0; p < 2; ++p) {
-      SCOPED_TRACE(testing::Message() << steps << " steps, point " << p);
-      const double exact = -(influence(x[p], x[0], true) * P[0] + influence(x[p], x[1], true) * P[1]);
-      EXPECT_EQ(contact_of(r.steps.back(), p).element, 1);
-      EXPECT_NEAR(contact_of(r.steps.back(), p).force, P[p], 1e-5 * P[p]);
-      EXPECT_NEAR(node_displacement(model, r.steps.back(), 10 + p)[1], exact, 1e-5 * std::abs(exact));
-    }
-    if (steps == 7) {  // on the way: one point on each side of the node at 2.5 m (x = 2.29, 2.69)
-      const tsm::solver::StepRecord& straddling = r.steps[2];  // step 3 of 7
-      EXPECT_EQ(contact_of(straddling, 0).element, 0);
-      EXPECT_EQ(contact_of(straddling, 1).element, 1);
+  // after the other, sharing an element, then one each, then one again. Either way, in either
+  // frame, they end as two point loads at 4.0 and 4.4 do.
+  for (const char* frame : {"chord", "cantilever"}) {
+    for (const int steps : {1, 7}) {
+      json m = pushed_beam({1.0, 1.4}, {100.0, 130.0}, "timoshenko");
+      m["members"][0]["divisions"] = 4;
+      m["analysis"]["control"]["steps"] = steps;
+      m["prescribed"] = json::array({{{"node", 10}, {"ux", 3.0}}, {{"node", 11}, {"ux", 3.0}}});
+      for (json& contact : m["contacts"]) contact["frame"] = frame;
+      tsm::Model model;
+      const tsm::solver::RunResult r = run(m, model);
+      ASSERT_EQ(r.status, tsm::solver::Status::converged) << frame << ", " << steps << " steps: " << r.message;
+      const double x[2] = {4.0, 4.4}, P[2] = {100.0, 130.0};
+      for (int p = 0; p < 2; ++p) {
+        SCOPED_TRACE(testing::Message() << frame << " frame, " << steps << " steps, point " << p);
+        const double exact = -(influence(x[p], x[0], true) * P[0] + influence(x[p], x[1], true) * P[1]);
+        EXPECT_EQ(contact_of(r.steps.back(), p).element, 1);
+        EXPECT_NEAR(contact_of(r.steps.back(), p).force, P[p], 1e-5 * P[p]);
+        EXPECT_NEAR(node_displacement(model, r.steps.back(), 10 + p)[1], exact, 1e-5 * std::abs(exact));
+      }
+      if (steps == 7) {  // on the way: one point on each side of the node at 2.5 m (x = 2.29, 2.69)
+        const tsm::solver::StepRecord& straddling = r.steps[2];  // step 3 of 7
+        EXPECT_EQ(contact_of(straddling, 0).element, 0);
+        EXPECT_EQ(contact_of(straddling, 1).element, 1);
+      }
     }
   }
 }
@@ -212,6 +222,43 @@ TEST(MultiPointContact, ACoarseTimoshenkoBeamUnderAFineOneAlongTheBentBeamsNorma
   }
 }
 
+TEST(MultiPointContact, TwoPointsPressedIntoOneElementAndLiftedLetGoInEitherFrame) {
+  // Two pushers over the middle element taken 1 cm down (the beam's deflection there is then
+  // exactly −1 cm: each stands its gap above the beam), then back up past where they started:
+  // pressed, the forces are the influence matrix's inverse applied to those deflections; lifted,
+  // both let go and the beam is straight again.
+  const std::vector<double> x = {4.0, 5.8};
+  const double down = 0.01;
+  Eigen::Matrix2d F;
+  for (int p = 0; p < 2; ++p)
+    for (int q = 0; q < 2; ++q) F(p, q) = influence(x[p], x[q], true);
+  const Eigen::Vector2d exact = F.inverse() * Eigen::Vector2d(down, down);
+  for (const char* frame : {"chord", "cantilever"}) {
+    json m = pushed_beam(x, {0.0, 0.0}, "timoshenko");
+    m["loads"] = json::array();
+    m["prescribed"] = json::array({{{"node", 10}, {"uy", -down}}, {{"node", 11}, {"uy", -down}}});
+    m["analysis"]["control"] = {{"type", "load"}, {"steps", 4}, {"path", {1.0, -0.5}}};
+    for (json& contact : m["contacts"]) contact["frame"] = frame;
+    tsm::Model model;
+    const tsm::solver::RunResult r = run(m, model);
+    ASSERT_EQ(r.status, tsm::solver::Status::converged) << frame << ": " << r.message;
+    const auto pressed = std::find_if(r.steps.begin(), r.steps.end(), [](const tsm::solver::StepRecord& s) {
+      return std::abs(s.load_factor - 1.0) < 1e-12;
+    });
+    ASSERT_NE(pressed, r.steps.end()) << frame;
+    for (int p = 0; p < 2; ++p) {
+      SCOPED_TRACE(testing::Message() << frame << " frame, point " << p);
+      EXPECT_EQ(contact_of(*pressed, p).element, 1);
+      EXPECT_NEAR(contact_of(*pressed, p).force, exact[p], 1e-4 * exact.maxCoeff());
+      EXPECT_LT(contact_of(r.steps.back(), p).element, 0) << "let go";
+    }
+    double largest = 0.0;
+    for (const tsm::Node& node : model.nodes)
+      if (node.id != 10 && node.id != 11) largest = std::max(largest, std::abs(node_displacement(model, r.steps.back(), node.id)[1]));
+    EXPECT_LT(largest, 1e-12) << frame << ": the beam is straight again";
+  }
+}
+
 TEST(MultiPointContact, EveryControlEndsOnTheClosedForm) {
   // Three loaded pushers: one resting on the beam node at 10/3 (a leaf spring's roller on a node
   // of the beam another roller touches: the point of an element at its end), two within the middle
@@ -221,23 +268,26 @@ TEST(MultiPointContact, EveryControlEndsOnTheClosedForm) {
   std::vector<double> exact(3, 0.0);
   for (int p = 0; p < 3; ++p)
     for (int q = 0; q < 3; ++q) exact[p] -= influence(x[p], x[q], true) * P[q];
-  for (const char* control : {"load", "displacement", "arc-length"}) {
-    json m = pushed_beam(x, P, "timoshenko");
-    if (std::string(control) == "displacement")
-      m["analysis"]["control"] = {{"type", "displacement"}, {"node", 11}, {"dof", "uy"}, {"target", exact[1]}, {"steps", 4}};
-    if (std::string(control) == "arc-length")
-      m["analysis"]["control"] = {{"type", "arc-length"}, {"initial_increment", 0.2}, {"max_increment", 0.3},
-                                  {"max_steps", 100}, {"until", {{"load_factor", 1.0}}}};
-    tsm::Model model;
-    const tsm::solver::RunResult r = run(m, model);
-    ASSERT_EQ(r.status, tsm::solver::Status::converged) << control << ": " << r.message;
-    const double lambda = r.steps.back().load_factor;
-    EXPECT_NEAR(lambda, 1.0, 1e-4) << control;
-    for (int p = 0; p < 3; ++p) {
-      SCOPED_TRACE(testing::Message() << control << " control, point " << p);
-      EXPECT_GE(contact_of(r.steps.back(), p).element, 0);
-      EXPECT_NEAR(contact_of(r.steps.back(), p).force, lambda * P[p], 1e-5 * P[p]);
-      EXPECT_NEAR(node_displacement(model, r.steps.back(), 10 + p)[1], lambda * exact[p], 1e-5 * std::abs(exact[2]));
+  for (const char* frame : {"chord", "cantilever"}) {
+    for (const char* control : {"load", "displacement", "arc-length"}) {
+      json m = pushed_beam(x, P, "timoshenko");
+      for (json& contact : m["contacts"]) contact["frame"] = frame;
+      if (std::string(control) == "displacement")
+        m["analysis"]["control"] = {{"type", "displacement"}, {"node", 11}, {"dof", "uy"}, {"target", exact[1]}, {"steps", 4}};
+      if (std::string(control) == "arc-length")
+        m["analysis"]["control"] = {{"type", "arc-length"}, {"initial_increment", 0.2}, {"max_increment", 0.3},
+                                    {"max_steps", 100}, {"until", {{"load_factor", 1.0}}}};
+      tsm::Model model;
+      const tsm::solver::RunResult r = run(m, model);
+      ASSERT_EQ(r.status, tsm::solver::Status::converged) << frame << ", " << control << ": " << r.message;
+      const double lambda = r.steps.back().load_factor;
+      EXPECT_NEAR(lambda, 1.0, 1e-4) << control;
+      for (int p = 0; p < 3; ++p) {
+        SCOPED_TRACE(testing::Message() << frame << " frame, " << control << " control, point " << p);
+        EXPECT_GE(contact_of(r.steps.back(), p).element, 0);
+        EXPECT_NEAR(contact_of(r.steps.back(), p).force, lambda * P[p], 1e-5 * P[p]);
+        EXPECT_NEAR(node_displacement(model, r.steps.back(), 10 + p)[1], lambda * exact[p], 1e-5 * std::abs(exact[2]));
+      }
     }
   }
 }
@@ -298,9 +348,14 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{{5.0}, "euler-bernoulli"}, Case{{4.0, 6.0}, "euler-bernoulli"},
                       Case{{4.0, 5.0, 6.2}, "euler-bernoulli"}, Case{{3.6, 4.3, 5.0, 5.5, 6.4}, "euler-bernoulli"},
                       Case{{5.0}, "timoshenko"}, Case{{4.0, 6.0}, "timoshenko"}, Case{{4.0, 5.0, 6.2}, "timoshenko"},
-                      Case{{3.6, 4.3, 5.0, 5.5, 6.4}, "timoshenko"}),
+                      Case{{3.6, 4.3, 5.0, 5.5, 6.4}, "timoshenko"},
+                      // k points in the cantilever frame (multi_point_cantilever_frame.hpp)
+                      Case{{4.0, 6.0}, "euler-bernoulli", "cantilever"}, Case{{4.0, 5.0, 6.2}, "timoshenko", "cantilever"},
+                      Case{{3.6, 4.3, 5.0, 5.5, 6.4}, "euler-bernoulli", "cantilever"},
+                      Case{{3.6, 4.3, 5.0, 5.5, 6.4}, "timoshenko", "cantilever"}),
     [](const testing::TestParamInfo<Case>& info) {
-      return std::string(info.param.element[0] == 't' ? "Timoshenko" : "EulerBernoulli") + std::to_string(info.param.x.size());
+      return std::string(info.param.element[0] == 't' ? "Timoshenko" : "EulerBernoulli") + std::to_string(info.param.x.size()) +
+             (std::string(info.param.frame) == "cantilever" ? "CantileverFrame" : "");
     });
 
 }  // namespace
