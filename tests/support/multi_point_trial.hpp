@@ -79,6 +79,29 @@ Eigen::MatrixXd multi_point_finite_difference_tangent(const MultiTrial& s, Respo
   return K;
 }
 
+/// Bent elements turned 1–2 rad with k = 2, 3, 5 points, both theories: the cases every k-point
+/// element's tangent is checked at against central differences.
+inline std::vector<MultiSpec> bent_and_turned_cases() {
+  return {MultiSpec{.psi = 0.0, .angle = 1.2, .theta_i = 0.2, .theta_j = -0.1, .alpha0 = {0.3, 0.65},
+                    .push = {2e-2, 1e-2}, .slide = {0.05, -0.02}},
+          MultiSpec{.psi = 0.01, .angle = -2.0, .theta_i = -0.3, .theta_j = 0.25, .alpha0 = {0.2, 0.7},
+                    .push = {-1e-2, -2e-2}, .slide = {0.1, 0.0}},
+          MultiSpec{.psi = 0.0, .angle = 1.7, .theta_i = 0.3, .theta_j = 0.1, .alpha0 = {0.15, 0.45, 0.8},
+                    .push = {1e-2, 3e-2, 1.5e-2}, .slide = {0.02, -0.05, 0.03}},
+          MultiSpec{.psi = 0.005, .angle = 1.0, .theta_i = 0.15, .theta_j = -0.25, .alpha0 = {0.8, 0.2, 0.5},
+                    .push = {2e-2, 1e-2, 2e-2}, .slide = {0.0, 0.05, -0.1}},
+          MultiSpec{.psi = 0.0, .angle = -1.4, .theta_i = -0.2, .theta_j = 0.3, .alpha0 = {0.1, 0.3, 0.5, 0.7, 0.9},
+                    .push = {1e-2, 2e-2, 3e-2, 2e-2, 1e-2}, .slide = {0.01, 0.02, -0.01, 0.0, -0.02}},
+          MultiSpec{.psi = 0.02, .angle = 2.0, .theta_i = 0.25, .theta_j = 0.2, .alpha0 = {0.1, 0.3, 0.5, 0.7, 0.9},
+                    .push = {-2e-2, -1e-2, -3e-2, -1e-2, -2e-2}, .slide = {0.03, -0.02, 0.01, 0.02, -0.03}}};
+}
+
+/// A case's name: k, the theory and its place in the list.
+inline std::string case_name(const ::testing::TestParamInfo<MultiSpec>& info) {
+  return "k" + std::to_string(info.param.alpha0.size()) + (info.param.psi > 0.0 ? "Timoshenko" : "EulerBernoulli") +
+         std::to_string(info.index);
+}
+
 inline std::string describe(const MultiSpec& p) {
   return "psi " + std::to_string(p.psi) + " angle " + std::to_string(p.angle) + " k " + std::to_string(p.alpha0.size()) +
          " ends " + std::to_string(p.ends.i) + " " + std::to_string(p.ends.j);

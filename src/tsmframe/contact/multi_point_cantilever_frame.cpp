@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include <Eigen/Cholesky>
-
 #include "tsmframe/contact/cantilever_frame_element.hpp"
 
 namespace tsm::contact {
@@ -99,21 +97,14 @@ MultiPointResponse multi_point_cantilever_response(const MultiPointElementData& 
   r.forces.resize(3 + k);
   r.forces << r.nodal_forces.segment<2>(3).dot(e), r.nodal_forces[2], r.nodal_forces[5], forces.point_forces;
   r.force_per_Y = Eigen::VectorXd::Ones(k);
-  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(3 + k, k);  // P = [0; G; I]: the point forces into S
-  P.middleRows(1, 2) = law.h;
-  P.bottomRows(k).setIdentity();
-  r.point_u = J * P;
-  r.point_stiffness = k > 0 ? Eigen::MatrixXd(law.compliance.llt().solve(Eigen::MatrixXd::Identity(k, k)))
-                            : Eigen::MatrixXd(0, 0);
-  r.point_stiffness = 0.5 * (r.point_stiffness + r.point_stiffness.transpose()).eval();
+  const PointForceMap map = point_force_map(law);  // K14
+  r.point_u = J * map.P;
+  r.point_stiffness = map.stiffness;
   r.sliding_u = Eigen::MatrixXd::Zero(size, k);
   r.sliding_v = Eigen::MatrixXd::Zero(size, k);
   if (!with_tangent) return r;
 
-  Eigen::MatrixXd D = P * r.point_stiffness * P.transpose();  // ∂S/∂d
-  D(0, 0) += data.k0(0, 0);
-  D.block<2, 2>(1, 1) += k_plain;
-  r.tangent = J * D * J.transpose();
+  r.tangent = J * law_tangent(map, data.k0(0, 0), k_plain) * J.transpose();  // ∂S/∂d: K14 with G
   add_frame_turning(r.tangent, f, S[0], S[1], forces.point_forces);
   r.symmetric_tangent = r.tangent;
   if (data.sliding_term) {

@@ -2,8 +2,6 @@
 
 #include <utility>
 
-#include <Eigen/Cholesky>
-
 namespace tsm::contact {
 namespace {
 
@@ -85,23 +83,14 @@ MultiPointResponse multi_point_response(const MultiPointElementData& data, const
   const Eigen::MatrixXd J = multi_point_equilibrium_matrix(r.chord, r.alpha);
   r.nodal_forces = J * r.forces;
   r.force_per_Y = Eigen::VectorXd::Ones(k);
-  // P = [0; H; I] maps the point forces into S (K14).
-  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(3 + k, k);
-  P.middleRows(1, 2) = law.h;
-  P.bottomRows(k).setIdentity();
-  r.point_u = J * P;
-  r.point_stiffness = k > 0 ? Eigen::MatrixXd(law.compliance.llt().solve(Eigen::MatrixXd::Identity(k, k)))
-                            : Eigen::MatrixXd(0, 0);
-  r.point_stiffness = 0.5 * (r.point_stiffness + r.point_stiffness.transpose()).eval();
+  const PointForceMap map = point_force_map(law);  // K14
+  r.point_u = J * map.P;
+  r.point_stiffness = map.stiffness;
   r.sliding_u = Eigen::MatrixXd::Zero(size, k);
   r.sliding_v = Eigen::MatrixXd::Zero(size, k);
   if (!with_tangent) return r;
 
-  // ∂S/∂d (K14): the plain element's k0 plus the points' P C⁻¹ Pᵀ.
-  Eigen::MatrixXd D = P * r.point_stiffness * P.transpose();
-  D(0, 0) += data.k0(0, 0);
-  D.block<2, 2>(1, 1) += k_plain;
-  r.tangent = J * D * J.transpose();
+  r.tangent = J * law_tangent(map, data.k0(0, 0), k_plain) * J.transpose();  // K14
   // K_G (K15): N ∂²l + (M_i + M_j) ∂²(−β) on i, j, and Y_p ∂²δy_p on the translations of i, j, c_p.
   r.tangent.topLeftCorner<6, 6>() += element::geometric_stiffness(r.chord, r.forces.head<3>());
   for (int p = 0; p < k; ++p) add_point_hessian(r.tangent, p, r.chord, r.alpha[p], r.normal[p], f.point_forces[p]);

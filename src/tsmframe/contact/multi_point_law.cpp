@@ -201,6 +201,24 @@ ConnectedMultiPointLaw connected_multi_point_law(const MultiPointLaw& law, const
   return out;
 }
 
+PointForceMap point_force_map(const MultiPointLaw& law) {
+  const int k = law.size();
+  PointForceMap map;
+  map.P = Eigen::MatrixXd::Zero(3 + k, k);
+  map.P.middleRows(1, 2) = law.h;
+  map.P.bottomRows(k).setIdentity();
+  map.stiffness = k > 0 ? Eigen::MatrixXd(law.compliance.llt().solve(Eigen::MatrixXd::Identity(k, k))) : Eigen::MatrixXd(0, 0);
+  map.stiffness = 0.5 * (map.stiffness + map.stiffness.transpose()).eval();
+  return map;
+}
+
+Eigen::MatrixXd law_tangent(const PointForceMap& map, double axial, const Eigen::Matrix2d& k_plain) {
+  Eigen::MatrixXd D = map.P * map.stiffness * map.P.transpose();  // K14
+  D(0, 0) += axial;
+  D.block<2, 2>(1, 1) += k_plain;
+  return D;
+}
+
 MultiPointForces multi_point_forces(const MultiPointLaw& law, const Eigen::Matrix2d& k_plain,
                                     const Eigen::Vector2d& theta, const Eigen::VectorXd& deflections) {
   const int k = law.size();

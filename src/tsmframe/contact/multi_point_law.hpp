@@ -57,6 +57,16 @@ struct ConnectedMultiPointLaw {
 ConnectedMultiPointLaw connected_multi_point_law(const MultiPointLaw& law, const Eigen::Matrix2d& k_plain,
                                                  double flexibility_i, double flexibility_j);
 
+/// How the point forces enter S = (N, M, Y) (or (N, Q, M, Y) in the cantilever frame) and what
+/// they stiffen (K14): P = [0_{1×k}; H; I_k] and the points' stiffness C⁻¹ (symmetric).
+struct PointForceMap {
+  Eigen::MatrixXd P;          ///< (3+k)×k
+  Eigen::MatrixXd stiffness;  ///< C⁻¹ (k×k)
+};
+PointForceMap point_force_map(const MultiPointLaw& law);
+/// ∂S/∂d = diag(axial, k_plain, 0_k) + P C⁻¹ Pᵀ (K14).
+Eigen::MatrixXd law_tangent(const PointForceMap& map, double axial, const Eigen::Matrix2d& k_plain);
+
 /// The forces of the law (K2) at given deformations, and their α-derivatives (K13).
 struct MultiPointForces {
   Eigen::Vector2d moments = Eigen::Vector2d::Zero();  ///< M = (M_i, M_j)

@@ -187,35 +187,25 @@ TEST_P(MultiPointDeflectedTangent, MatchesFiniteDifferencesWithTheSlidingTerms) 
   std::printf("tangent against central differences: worst ‖K − K_fd‖/‖K_fd‖ %.2e\n", worst);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Cases, MultiPointDeflectedTangent,
-    ::testing::Values(
-        MultiSpec{.psi = 0.0, .angle = 1.2, .theta_i = 0.2, .theta_j = -0.1, .alpha0 = {0.3, 0.65},
-                  .push = {2e-2, 1e-2}, .slide = {0.05, -0.02}},
-        MultiSpec{.psi = 0.01, .angle = -2.0, .theta_i = -0.3, .theta_j = 0.25, .alpha0 = {0.2, 0.7},
-                  .push = {-1e-2, -2e-2}, .slide = {0.1, 0.0}},
-        MultiSpec{.psi = 0.0, .angle = 1.7, .theta_i = 0.3, .theta_j = 0.1, .alpha0 = {0.15, 0.45, 0.8},
-                  .push = {1e-2, 3e-2, 1.5e-2}, .slide = {0.02, -0.05, 0.03}},
-        MultiSpec{.psi = 0.005, .angle = 1.0, .theta_i = 0.15, .theta_j = -0.25, .alpha0 = {0.8, 0.2, 0.5},
-                  .push = {2e-2, 1e-2, 2e-2}, .slide = {0.0, 0.05, -0.1}},
-        MultiSpec{.psi = 0.0, .angle = -1.4, .theta_i = -0.2, .theta_j = 0.3, .alpha0 = {0.1, 0.3, 0.5, 0.7, 0.9},
-                  .push = {1e-2, 2e-2, 3e-2, 2e-2, 1e-2}, .slide = {0.01, 0.02, -0.01, 0.0, -0.02}},
-        MultiSpec{.psi = 0.02, .angle = 2.0, .theta_i = 0.25, .theta_j = 0.2, .alpha0 = {0.1, 0.3, 0.5, 0.7, 0.9},
-                  .push = {-2e-2, -1e-2, -3e-2, -1e-2, -2e-2}, .slide = {0.03, -0.02, 0.01, 0.02, -0.03}},
-        // a point just beyond node j: its direction held at the end's, its α-rates 0
-        MultiSpec{.psi = 0.01, .angle = 1.5, .theta_i = 0.2, .theta_j = -0.3, .alpha0 = {0.35, 1.0},
-                  .push = {2e-2, 1e-8}, .slide = {0.0, 0.02}},
-        MultiSpec{.psi = 0.0, .angle = -1.1, .theta_i = 0.25, .theta_j = 0.15, .alpha0 = {0.0, 0.4, 0.75},
-                  .push = {-1e-8, -2e-2, -1e-2}, .slide = {-0.02, 0.0, 0.0}},
-        // mixed elements: points kept along the chord's normal beside points along the bent beam's
-        MultiSpec{.psi = 0.0, .angle = 1.2, .theta_i = 0.2, .theta_j = -0.1, .alpha0 = {0.15, 0.45, 0.8},
-                  .push = {1e-2, 3e-2, 1.5e-2}, .slide = {0.02, -0.05, 0.03}, .chord_points = {1}},
-        MultiSpec{.psi = 0.01, .angle = -1.7, .theta_i = -0.2, .theta_j = 0.3, .alpha0 = {0.2, 0.5, 0.7},
-                  .push = {-1e-2, -2e-2, -1e-2}, .slide = {0.0, 0.03, -0.02}, .chord_points = {0, 2}}),
-    [](const ::testing::TestParamInfo<MultiSpec>& info) {
-      return "k" + std::to_string(info.param.alpha0.size()) + (info.param.psi > 0.0 ? "Timoshenko" : "EulerBernoulli") +
-             std::to_string(info.index);
-    });
+/// The common cases and, along the bent beam's normal, points at an element end and mixed elements.
+std::vector<MultiSpec> deflected_cases() {
+  std::vector<MultiSpec> cases = tsm::test::bent_and_turned_cases();
+  const std::vector<MultiSpec> more = {
+      // a point just beyond node j: its direction held at the end's, its α-rates 0
+      MultiSpec{.psi = 0.01, .angle = 1.5, .theta_i = 0.2, .theta_j = -0.3, .alpha0 = {0.35, 1.0},
+                .push = {2e-2, 1e-8}, .slide = {0.0, 0.02}},
+      MultiSpec{.psi = 0.0, .angle = -1.1, .theta_i = 0.25, .theta_j = 0.15, .alpha0 = {0.0, 0.4, 0.75},
+                .push = {-1e-8, -2e-2, -1e-2}, .slide = {-0.02, 0.0, 0.0}},
+      // mixed elements: points kept along the chord's normal beside points along the bent beam's
+      MultiSpec{.psi = 0.0, .angle = 1.2, .theta_i = 0.2, .theta_j = -0.1, .alpha0 = {0.15, 0.45, 0.8},
+                .push = {1e-2, 3e-2, 1.5e-2}, .slide = {0.02, -0.05, 0.03}, .chord_points = {1}},
+      MultiSpec{.psi = 0.01, .angle = -1.7, .theta_i = -0.2, .theta_j = 0.3, .alpha0 = {0.2, 0.5, 0.7},
+                .push = {-1e-2, -2e-2, -1e-2}, .slide = {0.0, 0.03, -0.02}, .chord_points = {0, 2}}};
+  cases.insert(cases.end(), more.begin(), more.end());
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, MultiPointDeflectedTangent, ::testing::ValuesIn(deflected_cases()), tsm::test::case_name);
 
 TEST(MultiPointDeflectedNormal, OnAMixedElementAChordPointPushesAlongTheChordsNormalAndTheOthersAlongTheShapes) {
   for (double psi : {0.0, 0.01}) {
