@@ -117,7 +117,8 @@ class Model:
         """A contact node, or several with the same options: nodes=[refs] or nodes={"members": [i, …]}
         (every node of those members), or between=([members A], [members B]): every node of each
         side a contact node on the other (beam on beam from both sides); options: element, frame,
-        gap, edge, max_stiffness_ratio, sliding_tangent (docs/format.md, README)."""
+        normal ("deflected", the default, or "chord"), gap, edge, max_stiffness_ratio,
+        sliding_tangent (docs/format.md, README)."""
         if between is not None:
             if node is not None or nodes is not None:
                 raise ValueError("contact: give between, or node(s) and members (not both)")
