@@ -44,13 +44,21 @@ class Model:
         m._doc = _json.loads(_json.dumps(document))
         return m
 
-    def material(self, name, E, G=None, nu=None):
+    def material(self, name, E, G=None, nu=None, density=None):
         entry = {"E": E}
         if G is not None:
             entry["G"] = G
         if nu is not None:
             entry["nu"] = nu
+        if density is not None:
+            entry["density"] = density
         self._doc["materials"][name] = entry
+        return self
+
+    def gravity(self, gx, gy):
+        """The acceleration of gravity: every member whose material has a density weighs
+        density × A × g per unit length (a member load, scaled by the load factor)."""
+        self._doc["gravity"] = [gx, gy]
         return self
 
     def section(self, name, A, I, shear_area=None):

@@ -202,6 +202,15 @@ def test_a_three_hinged_arch_built_in_code_has_the_thrust_of_statics():
     assert r.ok, r.message
     feet = r.reactions[-1, [list(r.node_ids).index(1), list(r.node_ids).index(3)], 1].sum()
     assert feet == pytest.approx(100.0 * 2 * math.hypot(5.0, 2.0), rel=1e-8)  # to the run's tolerance
+    # The same arch under its own weight: a density and gravity make the member load ρ A g.
+    m = tf.Model("arch under its own weight").material("s", E=2e11, density=7850.0).section("x", A=0.01, I=1e-4)
+    m.gravity(0.0, -9.81).node(1, 0, 0).node(2, 5, 2).node(3, 10, 0)
+    m.member(1, 2, "s", "x", divisions=10, release="end").member(2, 3, "s", "x", divisions=10, release="start")
+    m.support(1, "pinned").support(3, "pinned")
+    r = tf.run(m)
+    assert r.ok, r.message
+    feet = r.reactions[-1, [list(r.node_ids).index(1), list(r.node_ids).index(3)], 1].sum()
+    assert feet == pytest.approx(7850.0 * 0.01 * 9.81 * 2 * math.hypot(5.0, 2.0), rel=1e-8)
 
 
 def test_a_shallow_arch_built_in_code_snaps_through_and_says_so():

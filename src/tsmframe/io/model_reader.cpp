@@ -60,10 +60,11 @@ class Reader {
 
   Model read() {
     expect_object(doc_, "(document)");
-    check_keys(doc_, "", {"$schema", "format", "title", "units", "materials", "sections", "nodes", "members", "supports",
-                          "loads", "prescribed", "contacts", "analysis"});
+    check_keys(doc_, "", {"$schema", "format", "title", "units", "materials", "sections", "gravity", "nodes", "members",
+                          "supports", "loads", "prescribed", "contacts", "analysis"});
     read_header();
     sections_.emplace(doc_);
+    read_gravity();
     read_nodes();
     count_elements();  // before any node is made
     MemberMesh mesh(model_);
@@ -188,6 +189,17 @@ class Reader {
     }
   }
 
+  /// "gravity": the acceleration [gx, gy] that gives every member whose material has a density
+  /// its self-weight, density × A × g per unit length (a member load, scaled by λ).
+  void read_gravity() {
+    if (!doc_.contains("gravity")) return;
+    const json& g = doc_["gravity"];
+    if (!g.is_array() || g.size() != 2) fail("gravity", "expected [gx, gy] (the acceleration of gravity, e.g. [0, -9.81])");
+    gravity_ = point(g, "gravity");
+    if (!sections_->any_density())
+      fail("gravity", "no material has a density: give materials.<name>.density (mass per volume) for the members to weigh");
+  }
+
   /// Member k's values, in the order they are checked.
   MemberInput read_member(const json& m, const std::string& path, size_t k) {
     expect_object(m, path);
@@ -205,6 +217,8 @@ class Reader {
     }
     member.section = sections_->stiffness(m, path, member.theory);
     if (m.contains("load")) read_member_load(m["load"], child(path, "load"), member);
+    if (const std::optional<double> mass = gravity_ ? sections_->mass_per_length(m) : std::nullopt)
+      member.load += *mass * *gravity_;  // its self-weight per unit length, dead like every load
     if (m.contains("release")) {
       const std::string where = string(m["release"], child(path, "release"));
       member.release_start = where == "start" || where == "both";
@@ -521,6 +535,7 @@ class Reader {
   double input_bytes_ = 0.0;
   Model model_;
   std::optional<SectionTable> sections_;  ///< read after the header
+  std::optional<Eigen::Vector2d> gravity_;  ///< "gravity", if given
   std::set<int> connected_members_;  ///< members with a moment release or an end spring ("release", "end_springs")
   std::vector<char> turned_;         ///< turned_nodes, once a follower load asks
   std::set<int> nodally_loaded_;     ///< nodes a "loads" entry names with a nonzero value

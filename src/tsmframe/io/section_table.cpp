@@ -15,7 +15,7 @@ SectionTable::SectionTable(const json& doc) {
     const std::string path = child("materials", item.key());
     const json& m = item.value();
     expect_object(m, path);
-    check_keys(m, path, {"E", "G", "nu"});
+    check_keys(m, path, {"E", "G", "nu", "density"});
     Material material;
     material.E = positive(required_number(m, "E", path), child(path, "E"));
     if (m.contains("G") && m.contains("nu")) fail(path, "give G or nu, not both");
@@ -24,6 +24,7 @@ SectionTable::SectionTable(const json& doc) {
       if (!(*nu > -1.0 && *nu < 0.5)) fail(child(path, "nu"), "Poisson's ratio must lie in (-1, 0.5)");
       material.G = material.E / (2.0 * (1.0 + *nu));
     }
+    if (auto density = optional_number(m, "density", path)) material.density = positive(*density, child(path, "density"));
     materials_[item.key()] = material;
   }
   if (!doc.contains("sections")) fail("sections", "missing (required)");
@@ -59,6 +60,18 @@ element::SectionStiffness SectionTable::stiffness(const json& m, const std::stri
     s.shear_flexibility = s.EI / (*material->second.G * *section->second.shear_area);  // Ψ = EI/(G A_s), Eq. 8
   }
   return s;
+}
+
+std::optional<double> SectionTable::mass_per_length(const json& m) const {
+  const Material& material = materials_.at(m["material"].get<std::string>());
+  if (!material.density) return std::nullopt;
+  return *material.density * sections_.at(m["section"].get<std::string>()).A;
+}
+
+bool SectionTable::any_density() const {
+  for (const auto& [name, material] : materials_)
+    if (material.density) return true;
+  return false;
 }
 
 }  // namespace tsm::io

@@ -1,7 +1,7 @@
 #pragma once
 // A model file's "materials" and "sections" (docs/format.md), read strictly, and a member's section
 // stiffness from the material and section it names: EA, EI and, for Timoshenko elements,
-// Ψ = EI/(G A_s) (Eq. 8).
+// Ψ = EI/(G A_s) (Eq. 8); and its mass per length, where its material has a density.
 
 #include <map>
 #include <nlohmann/json_fwd.hpp>
@@ -22,11 +22,17 @@ class SectionTable {
   /// "section") as elements of `theory`. Throws InputError (an unknown name, no G or shear area
   /// where Timoshenko needs them).
   element::SectionStiffness stiffness(const nlohmann::json& member, const std::string& path, BeamTheory theory) const;
+  /// The mass per unit length, density × A, of the member at `path` (its material and section
+  /// already found by stiffness()); none where its material has no density.
+  std::optional<double> mass_per_length(const nlohmann::json& member) const;
+  /// Whether any material has a density.
+  bool any_density() const;
 
  private:
   struct Material {
     double E = 0.0;
     std::optional<double> G;
+    std::optional<double> density;  ///< mass per unit volume (self-weight under "gravity")
   };
   struct Section {
     double A = 0.0, I = 0.0;
