@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "tsmframe/contact/multi_point_law.hpp"
+
 namespace tsm::contact {
 
 ContactGeometry::ContactGeometry(const Model& model) : model_(model) {
@@ -94,7 +96,8 @@ Eigen::Vector2d ContactGeometry::chord_normal(int element, const Eigen::VectorXd
 }
 
 NodeOnElement ContactGeometry::locate(const ContactCandidates& contact, int element, const Eigen::VectorXd& D,
-                                      const std::vector<double>& rotations, double lowest, double highest) const {
+                                      const std::vector<double>& rotations, double lowest, double highest,
+                                      const ElementLoads* loads) const {
   const Element& e = model_.elements[element];
   const Eigen::Vector2d node = position(contact.node, D);
   const element::Vector6 d = element_displacements(e, D);
@@ -103,8 +106,25 @@ NodeOnElement ContactGeometry::locate(const ContactCandidates& contact, int elem
   if (const double alpha = alpha_on_element(initial_[element], d, node); alpha < lowest || alpha > highest)
     return {alpha, std::numeric_limits<double>::quiet_NaN()};
   const auto [flexibility_i, flexibility_j] = end_flexibilities(element);
-  return node_on_element(initial_[element], contact_section(contact, element), d, rotations[element], node,
-                         flexibility_i, flexibility_j);
+  NodeOnElement where = node_on_element(initial_[element], contact_section(contact, element), d, rotations[element], node,
+                                        flexibility_i, flexibility_j);
+  if (loads) where.gap -= loaded_deflection(contact, element, where.alpha, loads->on(element));
+  return where;
+}
+
+double ContactGeometry::loaded_deflection(const ContactCandidates& contact, int element, double alpha,
+                                          const std::vector<PointLoad>& loads) const {
+  if (loads.empty()) return 0.0;
+  const int k = static_cast<int>(loads.size());
+  const ContactElementData data = element_data(contact, element, 1);
+  Eigen::VectorXd alphas(k + 1);
+  Eigen::VectorXd Y(k);
+  for (int q = 0; q < k; ++q) alphas[q] = loads[q].alpha, Y[q] = loads[q].Y;
+  alphas[k] = alpha;
+  MultiPointLaw law = multi_point_law(data.section, data.initial.length, alphas, data.edge, data.min_compliance);
+  if (data.connected())
+    law = connected_multi_point_law(law, data.k0.bottomRightCorner<2, 2>(), data.flexibility_i, data.flexibility_j).law;
+  return law.compliance.row(k).head(k).dot(Y);
 }
 
 NodeOnElement ContactGeometry::on_chord(const ContactCandidates& contact, int element, const Eigen::VectorXd& D) const {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tsmframe/contact/contact_element.hpp"
+#include "tsmframe/contact/element_loads.hpp"
 #include "tsmframe/model/model.hpp"
 
 namespace tsm::contact {
@@ -61,9 +62,18 @@ class ContactGeometry {
   /// The unit normal n of an element's current chord.
   Eigen::Vector2d chord_normal(int element, const Eigen::VectorXd& displacements, const std::vector<double>& rotations) const;
   /// Where the contact node is on `element` (node_on_element); its gap is measured only where α
-  /// lies in [lowest, highest] (NaN elsewhere: α alone rules the element out).
+  /// lies in [lowest, highest] (NaN elsewhere: α alone rules the element out). With `loads`, from
+  /// the element's shape under the points already pressing it (loaded_deflection), else from its
+  /// free shape.
   NodeOnElement locate(const ContactCandidates& contact, int element, const Eigen::VectorXd& displacements,
-                       const std::vector<double>& rotations, double lowest = -INFINITY, double highest = INFINITY) const;
+                       const std::vector<double>& rotations, double lowest = -INFINITY, double highest = INFINITY,
+                       const ElementLoads* loads = nullptr) const;
+  /// The deflection at α that points already pressing `element` (`loads`) add to the shape
+  /// locate() measures the gap from (the element's free shape): Σ_q C(α, α_q) Y_q, C the
+  /// points' compliance of the k-point law, floors and end connections included (docs/
+  /// contact-k-points.md §1) — where the law puts a point of zero force. 0 without loads.
+  double loaded_deflection(const ContactCandidates& contact, int element, double alpha,
+                           const std::vector<PointLoad>& loads) const;
   /// The contact node in the frame of an element's straight current chord: α along it, the
   /// signed distance across it (along n). Unlike locate(), meaningful far beyond the element.
   NodeOnElement on_chord(const ContactCandidates& contact, int element, const Eigen::VectorXd& displacements) const;

@@ -102,13 +102,16 @@ ContactChanges ContactSet::update(const Eigen::VectorXd& D, const std::vector<do
   ContactChanges changes;
   Occupancy occupancy(geometry_, states);
   ChordFrames frames(geometry_, D);
+  // At a converged iterate a node is detected against the shape the points on an element give it.
+  const std::optional<ElementLoads> loads = at_convergence ? std::optional<ElementLoads>(states) : std::nullopt;
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
     ContactState& state = states[k];
     const int before = state.active ? state.element : -1;
     if (state.active) {
       update_active(contact, D, rotations, at_convergence, state, occupancy, changes);
-    } else if (const std::optional<HandOver> touched = detect(geometry_, contact, D, rotations, frames, state, occupancy)) {
+    } else if (const std::optional<HandOver> touched = detect(geometry_, contact, D, rotations, frames, state, occupancy,
+                                                                         loads ? &*loads : nullptr)) {
       ++changes.activated;
       add(*touched, changes);
     }
@@ -138,8 +141,9 @@ void ContactSet::update_active(const ContactCandidates& contact, const Eigen::Ve
 
 bool ContactSet::passed_through(const Eigen::VectorXd& D, const std::vector<double>& rotations,
                                 const std::vector<ContactState>& states) const {
+  const ElementLoads loads(states);
   for (int k = 0; k < contact_count(); ++k)
-    if (contact::passed_through(geometry_, geometry_.contact(k), D, rotations, states[k])) return true;
+    if (contact::passed_through(geometry_, geometry_.contact(k), D, rotations, states[k], loads)) return true;
   return false;
 }
 
@@ -152,8 +156,9 @@ std::pair<int, int> ContactSet::blocked(const std::vector<ContactState>& states)
 int ContactSet::allow_touching_again(const Eigen::VectorXd& D, const std::vector<double>& rotations,
                                      std::vector<ContactState>& states) const {
   int count = 0;
+  const ElementLoads loads(states);
   for (int k = 0; k < contact_count(); ++k)
-    if (contact::passed_through(geometry_, geometry_.contact(k), D, rotations, states[k])) {
+    if (contact::passed_through(geometry_, geometry_.contact(k), D, rotations, states[k], loads)) {
       states[k].step.released = false;
       ++count;
     }

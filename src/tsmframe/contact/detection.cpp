@@ -86,7 +86,7 @@ int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spe
 
 std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& D,
                                const std::vector<double>& rotations, ChordFrames& frames, ContactState& state,
-                               Occupancy& occupancy) {
+                               Occupancy& occupancy, const ElementLoads* loads) {
   state.step.blocked_element = -1;
   if (state.step.released) return std::nullopt;
   int best = -1, best_side = 0;
@@ -96,7 +96,7 @@ std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCan
     const int f = contact.candidates[ci];
     if (const double alpha = frames(f).alpha(node); alpha < -alpha_tolerance || alpha > 1.0 + alpha_tolerance)
       continue;  // the same α as locate's
-    const NodeOnElement where = geometry.locate(contact, f, D, rotations);
+    const NodeOnElement where = geometry.locate(contact, f, D, rotations, -INFINITY, INFINITY, loads);
     const int reference = state.reference.side[ci];
     int side = 0;
     if (reference == no_side) {

@@ -50,9 +50,12 @@ bool pair_in_contact(const ContactGeometry& geometry, const ContactCandidates& c
 
 /// Starts the inactive contact `state` where its node has reached an element, and hands it on
 /// along the beam to where the node is (sliding.hpp). None: it touches nothing (or only elements
-/// it may not join, occupancy.hpp: state.step.blocked_element says which).
+/// it may not join, occupancy.hpp: state.step.blocked_element says which). With `loads` (at a
+/// converged iterate), the gap is measured from the shape the points already on an element give
+/// it: a node they lift clear is clear.
 std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCandidates& contact,
                                const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
-                               ChordFrames& frames, ContactState& state, Occupancy& occupancy);
+                               ChordFrames& frames, ContactState& state, Occupancy& occupancy,
+                               const ElementLoads* loads = nullptr);
 
 }  // namespace tsm::contact

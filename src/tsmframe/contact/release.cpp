@@ -13,11 +13,12 @@ constexpr double alpha_tolerance = 1e-12;  // a node on a beam node counts for b
 /// The element of the beam nearest the node across its span (candidate index; −1: none), and
 /// the node's gap from it.
 std::pair<int, double> nearest_across(const ContactGeometry& geometry, const ContactCandidates& contact,
-                                      const Eigen::VectorXd& D, const std::vector<double>& rotations) {
+                                      const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                      const ElementLoads& loads) {
   int nearest = -1;
   double nearest_gap = 0.0;
   for (size_t ci = 0; ci < contact.candidates.size(); ++ci) {
-    const NodeOnElement where = geometry.locate(contact, contact.candidates[ci], D, rotations, 0.0, 1.0);
+    const NodeOnElement where = geometry.locate(contact, contact.candidates[ci], D, rotations, 0.0, 1.0, &loads);
     if (where.alpha < 0.0 || where.alpha > 1.0) continue;
     if (nearest < 0 || std::abs(where.gap) < std::abs(nearest_gap)) nearest = static_cast<int>(ci), nearest_gap = where.gap;
   }
@@ -65,13 +66,13 @@ void release(const ContactGeometry& geometry, const ContactCandidates& contact, 
 }
 
 bool passed_through(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& D,
-                    const std::vector<double>& rotations, const ContactState& state) {
+                    const std::vector<double>& rotations, const ContactState& state, const ElementLoads& loads) {
   if (state.active || !state.step.released) return false;
   const Eigen::Vector2d released_normal(state.step.released_normal[0], state.step.released_normal[1]);
   for (size_t ci = 0; ci < contact.candidates.size(); ++ci) {
     if (!state.step.released_within[ci]) continue;
     const int f = contact.candidates[ci];
-    const NodeOnElement where = geometry.locate(contact, f, D, rotations, 0.0, 1.0);
+    const NodeOnElement where = geometry.locate(contact, f, D, rotations, 0.0, 1.0, &loads);
     if (where.alpha < 0.0 || where.alpha > 1.0) continue;
     const Eigen::Vector2d n = geometry.chord_normal(f, D, rotations);
     const int expected = n.dot(released_normal) >= 0.0 ? state.step.released_side : -state.step.released_side;
@@ -82,7 +83,7 @@ bool passed_through(const ContactGeometry& geometry, const ContactCandidates& co
   // beyond the element it went through. Elements farther across are no guide: the side carried
   // round a closed ring from the element it left is the wrong one on the ring's far side, whose
   // span the node above the ring also lies across (a rope draped over a ring was "through" it).
-  const auto [nearest, nearest_gap] = nearest_across(geometry, contact, D, rotations);
+  const auto [nearest, nearest_gap] = nearest_across(geometry, contact, D, rotations, loads);
   if (nearest < 0) return false;
   const int expected = state.reference.side[nearest];
   return (expected == 1 || expected == -1) && expected * nearest_gap < -geometry.touch_tolerance();

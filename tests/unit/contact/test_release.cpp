@@ -55,7 +55,7 @@ TEST(ContactRelease, AfterLettingGoTheNodeMayNotPassThroughTheBeam) {
   tsm::contact::release(geometry, geometry.contact(0), f.D, f.rotations, state, true);
   const auto through = [&](double dx, double dy) {
     f.move_foot(dx, dy);
-    return tsm::contact::passed_through(geometry, geometry.contact(0), f.D, f.rotations, state);
+    return tsm::contact::passed_through(geometry, geometry.contact(0), f.D, f.rotations, state, tsm::contact::ElementLoads({state}));
   };
   EXPECT_FALSE(through(0.0, 0.01));   // above, where it let go
   EXPECT_TRUE(through(0.0, -0.01));   // below element 1
@@ -70,14 +70,14 @@ TEST(ContactRelease, OffAFreeEndTheNodeMayGoRoundIt) {
   f.move_foot(0.1, 0.0);  // past the end
   tsm::contact::release(geometry, geometry.contact(0), f.D, f.rotations, state, false);
   f.move_foot(0.1, -0.05);  // under the beam's end, beyond its span: round the end, not through
-  EXPECT_FALSE(tsm::contact::passed_through(geometry, geometry.contact(0), f.D, f.rotations, state));
+  EXPECT_FALSE(tsm::contact::passed_through(geometry, geometry.contact(0), f.D, f.rotations, state, tsm::contact::ElementLoads({state})));
 }
 
 TEST(ContactRelease, ANodeNotReleasedInTheStepIsNeverThrough) {
   ContactFixture f(0.3, -0.01);
   const ContactGeometry geometry(f.model);
   const ContactState state = tsm::test::reference_state(geometry, f);
-  EXPECT_FALSE(tsm::contact::passed_through(geometry, geometry.contact(0), f.D, f.rotations, state));
+  EXPECT_FALSE(tsm::contact::passed_through(geometry, geometry.contact(0), f.D, f.rotations, state, tsm::contact::ElementLoads({state})));
 }
 
 }  // namespace
