@@ -49,7 +49,8 @@ std::vector<ContactState> ContactSet::initial_states() const {
 std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<ContactState>& states) const {
   std::vector<ActiveContact> active;
   std::vector<int> place;  // per element: its place in `active`, −1 none (made only when needed)
-  const auto add_point = [&](int k, bool vertex, int element, int side) {
+  // `chord`: the point pushes along its chord's normal whatever its contact asks (a vertex's).
+  const auto add_point = [&](int k, bool vertex, int element, int side, bool chord) {
     const ContactCandidates& contact = geometry_.contact(k);
     if (place.empty()) place.assign(geometry_.model().elements.size(), -1);
     if (place[element] < 0) {
@@ -59,18 +60,17 @@ std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<Contact
     ActiveContact& a = active[place[element]];
     a.points.push_back({k, vertex, contact.node});
     a.data.push_back(geometry_.element_data(contact, element, side));
+    if (chord) a.data.back().normal = ContactNormal::chord;
   };
   for (int k = 0; k < contact_count(); ++k) {
     const ContactState& s = states[k];
     if (!s.active) continue;
-    add_point(k, false, s.element, s.side);
-    if (!s.vertex) continue;
     // A vertex pushes along both chords' normals: its force may lie anywhere between them, and
     // its rules (vertex.hpp) are written for those; the bent beams' normals there differ from
     // them by the end rotations against the chords, which vanish as the mesh is refined.
-    active[place[s.element]].data.back().normal = ContactNormal::chord;
-    add_point(k, true, s.vertex->element, s.vertex->side);
-    active[place[s.vertex->element]].data.back().normal = ContactNormal::chord;
+    const bool vertex = s.vertex.has_value();
+    add_point(k, false, s.element, s.side, vertex);
+    if (vertex) add_point(k, true, s.vertex->element, s.vertex->side, true);
   }
   // An element a point enters pushes along its chord's normal at all its points: the entering
   // point's Y, read from how far the predictor ran its node through the beam, would turn the

@@ -89,10 +89,10 @@ class LoadStepping {
   int halvings_ = 0, grid_index_ = 0;
   StepStart saved_;  // reused: no allocation per step
   // The current stiffness parameter |Δλ| / ‖ΔD‖ of the first iterate (the tangent's) at the
-  // first step's start and at the newest (Bergan): near a largest load it falls towards zero. A
-  // converged step's secant would not: a deep arch's last step below its maximum still had a
-  // quarter of the first step's.
-  double first_stiffness_ = 0.0, newest_stiffness_ = 0.0;
+  // first step's start and at the newest (newest_at_; Bergan): near a largest load it falls
+  // towards zero. A converged step's secant would not: a deep arch's last step below its maximum
+  // still had a quarter of the first step's.
+  double first_stiffness_ = 0.0;
   /// The current stiffness at the two newest converged states a step started from, with their
   /// load factors: near a smooth maximum k² falls linearly with λ, so the two place it.
   struct StiffnessAt {
@@ -138,10 +138,9 @@ RunResult LoadStepping::run(State& state) {
     StepRecord record = recorder_.start(outcome, halvings_);
     record.increment = (value(attempt.t_end) - value(t_)) * (by_displacement_ ? control_.target : 1.0);
     if (!by_displacement_ && outcome.start_stiffness > 0.0) {  // each attempt starts from a converged state
-      newest_stiffness_ = outcome.start_stiffness;
-      if (first_stiffness_ == 0.0) first_stiffness_ = newest_stiffness_;
+      if (first_stiffness_ == 0.0) first_stiffness_ = outcome.start_stiffness;
       if (saved_.load_factor() != newest_at_.load_factor) before_at_ = newest_at_;
-      newest_at_ = {saved_.load_factor(), newest_stiffness_};
+      newest_at_ = {saved_.load_factor(), outcome.start_stiffness};
     }
     if (outcome.status == Status::converged) {
       converged(attempt, std::move(record), outcome, state);
@@ -215,7 +214,7 @@ void LoadStepping::give_up(const Attempt& attempt, StepRecord record, const Newt
   const bool ahead = maximum_within(value(attempt.t_end));
   const bool limit_point = !by_displacement_ && cut && outcome.start_negative_pivots == 0 &&
                            outcome.most_negative_pivots > 0 && first_stiffness_ > 0.0 &&
-                           (newest_stiffness_ < limit_point_stiffness * first_stiffness_ || ahead) &&
+                           (newest_at_.stiffness < limit_point_stiffness * first_stiffness_ || ahead) &&
                            !at_element_end();
   RunFailure& failure = result_.failure;
   failure.kind = RunFailure::Kind::step_failed;
@@ -231,7 +230,7 @@ void LoadStepping::give_up(const Attempt& attempt, StepRecord record, const Newt
   failure.smallest_step = settings_.cutback && halvings_ < settings_.max_cutbacks &&
                           attempt.dt / 2.0 < std::ldexp(nominal_, -settings_.max_cutbacks) * (1.0 - 1e-12);
   if (limit_point) {
-    failure.limit_point_stiffness = newest_stiffness_ / first_stiffness_;
+    failure.limit_point_stiffness = newest_at_.stiffness / first_stiffness_;
     failure.limit_point_ahead = ahead;
   }
   failure.cutbacks_exhausted = settings_.cutback && halvings_ >= settings_.max_cutbacks && !limit_point &&
