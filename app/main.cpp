@@ -48,7 +48,9 @@ struct RunOptions {
 
 std::string progress_line(const tsm::Model& model, const tsm::solver::StepRecord& step, bool log_iterations) {
   std::ostringstream os;
-  os << "step " << step.step << "  load factor " << tsm::io::format_number(step.load_factor) << "  iterations "
+  os << "step " << step.step;
+  if (!model.stages.empty()) os << " (stage " << step.stage + 1 << ")";
+  os << "  load factor " << tsm::io::format_number(step.load_factor) << "  iterations "
      << step.iterations << "  residual "
      << (step.residual_norms.empty() ? std::string("-") : tsm::io::format_number(step.residual_norms.back()));
   if (step.arc_length > 0.0) os << "  arc length " << tsm::io::format_number(step.arc_length);

@@ -36,6 +36,15 @@ void add_outcome(py::dict& out, const solver::RunResult& result) {
     critical.append(point);
   }
   out["critical_points"] = critical;
+  py::list stages;  // a staged run's stages that ran: where each ended
+  for (const solver::StageEnd& end : result.stages) {
+    py::dict stage;
+    stage["status"] = solver::status_name(end.status);
+    stage["last_step"] = end.last_step;
+    stage["load_factor"] = end.load_factor;
+    stages.append(stage);
+  }
+  out["stages"] = stages;
 }
 
 /// The meshed model: node ids and coordinates, element ids, end node ids, members and kinds, contact node ids.
@@ -67,11 +76,12 @@ void add_model(py::dict& out, const Model& model) {
 /// Every step (converged or the failed last attempt): step number, λ, iterations, whether it
 /// converged, negative eigenvalues (−1 unknown), residuals per iterate, criterion.
 void add_steps(py::dict& out, const solver::RunResult& result) {
-  std::vector<int> steps, iterations, converged, negative_eigenvalues;
+  std::vector<int> steps, stages, iterations, converged, negative_eigenvalues;
   std::vector<double> load_factors;
   py::list residuals, criteria;
   for (const solver::StepRecord& s : result.steps) {
     steps.push_back(s.step);
+    stages.push_back(s.stage + 1);
     load_factors.push_back(s.load_factor);
     iterations.push_back(s.iterations);
     converged.push_back(s.converged ? 1 : 0);
@@ -81,6 +91,7 @@ void add_steps(py::dict& out, const solver::RunResult& result) {
   }
   const py::ssize_t S = count(result.steps.size());
   out["step"] = array<int>({S}, steps);
+  out["stage"] = array<int>({S}, stages);
   out["load_factor"] = array<double>({S}, load_factors);
   out["iterations"] = array<int>({S}, iterations);
   out["converged"] = array<int>({S}, converged);

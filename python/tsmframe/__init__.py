@@ -108,17 +108,48 @@ class Model:
         self._doc["supports"].append(entry)
         return self
 
+    def _applied(self, key):
+        """Where load() and prescribe() add: the newest stage, or the model (no stages)."""
+        if "stages" in self._doc:
+            return self._doc["stages"][-1].setdefault(key, [])
+        return self._doc[key]
+
     def load(self, node, fx=0.0, fy=0.0, mz=0.0, follower=False):
-        """A nodal load scaled by λ; follower=True: the force (fx, fy, as drawn) turns with its node."""
+        """A nodal load scaled by λ (of the newest stage, if any); follower=True: the force (fx, fy,
+        as drawn) turns with its node."""
         entry = {"node": _ref(node), "fx": fx, "fy": fy, "mz": mz}
         if follower:
             entry["follower"] = True
-        self._doc["loads"].append(entry)
+        self._applied("loads").append(entry)
         return self
 
-    def prescribe(self, node, **dofs):
-        """Prescribed displacements reached at λ = 1, e.g. prescribe(100, uy=2.0)."""
-        self._doc["prescribed"].append({"node": _ref(node), **dofs})
+    def prescribe(self, node, increment=False, **dofs):
+        """Prescribed displacements reached at λ = 1, e.g. prescribe(100, uy=2.0); in a stage, the
+        values are where the dofs end (increment=True: by how much they move in the stage)."""
+        entry = {"node": _ref(node), **dofs}
+        if increment:
+            entry["increment"] = True
+        self._applied("prescribed").append(entry)
+        return self
+
+    def stage(self, name="", control=None, steps=None, output=None):
+        """Starts a stage (docs/format.md, "Stages"): the load() and prescribe() calls after it are
+        its own, scaled by its λ from 0; what earlier stages applied stays at its final level. The
+        members' loads and self-weight are the first stage's. control as in analysis(), or steps=N."""
+        if control is not None and steps is not None:
+            raise ValueError("stage: give control or steps, not both")
+        if "stages" not in self._doc and (self._doc["loads"] or self._doc["prescribed"]):
+            raise ValueError("stage: loads or prescribed displacements were given before the first stage; give them after it")
+        entry = {}
+        if name:
+            entry["name"] = name
+        if steps is not None:
+            control = {"type": "load", "steps": steps}
+        if control is not None:
+            entry["control"] = control
+        if output is not None:
+            entry["output"] = output
+        self._doc.setdefault("stages", []).append(entry)
         return self
 
     def contact(self, node=None, members="all", nodes=None, between=None, **options):
@@ -212,6 +243,8 @@ class Result:
     critical_points            bifurcations found under load control: dicts of step, load_factor, bracket
     node_ids (n,), node_xy (n, 2), element_ids (m,), element_nodes (m, 2) node ids
     step (S,), load_factor (S,), iterations (S,), converged (S,), residual_norms: S arrays, criterion: S strings
+    stage (S,)                 the stage (1, 2, …) each step belongs to (1 without stages); stages: where
+                               each stage that ran ended, dicts of status, last_step, load_factor
     negative_eigenvalues (S,)  of the tangent at each converged step: 0 stable, > 0 unstable
                                equilibrium; -1 unknown (a contact active, or a failed attempt)
     state_steps (K,)           step numbers that carry full state (analysis.output)

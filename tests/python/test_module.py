@@ -213,6 +213,25 @@ def test_a_three_hinged_arch_built_in_code_has_the_thrust_of_statics():
     assert feet == pytest.approx(7850.0 * 0.01 * 9.81 * 2 * math.hypot(5.0, 2.0), rel=1e-8)
 
 
+def test_stages_built_in_code_hold_what_earlier_stages_applied():
+    # A cantilever (EI 1, L 1) given a tip force in stage 1, then a tip moment in stage 2, ends
+    # where one stage with both takes it; each step says its stage.
+    def cantilever():
+        m = tf.Model("staged").material("m", E=1.0, G=0.5).section("s", A=1e4, I=1.0)
+        m.node(1, 0, 0).node(2, 1, 0).member(1, 2, "m", "s", divisions=10).support(1, "fixed")
+        return m.analysis(tolerance=1e-12)
+    staged = cantilever().stage("force", steps=3).load(2, fy=1.5).stage("moment", steps=3).load(2, mz=0.8)
+    single = cantilever().load(2, fy=1.5, mz=0.8).analysis(steps=6)
+    a, b = tf.run(staged), tf.run(single)
+    assert a.ok and b.ok, (a.message, b.message)
+    assert list(a.stage) == [1, 1, 1, 2, 2, 2] and list(a.step) == [1, 2, 3, 4, 5, 6]
+    assert [s["last_step"] for s in a.stages] == [3, 6]
+    assert np.abs(a.displacements[-1] - b.displacements[-1]).max() < 1e-9 * np.abs(b.displacements[-1]).max()
+    # Loads given before the first stage are refused where they are given.
+    with pytest.raises(ValueError, match="before the first stage"):
+        cantilever().load(2, fy=1.0).stage("late")
+
+
 def test_a_shallow_arch_built_in_code_snaps_through_and_says_so():
     # A pinned circular arch (span 10 m, rise 1.18 m, 40 elements) under 5 MN at its crown in 10
     # load steps: past the bifurcation at λ ≈ 0.78 step 9 lands on the inverted shape (its crown

@@ -38,6 +38,7 @@ class ToyProblem final : public solver::Problem {
   }
   const Eigen::VectorXd& internal_force() const override { return internal_; }
   const Eigen::VectorXd& reference_load() const override { return load_; }
+  const Eigen::VectorXd& dead_load() const override { return none_; }
   const Eigen::VectorXd& prescribed_coupling() const override { return none_; }
   assembly::RoundingFloor rounding_floor(const solver::State& state, bool) const override {
     assembly::RoundingFloor floor;  // ε times the terms of F

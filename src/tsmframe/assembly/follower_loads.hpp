@@ -9,6 +9,8 @@
 // node, a change of pressure) a node keeps c R, c = λ Σ ±p/2: two rank-one terms for the linear
 // solver. Without them Newton crawled where the structure is soft (a cantilever rolled 3.3 rad
 // by pressure: 1,729 iterations in 38 steps; with them ≤ 15 a step in 5).
+// An earlier stage's follower loads are held at their final level (MemberExtras::dead_pressure,
+// FollowerForce::dead): they enter the dead load, and the tangent with the factor 1 for λ.
 
 #include <Eigen/Core>
 #include <vector>
@@ -26,8 +28,12 @@ class FollowerLoads {
 
   /// The reference load at `displacements` (all dofs): the model's, plus the follower loads on
   /// the current geometry (pressure on the current chords, point loads turned with their nodes),
-  /// at λ = 1.
+  /// at λ = 1. Dead follower loads are left out (dead_load).
   void reference_load(const Eigen::VectorXd& displacements, Eigen::VectorXd& out) const;
+  /// Whether an earlier stage left follower loads (then the dead load depends on the geometry).
+  bool has_dead() const { return has_dead_; }
+  /// The dead load at `displacements`: the model's dead_load plus the dead follower loads.
+  void dead_load(const Eigen::VectorXd& displacements, Eigen::VectorXd& out) const;
 
   /// add(node_i, node_j, K_ij) for each load's symmetric coupling K_ij = λ (p/2) R (on the
   /// translations of a 3×3 block), in the model's element order; with `only`, just the loads with
@@ -37,8 +43,9 @@ class FollowerLoads {
     for (const Load& f : loads_) {
       if (only && !(*only)[f.start] && !(*only)[f.end]) continue;
       Eigen::Matrix3d coupling = Eigen::Matrix3d::Zero();
-      coupling(0, 1) = -0.5 * load_factor * f.pressure;
-      coupling(1, 0) = 0.5 * load_factor * f.pressure;
+      const double p = level(load_factor, f.pressure, f.dead_pressure);
+      coupling(0, 1) = -0.5 * p;
+      coupling(1, 0) = 0.5 * p;
       add(f.start, f.end, coupling);
     }
   }
@@ -51,12 +58,24 @@ class FollowerLoads {
  private:
   struct Load {
     int start = 0, end = 0;  ///< node indices
-    double pressure = 0.0;
+    double pressure = 0.0, dead_pressure = 0.0;
   };
+  /// A load's level at λ: λ times its live part plus its dead part.
+  static double level(double load_factor, double live, double dead) {
+    return dead == 0.0 ? load_factor * live : load_factor * live + dead;
+  }
+  /// Adds the live (dead = false) or the dead follower loads at `displacements` to `out`.
+  void add_loads(const Eigen::VectorXd& displacements, bool dead, Eigen::VectorXd& out) const;
+
   const Model& model_;
   const DofMap& dofs_;
   std::vector<Load> loads_;                    ///< per loaded element, in the model's order
-  std::vector<std::pair<int, double>> skew_;  ///< (node, Σ ±p/2) where the sum is not 0
+  struct Skew {
+    int node = 0;
+    double live = 0.0, dead = 0.0;  ///< Σ ±p/2 of the live and the dead pressures
+  };
+  std::vector<Skew> skew_;  ///< where a sum is not 0
+  bool has_dead_ = false;
 };
 
 }  // namespace tsm::assembly

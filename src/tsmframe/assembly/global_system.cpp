@@ -382,6 +382,7 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
   }
   if (!follower_loads_.empty()) {  // before the contacts and the masks, as in evaluate_contact_change
     follower_loads_.reference_load(displacements, out.reference_load);
+    if (follower_loads_.has_dead()) follower_loads_.dead_load(displacements, out.dead_load);
     if (with_tangent) {
       follower_loads_.couplings(load_factor_, nullptr, [&](int i, int j, const Eigen::Matrix3d& k) { add_block(i, j, k); });
       follower_loads_.skew_terms(load_factor_, displacements, follower_rank_one_);

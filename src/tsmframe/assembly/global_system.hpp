@@ -42,6 +42,10 @@ struct Evaluation {
   /// pressure) on the current geometry, at λ = 1. Empty when the model has no follower load
   /// (the reference load is then Model::reference_load, fixed).
   Eigen::VectorXd reference_load;
+  /// The dead load at this state (an earlier stage's, held: Model::dead_load plus the dead
+  /// follower loads on the current geometry). Empty when no dead load turns (it is then
+  /// Model::dead_load, fixed, or none).
+  Eigen::VectorXd dead_load;
   /// Which evaluation of its GlobalSystem filled it (they are numbered from 1): a contact change
   /// needs the tangent to be still this one's (GlobalSystem::evaluate_contact_change).
   std::uint64_t id = 0;

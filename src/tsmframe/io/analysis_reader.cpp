@@ -14,6 +14,17 @@ using nlohmann::json;
 constexpr long max_steps = 10'000'000;
 constexpr double max_kept_state_bytes = 8e9;  // the converged states an output selection keeps (check_kept_states)
 
+/// The steps whose state an output selection keeps on a path of known length (load and
+/// displacement control: arc-length's max_steps is a bound, not a count, and counts nil).
+double kept_steps(const Control& control, const OutputSelection& output) {
+  if (control.type == ControlType::arc_length) return 0.0;
+  const double legs = control.path.empty() ? 1.0 : static_cast<double>(control.path.size());  // from λ = 0 to each point
+  const double steps = static_cast<double>(control.steps) * legs;
+  return output.kind == OutputSelection::Kind::last ? 1.0
+         : output.kind == OutputSelection::Kind::every ? std::ceil(steps / output.every) + 1.0
+                                                        : steps;
+}
+
 void read_load_control(const json& c, const std::string& path, Control& control) {
   check_keys(c, path, {"type", "steps", "path"});
   control.type = ControlType::load;
@@ -29,8 +40,9 @@ void read_load_control(const json& c, const std::string& path, Control& control)
   }
 }
 
-void read_displacement_control(const json& c, const std::string& path, const Model& model, const NodeResolver& node,
-                               Control& control) {
+void read_displacement_control(const json& c, const std::string& path, const ControlContext& at, Control& control) {
+  const Model& model = at.model;
+  const NodeResolver& node = at.node;
   check_keys(c, path, {"type", "steps", "node", "dof", "target"});
   control.type = ControlType::displacement;
   if (!c.contains("node")) fail(child(path, "node"), "missing (required)");
@@ -39,13 +51,15 @@ void read_displacement_control(const json& c, const std::string& path, const Mod
   control.dof = dof_from_name(string(c["dof"], child(path, "dof")), child(path, "dof"));
   control.target = required_number(c, "target", path);
   if (control.target == 0.0) fail(child(path, "target"), "must not be zero");
-  if (model.constrained[dofs_per_node * control.node + control.dof])
+  if (at.constrained[dofs_per_node * control.node + control.dof])
     fail(child(path, "dof"), std::string("the controlled dof ") + dof_name(control.dof) + " of node " +
                                  std::to_string(model.nodes[control.node].id) + " is fixed or prescribed");
 }
 
 /// Arc-length's "until": a load factor, or a value of one free dof, where the path stops.
-void read_until(const json& u, const std::string& upath, const Model& model, const NodeResolver& node, Control& control) {
+void read_until(const json& u, const std::string& upath, const ControlContext& at, Control& control) {
+  const Model& model = at.model;
+  const NodeResolver& node = at.node;
   expect_object(u, upath);
   if (u.contains("load_factor")) {
     check_keys(u, upath, {"load_factor"});
@@ -61,14 +75,13 @@ void read_until(const json& u, const std::string& upath, const Model& model, con
   if (!u.contains("dof")) fail(child(upath, "dof"), "missing (required, or give \"load_factor\")");
   control.until_dof = dof_from_name(string(u["dof"], child(upath, "dof")), child(upath, "dof"));
   control.until_value = required_number(u, "value", upath);
-  if (model.constrained[dofs_per_node * control.until_node + control.until_dof])
+  if (at.constrained[dofs_per_node * control.until_node + control.until_dof])
     fail(child(upath, "dof"), std::string("the dof ") + dof_name(control.until_dof) + " of node " +
                                   std::to_string(model.nodes[control.until_node].id) + " is fixed or prescribed");
   if (control.until_value == 0.0) fail(child(upath, "value"), "must not be zero (the path starts there)");
 }
 
-void read_arc_length_control(const json& c, const std::string& path, const Model& model, const NodeResolver& node,
-                             Control& control) {
+void read_arc_length_control(const json& c, const std::string& path, const ControlContext& at, Control& control) {
   check_keys(c, path, {"type", "initial_increment", "max_steps", "until", "min_increment", "max_increment"});
   control.type = ControlType::arc_length;
   control.initial_increment = positive(required_number(c, "initial_increment", path), child(path, "initial_increment"));
@@ -80,17 +93,18 @@ void read_arc_length_control(const json& c, const std::string& path, const Model
   if (auto v = optional_number(c, "max_increment", path)) control.max_increment = positive(*v, child(path, "max_increment"));
   if (control.min_increment > control.initial_increment) fail(child(path, "min_increment"), "must not exceed initial_increment");
   if (control.max_increment < control.initial_increment) fail(child(path, "max_increment"), "must not be below initial_increment");
-  if (c.contains("until")) read_until(c["until"], child(path, "until"), model, node, control);
+  if (c.contains("until")) read_until(c["until"], child(path, "until"), at, control);
 }
 
-void read_control(const json& c, const std::string& path, Model& model, const NodeResolver& node) {
+}  // namespace
+
+void read_control(const json& c, const std::string& path, const ControlContext& at, Control& control) {
   expect_object(c, path);
   if (!c.contains("type")) fail(child(path, "type"), "missing (required: \"load\", \"displacement\" or \"arc-length\")");
   const std::string type = string(c["type"], child(path, "type"));
-  Control& control = model.analysis.control;
   if (type == "load") read_load_control(c, path, control);
-  else if (type == "displacement") read_displacement_control(c, path, model, node, control);
-  else if (type == "arc-length") read_arc_length_control(c, path, model, node, control);
+  else if (type == "displacement") read_displacement_control(c, path, at, control);
+  else if (type == "arc-length") read_arc_length_control(c, path, at, control);
   else fail(child(path, "type"), "unknown control " + quote_text(type) + " (expected \"load\", \"displacement\" or \"arc-length\")");
   if (c.contains("steps")) control.steps = static_cast<int>(bounded_integer(c["steps"], child(path, "steps"), 1, max_steps));
 }
@@ -108,13 +122,11 @@ void read_output(const json& o, const std::string& path, OutputSelection& out) {
   out.every = static_cast<int>(bounded_integer(o, path, 1, max_steps));
 }
 
-}  // namespace
-
 void read_analysis_settings(const json& an, Model& model, const NodeResolver& node) {
   AnalysisSettings& a = model.analysis;
   expect_object(an, "analysis");
   check_keys(an, "analysis", {"control", "tolerance", "max_iterations", "cutback", "max_cutbacks", "output", "monitor"});
-  if (an.contains("control")) read_control(an["control"], "analysis.control", model, node);
+  if (an.contains("control")) read_control(an["control"], "analysis.control", {model, model.constrained, node}, a.control);
   if (auto tol = optional_number(an, "tolerance", "analysis")) {
     if (!(*tol > 0.0 && *tol < 1.0)) fail("analysis.tolerance", "must lie between 0 and 1");
     a.tolerance = *tol;
@@ -136,13 +148,9 @@ void read_analysis_settings(const json& an, Model& model, const NodeResolver& no
 /// otherwise run for hours and then run out of memory. Load and displacement control only, whose
 /// step count is known (arc-length's max_steps is a bound, not a count).
 void check_kept_states(const Model& model) {
-  const AnalysisSettings& a = model.analysis;
-  if (a.control.type == ControlType::arc_length) return;
-  const double legs = a.control.path.empty() ? 1.0 : static_cast<double>(a.control.path.size());  // from λ = 0 to each point
-  const double steps = static_cast<double>(a.control.steps) * legs;
-  const double kept = a.output.kind == OutputSelection::Kind::last ? 1.0
-                      : a.output.kind == OutputSelection::Kind::every ? std::ceil(steps / a.output.every) + 1.0
-                                                                       : steps;
+  double kept = 0.0;
+  if (model.stages.empty()) kept = kept_steps(model.analysis.control, model.analysis.output);
+  for (const Stage& stage : model.stages) kept += kept_steps(stage.control, stage.output);
   // Per kept step: displacements and reactions (3 per node), element forces (4 per element), 8 bytes each.
   const double bytes = kept * 8.0 * (6.0 * model.node_count() + 4.0 * static_cast<double>(model.elements.size()));
   if (bytes <= max_kept_state_bytes) return;
@@ -151,7 +159,7 @@ void check_kept_states(const Model& model) {
   os << "keeping the full state of " << static_cast<long long>(kept) << " steps of " << model.elements.size()
      << " elements takes ~" << bytes / 1e9 << " GB of memory, and more in results.json (at most "
      << max_kept_state_bytes / 1e9 << " GB): give \"output\" a step interval k (every k-th step) or \"last\", or fewer steps";
-  fail("analysis.output", os.str());
+  fail(model.stages.empty() ? "analysis.output" : "stages", os.str());
 }
 
 }  // namespace tsm::io

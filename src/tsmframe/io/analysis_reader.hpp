@@ -6,6 +6,7 @@
 #include <functional>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
+#include <vector>
 
 #include "tsmframe/model/model.hpp"
 
@@ -13,6 +14,19 @@ namespace tsm::io {
 
 /// A node reference written at a JSON path, resolved to a node index (throws InputError).
 using NodeResolver = std::function<int(const nlohmann::json& value, const std::string& path)>;
+
+/// What a control is read against: the model's nodes, the dofs held where it runs (the
+/// supports, and a stage's prescribed dofs), how node references resolve.
+struct ControlContext {
+  const Model& model;
+  const std::vector<bool>& constrained;
+  const NodeResolver& node;
+};
+
+/// Reads a "control" object at `path` (a controlled or watched dof must be free). Throws InputError.
+void read_control(const nlohmann::json& c, const std::string& path, const ControlContext& at, Control& control);
+/// Reads an "output" selection at `path`. Throws InputError.
+void read_output(const nlohmann::json& o, const std::string& path, OutputSelection& out);
 
 /// Reads the object at "analysis" into model.analysis, the model's nodes and constraints known
 /// (a controlled dof must be free). Throws InputError.

@@ -14,6 +14,7 @@
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/io/input_file.hpp"
 #include "tsmframe/io/json_input.hpp"
+#include "tsmframe/io/loads_reader.hpp"
 #include "tsmframe/io/member_options.hpp"
 #include "tsmframe/io/section_table.hpp"
 #include "tsmframe/io/system_error.hpp"
@@ -61,7 +62,8 @@ class Reader {
   Model read() {
     expect_object(doc_, "(document)");
     check_keys(doc_, "", {"$schema", "format", "title", "units", "materials", "sections", "gravity", "nodes", "members",
-                          "supports", "loads", "prescribed", "contacts", "analysis"});
+                          "supports", "loads", "prescribed", "contacts", "analysis", "stages"});
+    if (doc_.contains("stages")) refuse_unstaged_keys(doc_);
     read_header();
     sections_.emplace(doc_);
     read_gravity();
@@ -71,6 +73,7 @@ class Reader {
     read_members(mesh);
     mesh.finish();
     read_supports();
+    loads_.emplace(model_, [this](const json& value, const std::string& path) { return node_ref(value, path); });
     read_loads();
     read_prescribed();
     fix_free_rotations(model_);  // a moment on a hinge was refused with its load
@@ -82,7 +85,7 @@ class Reader {
     const MemoryEstimate estimate = estimate_memory(model_counts(model_, input_bytes_));
     check_memory(estimate, budget_, largest_part_path(estimate));
     check_resting_contacts();
-    if (auto mechanism = find_mechanism(model_)) fail("supports", *mechanism);
+    check_mechanism();
     if (!model_.reference_prescribed.any()) model_.reference_prescribed.resize(0);  // nothing prescribed moves
     return std::move(model_);
   }
@@ -267,67 +270,29 @@ class Reader {
   }
 
   void read_loads() {
-    if (!doc_.contains("loads")) return;
-    const json& loads = doc_["loads"];
-    expect_array(loads, "loads");
-    const std::vector<char> hinge = hinge_nodes(model_);
-    for (size_t k = 0; k < loads.size(); ++k) {
-      const std::string path = child("loads", k);
-      const json& l = loads[k];
-      expect_object(l, path);
-      check_keys(l, path, {"node", "fx", "fy", "mz", "follower"});
-      const int node = required_node(l, path);
-      const bool follower = l.contains("follower") && boolean(l["follower"], child(path, "follower"));
-      const char* keys[3] = {"fx", "fy", "mz"};
-      Eigen::Vector3d value = Eigen::Vector3d::Zero();
-      for (int dof = 0; dof < dofs_per_node; ++dof)
-        if (auto v = optional_number(l, keys[dof], path)) value[dof] = *v;
-      if (value[rz] != 0.0 && hinge[node] && !model_.constrained[dofs_per_node * node + rz])
-        fail(child(path, "mz"), "node " + std::to_string(model_.nodes[node].id) +
-                                    " is a hinge: every element end there is released, so it carries no moment");
-      if (follower) read_follower_force(path, node, value.head<2>());
-      else model_.reference_load.segment<2>(dofs_per_node * node) += value.head<2>();
-      model_.reference_load[dofs_per_node * node + rz] += value[rz];  // a moment turns with nothing
-      if ((value.array() != 0.0).any()) nodally_loaded_.insert(node);
-    }
-  }
-
-  /// A force that turns with its node ("follower": true): it needs a node an element end turns
-  /// with, else its direction would follow a rotation that means nothing.
-  void read_follower_force(const std::string& path, int node, const Eigen::Vector2d& force) {
-    if (force.x() == 0.0 && force.y() == 0.0) fail(path, "a follower load needs a force (fx or fy) to turn");
-    if (turned_.empty()) turned_ = turned_nodes(model_);
-    if (!turned_[node])
-      fail(child(path, "follower"), "node " + std::to_string(model_.nodes[node].id) +
-                                        " turns with no element end (a hinge, or held by no element): a follower "
-                                        "load there has no rotation to follow");
-    model_.follower_forces.push_back({node, force});
+    if (doc_.contains("loads")) loads_->read_loads(doc_["loads"], "loads", model_.reference_load, model_.follower_forces);
   }
 
   void read_prescribed() {
     if (!doc_.contains("prescribed")) return;
-    const json& prescribed = doc_["prescribed"];
-    expect_array(prescribed, "prescribed");
-    std::set<int> seen;
-    for (size_t k = 0; k < prescribed.size(); ++k) {
-      const std::string path = child("prescribed", k);
-      const json& p = prescribed[k];
-      expect_object(p, path);
-      check_keys(p, path, {"node", "ux", "uy", "rz"});
-      const int node = required_node(p, path);
-      const char* keys[3] = {"ux", "uy", "rz"};
-      bool any = false;
-      for (int dof = 0; dof < dofs_per_node; ++dof) {
-        auto value = optional_number(p, keys[dof], path);
-        if (!value) continue;
-        any = true;
-        const int g = dofs_per_node * node + dof;
-        if (!seen.insert(g).second) fail(child(path, keys[dof]), std::string("this dof is already prescribed by an earlier entry"));
-        model_.constrained[g] = true;
-        model_.reference_prescribed[g] = *value;
-      }
-      if (!any) fail(path, "give at least one of ux, uy, rz");
+    for (const PrescribedTarget& p : loads_->read_prescribed(doc_["prescribed"], "prescribed", false)) {
+      model_.constrained[p.dof] = true;
+      model_.reference_prescribed[p.dof] = p.value;
     }
+  }
+
+  /// The structure must hold where the analysis starts: the supports, and the first stage's
+  /// prescribed dofs (later stages only hold more).
+  void check_mechanism() {
+    if (model_.stages.empty()) {
+      if (auto mechanism = find_mechanism(model_)) fail("supports", *mechanism);
+      return;
+    }
+    const std::vector<bool> supports = model_.constrained;
+    for (const PrescribedTarget& p : model_.stages.front().prescribed) model_.constrained[p.dof] = true;
+    const auto mechanism = find_mechanism(model_);
+    model_.constrained = supports;
+    if (mechanism) fail("supports", *mechanism);
   }
 
   /// Contacts resting on a beam as drawn start in contact; an element carries any number of
@@ -523,11 +488,16 @@ class Reader {
     model_.contacts.push_back(std::move(spec));
   }
 
+  /// The analysis settings, then the stages (whose output defaults to the analysis's), then the
+  /// monitored nodes (by default those the loads and stages name).
   void read_analysis(const std::vector<int>& loaded_middles) {
     if (doc_.contains("analysis"))
       read_analysis_settings(doc_["analysis"], model_, [this](const json& value, const std::string& path) { return node_ref(value, path); });
+    if (doc_.contains("stages")) model_.stages = loads_->read_stages(doc_["stages"], model_.analysis.output);
+    std::set<int> named = loads_->loaded_nodes();
+    if (!model_.stages.empty()) named.insert(loads_->prescribed_nodes().begin(), loads_->prescribed_nodes().end());
     if (!doc_.contains("analysis") || !doc_["analysis"].contains("monitor"))
-      model_.analysis.monitor = default_monitor(model_, nodally_loaded_, loaded_middles);
+      model_.analysis.monitor = default_monitor(model_, named, loaded_middles);
   }
 
   const json& doc_;
@@ -537,8 +507,7 @@ class Reader {
   std::optional<SectionTable> sections_;  ///< read after the header
   std::optional<Eigen::Vector2d> gravity_;  ///< "gravity", if given
   std::set<int> connected_members_;  ///< members with a moment release or an end spring ("release", "end_springs")
-  std::vector<char> turned_;         ///< turned_nodes, once a follower load asks
-  std::set<int> nodally_loaded_;     ///< nodes a "loads" entry names with a nonzero value
+  std::optional<LoadsReader> loads_;  ///< once the supports are read
   std::unordered_map<int, int> ids_;
   // The contacts' look-ups (index_members): each member's first element, the members at each
   // node (CSR), and the nodes that have a contact entry already.

@@ -40,6 +40,7 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
                 const ResultsOptions& options) {
   w.newline().begin_object();
   w.key("step").value(step.step);
+  if (!model.stages.empty()) w.key("stage").value(step.stage + 1);
   w.key("load_factor").value(step.load_factor);
   w.key("converged").value(step.converged);
   w.key("iterations").value(step.iterations);
@@ -157,6 +158,18 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
     w.end_object();
   }
   w.end_array();
+  if (!model.stages.empty()) {  // where each stage that ran ended
+    w.newline().key("stages").begin_array();
+    for (size_t k = 0; k < result.stages.size(); ++k) {
+      const solver::StageEnd& end = result.stages[k];
+      w.newline().begin_object();
+      w.key("stage").value(static_cast<int>(k) + 1).key("name").value(model.stages[k].name);
+      w.key("status").value(solver::status_name(end.status)).key("last_step").value(end.last_step);
+      w.key("load_factor").value(end.load_factor);
+      w.end_object();
+    }
+    w.end_array();
+  }
   // Remarks on the path (a jump across a snap-back under displacement control); usually none.
   w.newline().key("notes").begin_array();
   for (const std::string& note : result.notes) w.value(note);
@@ -166,7 +179,8 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
 }
 
 void write_steps_csv(std::ostream& out, const Model& model, const solver::RunResult& result) {
-  out << "step,load_factor,iterations";
+  const bool staged = !model.stages.empty();
+  out << (staged ? "step,stage,load_factor,iterations" : "step,load_factor,iterations");
   for (int node : model.analysis.monitor) {
     const std::string id = std::to_string(model.nodes[node].id);
     out << ",ux_" << id << ",uy_" << id << ",rz_" << id;
@@ -181,7 +195,9 @@ void write_steps_csv(std::ostream& out, const Model& model, const solver::RunRes
   out << '\n';
   for (const solver::StepRecord& step : result.steps) {
     if (!step.converged) continue;
-    out << step.step << ',' << format_number(step.load_factor) << ',' << step.iterations;
+    out << step.step << ',';
+    if (staged) out << step.stage + 1 << ',';
+    out << format_number(step.load_factor) << ',' << step.iterations;
     for (Eigen::Index k = 0; k < step.monitored.size(); ++k) out << ',' << format_number(step.monitored[k]);
     // Not in contact: element and xi left empty, force 0.
     for (const solver::ContactPoint& c : step.contacts) {

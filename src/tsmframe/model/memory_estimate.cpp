@@ -133,6 +133,12 @@ ModelCounts model_counts(const Model& model, double input_bytes) {
   c.max_iterations = model.analysis.max_iterations;
   c.steps = planned_steps(model.analysis.control);
   c.kept_states = kept_state_count(model.analysis.output, c.steps);
+  if (!model.stages.empty()) c.steps = c.kept_states = 0.0;  // every stage's, and a copy of the model per stage
+  for (const Stage& stage : model.stages) {
+    const double steps = planned_steps(stage.control);
+    c.steps += steps;
+    c.kept_states += kept_state_count(stage.output, steps);
+  }
   c.monitored = static_cast<double>(model.analysis.monitor.size());
   c.moved_dofs = static_cast<double>(model.moved_dofs().size());
   return c;

@@ -1,5 +1,7 @@
 #include "tsmframe/model/model.hpp"
 
+#include <set>
+
 namespace tsm {
 
 const char* dof_name(int dof) {
@@ -21,6 +23,13 @@ int Model::node_index(int id) const {
 }
 
 std::vector<int> Model::moved_dofs() const {
+  if (!stages.empty()) {  // every stage reports the dofs any stage prescribes
+    std::set<int> prescribed;
+    for (const Stage& stage : stages)
+      for (const PrescribedTarget& p : stage.prescribed) prescribed.insert(p.dof);
+    return {prescribed.begin(), prescribed.end()};
+  }
+  if (!stage_moved_dofs.empty()) return stage_moved_dofs;
   std::vector<int> dofs;
   for (Eigen::Index d = 0; d < reference_prescribed.size(); ++d)
     if (reference_prescribed[d] != 0.0) dofs.push_back(static_cast<int>(d));

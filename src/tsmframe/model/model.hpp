@@ -49,6 +49,8 @@ struct MemberExtras {
   /// A rotational spring between the member's first / last element and its node (a semi-rigid
   /// connection): its flexibility 1/k, moment per radian inverted (0: rigid, the usual joint).
   double flexibility_from = 0.0, flexibility_to = 0.0;
+  /// The pressure an earlier stage applied, held at its final level (not scaled by λ; stage.hpp).
+  double dead_pressure = 0.0;
 };
 
 /// An element's end displacements (u, v, θ)_i, (u, v, θ)_j out of all dofs' D. Each node's
@@ -104,6 +106,9 @@ struct Control {
   int node = -1;
   int dof = uy;
   double target = 0.0;
+  /// The controlled dof's value where the path starts (an earlier stage's end; 0 otherwise):
+  /// the steps run from it to `target`.
+  double start = 0.0;
   // arc-length control (docs/format.md): arc length of the first step, bounds, step budget, and when
   // to stop (a load factor, or a value of one dof, reached in either direction)
   double initial_increment = 0.0;
@@ -121,6 +126,8 @@ struct Control {
 struct FollowerForce {
   int node = 0;  ///< node index
   Eigen::Vector2d force = Eigen::Vector2d::Zero();
+  /// Applied by an earlier stage and held there: `force` in full, whatever λ (stage.hpp).
+  bool dead = false;
 };
 
 struct OutputSelection {
@@ -138,6 +145,26 @@ struct AnalysisSettings {
   std::vector<int> monitor;  ///< node indices written to steps.csv
 };
 
+/// A displacement a stage prescribes at one dof: the value it reaches at the stage's end (λ = 1),
+/// absolute or an increment on where the dof stands when the stage starts.
+struct PrescribedTarget {
+  int dof = 0;  ///< global dof (3 per node)
+  double value = 0.0;
+  bool increment = false;
+};
+
+/// One stage of a staged analysis (docs/format.md, "Stages"): the loads and prescribed
+/// displacements it applies, scaled by its own load factor from 0 to where its control ends,
+/// everything earlier stages applied held at their final level (stage.hpp).
+struct Stage {
+  std::string name;
+  Eigen::VectorXd load;                      ///< per dof, nodal (empty: none)
+  std::vector<FollowerForce> follower_forces;
+  std::vector<PrescribedTarget> prescribed;  ///< dofs held from here on
+  Control control;
+  OutputSelection output;
+};
+
 struct Model {
   std::string title;
   std::map<std::string, std::string> units;
@@ -147,6 +174,7 @@ struct Model {
   std::vector<MemberExtras> member_extras;  ///< per member (empty: none has any)
   /// An element's follower load and end springs' flexibilities (MemberExtras), 0 where none.
   double pressure(const Element& e) const { return member_extras.empty() ? 0.0 : member_extras[e.member].pressure; }
+  double dead_pressure(const Element& e) const { return member_extras.empty() ? 0.0 : member_extras[e.member].dead_pressure; }
   double flexibility_start(const Element& e) const {
     return member_extras.empty() || !e.member_start ? 0.0 : member_extras[e.member].flexibility_from;
   }
@@ -159,11 +187,24 @@ struct Model {
   Eigen::VectorXd reference_load;
   /// Nodal forces that turn with their nodes, multiplied by λ too (not in reference_load).
   std::vector<FollowerForce> follower_forces;
+  /// Per dof: the loads earlier stages applied, held at their final level whatever λ (empty:
+  /// none; stage.hpp). The follower ones are in follower_forces and MemberExtras::dead_pressure.
+  Eigen::VectorXd dead_load;
   /// Per dof: prescribed displacement reached at λ = 1 (zero where none); empty when no
   /// displacement is prescribed (a model's worth of zeros saved). Read it through prescribed().
+  /// From an earlier stage's end, the increment on start_displacements.
   Eigen::VectorXd reference_prescribed;
+  /// Per dof: the displacements the run starts from — an earlier stage's end (empty: the
+  /// unloaded state). The constrained dofs stand there at λ = 0.
+  Eigen::VectorXd start_displacements;
   std::vector<ContactSpec> contacts;
   AnalysisSettings analysis;
+  /// A staged analysis (empty: one stage, the loads and control above). The members' loads,
+  /// pressures and self-weight (reference_load, MemberExtras) are the first stage's, with its own.
+  std::vector<Stage> stages;
+  /// A stage's model (stage_model): the dofs its staged model's moved_dofs() gives, so that every
+  /// stage records the reactions at the same dofs (empty otherwise).
+  std::vector<int> stage_moved_dofs;
   /// Diagonal of the bounding box of the nodes (1 if they all coincide).
   double size = 1.0;
 
@@ -171,9 +212,15 @@ struct Model {
   int dof_count() const { return dofs_per_node * node_count(); }
   /// Prescribed displacement of a dof at λ = 1 (0 when reference_prescribed is empty).
   double prescribed(int dof) const { return reference_prescribed.size() > 0 ? reference_prescribed[dof] : 0.0; }
+  /// A constrained dof's displacement at load factor λ: its start plus λ times its increment.
+  double prescribed_at(int dof, double load_factor) const {
+    const double moved = load_factor * prescribed(dof);
+    return start_displacements.size() > 0 ? start_displacements[dof] + moved : moved;
+  }
   /// Index of the node with this id, or −1.
   int node_index(int id) const;
-  /// The dofs a prescribed displacement moves (nonzero at λ = 1), ascending.
+  /// The dofs a prescribed displacement moves (nonzero at λ = 1), ascending; with stages, every
+  /// dof a stage prescribes.
   std::vector<int> moved_dofs() const;
 };
 

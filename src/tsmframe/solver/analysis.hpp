@@ -1,7 +1,5 @@
 #pragma once
-// A run: the structure set up (dof numbering, assembly, contacts, Newton) and its path followed
-// under the model's control — load or displacement (load_stepping) or arc-length
-// (arc_length_stepping) — then the newest step's stability and the path's notes.
+// A run: a one-stage model's path (run_stage), or a staged model's stages in turn (stages.hpp).
 
 #include "tsmframe/model/model.hpp"
 #include "tsmframe/solver/step_record.hpp"

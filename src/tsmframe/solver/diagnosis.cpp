@@ -270,4 +270,10 @@ std::string run_failure_text(const RunFailure& failure, const Model& model) {
   return "";
 }
 
+std::string in_stage_text(const std::string& text, int stage, const std::string& name) {
+  std::string stage_name = "stage " + std::to_string(stage + 1);
+  if (!name.empty()) stage_name += " (\"" + name + "\")";
+  return "In " + stage_name + ": " + text;
+}
+
 }  // namespace tsm::solver

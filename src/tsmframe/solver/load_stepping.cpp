@@ -53,7 +53,9 @@ class LoadStepping {
     return points_[leg] + (t - leg) * (points_[leg + 1] - points_[leg]);
   }
   /// The path quantity the step's size measures at t: λ, or the controlled dof's value.
-  double path_quantity(double t) const { return value(t) * (by_displacement_ ? control_.target : 1.0); }
+  double path_quantity(double t) const { return by_displacement_ ? control_.start + value(t) * span() : value(t); }
+  /// What the path parameter's value scales: 1 (λ), or the controlled dof's travel.
+  double span() const { return by_displacement_ ? control_.target - control_.start : 1.0; }
   /// Under load control, when a step turned the path unstable: the bifurcation's load factor
   /// (stability.hpp), the attempt in progress kept and evaluated again.
   void check_bifurcation(State& state);
@@ -127,7 +129,7 @@ RunResult LoadStepping::run(State& state) {
       return std::move(result_);
     }
     const Attempt attempt = next_attempt();
-    if (by_displacement_) constraint_.target = value(attempt.t_end) * control_.target;
+    if (by_displacement_) constraint_.target = path_quantity(attempt.t_end);
     else constraint_.load_increment = value(attempt.t_end) - state.load_factor;
 
     saved_.take(state, recorder_.newest_displacements());
@@ -136,7 +138,7 @@ RunResult LoadStepping::run(State& state) {
     recorder_.started_from_newest(outcome, tells_stability);
     if (!by_displacement_) check_bifurcation(state);
     StepRecord record = recorder_.start(outcome, halvings_);
-    record.increment = (value(attempt.t_end) - value(t_)) * (by_displacement_ ? control_.target : 1.0);
+    record.increment = (value(attempt.t_end) - value(t_)) * span();
     if (!by_displacement_ && outcome.start_stiffness > 0.0) {  // each attempt starts from a converged state
       if (first_stiffness_ == 0.0) first_stiffness_ = outcome.start_stiffness;
       if (saved_.load_factor() != newest_at_.load_factor) before_at_ = newest_at_;

@@ -70,6 +70,8 @@ class Problem {
   virtual const Eigen::VectorXd& internal_force() const = 0;
   /// F_ref at the last evaluation (follower loads on the current geometry), all dofs.
   virtual const Eigen::VectorXd& reference_load() const = 0;
+  /// The load earlier stages left, held whatever λ, at the last evaluation, all dofs (empty: none).
+  virtual const Eigen::VectorXd& dead_load() const = 0;
   /// K_fp D_p,ref over the free equations at the last evaluation (empty: nothing prescribed).
   virtual const Eigen::VectorXd& prescribed_coupling() const = 0;
   /// The rounding floor of the internal forces at `state` (a pass of its own), the active

@@ -66,7 +66,11 @@ void Recorder::converged(StepRecord record, const NewtonOutcome& outcome, const 
   record.monitored.resize(dofs_per_node * static_cast<int>(settings.monitor.size()));
   for (size_t m = 0; m < settings.monitor.size(); ++m)
     record.monitored.segment<3>(dofs_per_node * m) = state.displacements.segment<3>(dofs_per_node * settings.monitor[m]);
-  record.largest_move = largest_move(state.displacements, last_with_state_ >= 0 ? &result_.steps[last_with_state_].displacements : nullptr);
+  // From the step before, or from where the run started (an earlier stage's end; else nil).
+  const Eigen::VectorXd* before = last_with_state_ >= 0               ? &result_.steps[last_with_state_].displacements
+                                  : model_.start_displacements.size() ? &model_.start_displacements
+                                                                       : nullptr;
+  record.largest_move = largest_move(state.displacements, before);
   // The previous step's state goes first (unless the output keeps it): the peak memory holds one state, not two.
   if (last_with_state_ >= 0 && !keeps_state(settings.output, result_.steps[last_with_state_].step)) {
     StepRecord& previous = result_.steps[last_with_state_];

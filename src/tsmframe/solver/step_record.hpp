@@ -27,7 +27,8 @@ struct ContactPoint {
 };
 
 struct StepRecord {
-  int step = 0;                        ///< 1-based
+  int step = 0;                        ///< 1-based, numbered through a staged run's stages
+  int stage = 0;                       ///< index of its stage (Model::stages; 0 without stages)
   double load_factor = 0.0;            ///< λ at the end of the step (or of the failed attempt's start)
   bool converged = false;
   int iterations = 0;                  ///< Newton solves, the predictor included
@@ -81,6 +82,13 @@ struct CriticalPoint {
   double stable = 0.0, unstable = 0.0;  ///< the bracket: equilibria solved there, stable and not
 };
 
+/// Where one stage of a staged run ended (Model::stages, in order; the stages run).
+struct StageEnd {
+  int last_step = 0;          ///< its newest converged step (0: none converged)
+  double load_factor = 0.0;   ///< its λ there
+  Status status = Status::converged;
+};
+
 struct RunResult {
   Status status = Status::converged;
   std::string message;  ///< a sentence when the run did not reach its end (diagnosis.hpp, from `failure`)
@@ -91,6 +99,7 @@ struct RunResult {
   /// Remarks on the path, converged or not: a sentence each (e.g. a jump across a snap-back
   /// under displacement control).
   std::vector<std::string> notes;
+  std::vector<StageEnd> stages;  ///< a staged run's stages that ran (empty: no stages)
 };
 
 /// Called after every step, converged or failed (progress lines, logging).

@@ -50,7 +50,7 @@ TsmProblem::TsmProblem(assembly::GlobalSystem& system, const contact::ContactSet
 bool TsmProblem::evaluate(State& state, bool contacts_only) {
   const Model& model = system_.model();
   system_.set_load_factor(state.load_factor);
-  for (int dof : equations_.constrained_dofs) state.displacements[dof] = state.load_factor * model.prescribed(dof);
+  for (int dof : equations_.constrained_dofs) state.displacements[dof] = model.prescribed_at(dof, state.load_factor);
   bool changed = false;
   // The predictor runs contact nodes through their beams by as much as the step extrapolates:
   // Y at its iterate measures that, not the contact force, and along the bent beam's normal it
@@ -358,8 +358,9 @@ Eigen::VectorXd TsmProblem::element_forces(const State& state) const {
 Eigen::VectorXd TsmProblem::reactions(double load_factor) const {
   const Model& model = system_.model();
   Eigen::VectorXd reactions = util::zeros_touched(model.dof_count());
-  const Eigen::VectorXd& P = reference_load();
-  for (int dof : equations_.constrained_dofs) reactions[dof] = eval_.internal_force[dof] - load_factor * P[dof];
+  const Eigen::VectorXd &P = reference_load(), &dead = dead_load();
+  for (int dof : equations_.constrained_dofs)
+    reactions[dof] = eval_.internal_force[dof] - (dead.size() > 0 ? load_factor * P[dof] + dead[dof] : load_factor * P[dof]);
   return reactions;
 }
 

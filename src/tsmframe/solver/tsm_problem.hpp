@@ -29,6 +29,9 @@ class TsmProblem final : public Problem {
   const Eigen::VectorXd& reference_load() const override {
     return eval_.reference_load.size() > 0 ? eval_.reference_load : system_.model().reference_load;
   }
+  const Eigen::VectorXd& dead_load() const override {
+    return eval_.dead_load.size() > 0 ? eval_.dead_load : system_.model().dead_load;
+  }
   const Eigen::VectorXd& prescribed_coupling() const override { return eval_.prescribed_coupling; }
   assembly::RoundingFloor rounding_floor(const State& state, bool with_contacts) const override;
   bool has_optional_terms() const override { return !system_.contact_rank_one().empty(); }

@@ -19,12 +19,23 @@ namespace {
 constexpr Eigen::Index gather_ahead = 32;
 constexpr Eigen::Index gather_from = Eigen::Index{1} << 15;
 
+/// The load applied at a dof: λ P, plus what earlier stages left (dead; null: none).
+inline double applied(double load_factor, const double* P, const double* dead, int dof) {
+  return dead ? load_factor * P[dof] + dead[dof] : load_factor * P[dof];
+}
+
 }  // namespace
+
+const double* UnbalancedForce::dead_load() const {
+  const Eigen::VectorXd& dead = problem_.dead_load();
+  return dead.size() > 0 ? dead.data() : nullptr;
+}
 
 ResidualScale UnbalancedForce::scale(double load_factor) const {
   // As in update_residual, without writing R (the scale at a λ other than the state's).
   const double* F = problem_.internal_force().data();
   const double* P = problem_.reference_load().data();
+  const double* dead = dead_load();
   const int* free_dof = equations_.free_dofs.data();
   const unsigned char* is_moment = equations_.is_moment.data();
   const bool gather = equations_.free_count() >= gather_from;
@@ -36,7 +47,7 @@ ResidualScale UnbalancedForce::scale(double load_factor) const {
             __builtin_prefetch(P + free_dof[eq + gather_ahead]);
           }
           const int dof = free_dof[eq], kind = is_moment[eq];
-          const double f = F[dof], p = load_factor * P[dof];
+          const double f = F[dof], p = applied(load_factor, P, dead, dof);
           sum[kind] += p * p;
           sum[2 + kind] += f * f;
         }
@@ -49,10 +60,11 @@ ResidualScale UnbalancedForce::scale_from(std::array<double, 2> load, std::array
   // dofs (given over the free ones; the constrained ones are added here).
   const double* F = problem_.internal_force().data();
   const double* P = problem_.reference_load().data();
+  const double* dead = dead_load();
   double reaction[2] = {0, 0};
   for (const int dof : equations_.constrained_dofs) {
     const int kind = dof % dofs_per_node == rz ? 1 : 0;
-    const double f = F[dof], p = load_factor * P[dof];
+    const double f = F[dof], p = applied(load_factor, P, dead, dof);
     internal[kind] += f * f;
     reaction[kind] += (f - p) * (f - p);
   }
@@ -71,6 +83,7 @@ ResidualPass UnbalancedForce::update(double load_factor, Eigen::VectorXd& residu
   util::resize_touched(residual, n);
   const double* F = problem_.internal_force().data();
   const double* P = problem_.reference_load().data();
+  const double* dead = dead_load();
   const int* free_dof = equations_.free_dofs.data();
   const unsigned char* is_moment = equations_.is_moment.data();
   double* R = residual.data();
@@ -87,7 +100,7 @@ ResidualPass UnbalancedForce::update(double load_factor, Eigen::VectorXd& residu
       }
       const int dof = free_dof[eq];
       const bool moment = is_moment[eq] != 0;
-      const double f = F[dof], p = load_factor * P[dof], r = p - f;
+      const double f = F[dof], p = applied(load_factor, P, dead, dof), r = p - f;
       R[eq] = r;
       const double rr = r * r, pp = p * p, ff = f * f;
       r0 += moment ? 0.0 : rr;

@@ -63,6 +63,8 @@ class UnbalancedForce {
   /// The scale from squared sums per kind over the free equations (applied loads, internal
   /// forces); adds the constrained dofs' reactions and internal forces.
   ResidualScale scale_from(std::array<double, 2> load, std::array<double, 2> internal, double load_factor) const;
+  /// The dead load's entries (null: none), all dofs.
+  const double* dead_load() const;
 
   const Problem& problem_;
   const Equations& equations_;
