@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "tsmframe/io/input_error.hpp"
@@ -20,6 +21,7 @@
 #include "tsmframe/io/model_reader.hpp"
 #include "tsmframe/io/output_directory.hpp"
 #include "tsmframe/io/output_file.hpp"
+#include "tsmframe/io/restart_reader.hpp"
 #include "tsmframe/io/results_writer.hpp"
 #include "tsmframe/io/vtk_writer.hpp"
 #include "tsmframe/solver/analysis.hpp"
@@ -44,6 +46,7 @@ struct RunOptions {
   bool plot = false;
   bool curves = false;  // results.json's "curves" (on with --plot, whose drawings read them)
   int threads = 0;  // 0: all cores
+  std::string from;  // a restart: DIR/results.json[#STEP] (empty: none)
 };
 
 std::string progress_line(const tsm::Model& model, const tsm::solver::StepRecord& step, bool log_iterations) {
@@ -130,6 +133,18 @@ int run(const RunOptions& options) {
     std::cerr << options.model << ": " << e.what() << '\n';
     return exit_bad_input;
   }
+  std::optional<tsm::solver::RestartPoint> from;
+  if (!options.from.empty()) {
+    try {
+      from = tsm::io::read_restart_file(options.from, model);
+    } catch (const tsm::io::InputError& e) {
+      std::cerr << options.from << ": " << e.what() << '\n';
+      return exit_bad_input;
+    } catch (const tsm::io::SystemError& e) {
+      std::cerr << options.from << ": " << e.what() << '\n';
+      return exit_system;
+    }
+  }
   const tsm::solver::StopRequest& stop = tsm::app::install_stop_signals();
   // Every output goes into the temporary directory, made (and so checked) before the analysis;
   // the commit puts it in place of --out in one step.
@@ -146,7 +161,7 @@ int run(const RunOptions& options) {
     tsm::io::write_vtu((vtk_dir / name).string(), model, step);
     vtk_steps.emplace_back(step.load_factor, name);
   };
-  const tsm::solver::RunResult result = tsm::solver::run_analysis(model, observer, &stop);
+  const tsm::solver::RunResult result = tsm::solver::run_analysis(model, observer, &stop, from ? &*from : nullptr);
   tsm::io::write_results(output.path().string(), model, result, {.curves = options.curves || options.plot});
   if (options.vtk) tsm::io::write_pvd((vtk_dir / "results.pvd").string(), vtk_steps);
   // An interrupted run is asked to end: no plots.
@@ -231,6 +246,9 @@ int main(int argc, char** argv) {
   run_command->add_option("model", options.model, "model file (docs/format.md, tsmframe-model/1)")->required();
   run_command->add_option("-o,--out", options.out, "output directory (default: out)");
   run_command->add_flag("-q,--quiet", options.quiet, "no progress lines");
+  run_command->add_option("--from", options.from,
+                          "go on from a kept step of an earlier run of this model: DIR/results.json (its newest step with "
+                          "state) or DIR/results.json#STEP; steps are numbered on from it");
   run_command->add_flag("--log-iterations", options.log_iterations, "print the residual of every iterate");
   run_command->add_flag("--vtk", options.vtk, "ParaView files: DIR/vtk/results.pvd and one .vtu per converged step");
   run_command->add_flag("--plot", options.plot, "plots: deformed shapes and load-displacement curves in DIR/plots/ (implies --curves)");

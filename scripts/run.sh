@@ -18,6 +18,19 @@ for model in examples/*.json; do
   printf '%-28s exit %d  %s\n' "$name" "$code" "$(tail -n 1 "out/$name.log")" | tee -a out/summary.txt
   [ $code -eq 0 ] || status=1
 done
+# A restart: the roller example again from its step 30 (in its second stage); it must end where
+# the whole run ended, bit for bit.
+set +e
+build/tsmframe run examples/roller-pressed-then-slid.json --from out/roller-pressed-then-slid/results.json#30 \
+  --out out/roller-pressed-then-slid-from-step-30 -q 2>out/roller-pressed-then-slid-from-step-30.log
+code=$?
+set -e
+same=$(/usr/bin/python3 -c '
+import json, sys
+a, b = (json.load(open(f"out/{d}/results.json"))["steps"][-1]["displacements"] for d in sys.argv[1:])
+print("the same" if a == b else "DIFFERENT")' roller-pressed-then-slid roller-pressed-then-slid-from-step-30 2>/dev/null || echo "missing")
+printf '%-28s exit %d  ends %s as the whole run\n' "restart from step 30" "$code" "$same" | tee -a out/summary.txt
+[ $code -eq 0 ] && [ "$same" = "the same" ] || status=1
 # The studies: some cases are meant not to converge (that is what Fig. 3 measures), so their
 # exit status 1 is not a failure of the job; 2 (bad input) is.
 for study in studies/*.json; do

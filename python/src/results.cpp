@@ -39,6 +39,7 @@ void add_outcome(py::dict& out, const solver::RunResult& result) {
   py::list stages;  // a staged run's stages that ran: where each ended
   for (const solver::StageEnd& end : result.stages) {
     py::dict stage;
+    stage["stage"] = end.stage + 1;
     stage["status"] = solver::status_name(end.status);
     stage["last_step"] = end.last_step;
     stage["load_factor"] = end.load_factor;

@@ -328,8 +328,15 @@ class Result:
         return plot_iterations(self, ax, **kw)
 
 
-def run(model, threads=0):
-    """Run a Model, a docs/format.md dict, a JSON text or a file path. Raises ValueError for bad input."""
+def run(model, threads=0, start=None, step=None):
+    """Run a Model, a docs/format.md dict, a JSON text or a file path. Raises ValueError for bad input.
+    start: go on from a kept step of an earlier run of the same model — a Result, or the path of
+    its results.json — at step `step` (None: its newest step with state); the steps are numbered
+    on from it (the CLI's --from)."""
+    start_text = ""
+    if start is not None:
+        start_text = start.results_json if isinstance(start, Result) else _read_text(_os.fspath(start))
+    step = 0 if step is None else int(step)
     if isinstance(model, Model):
         text = model.to_json()
     elif isinstance(model, dict):
@@ -340,7 +347,7 @@ def run(model, threads=0):
         path = _os.fspath(model)
         text = _read_text(path)
         try:
-            return Result(_run_json(text, threads), text)
+            return Result(_run_json(text, threads, start_text, step), text)
         except ValueError as e:
             raise ValueError(f"{path}: {e}") from None
-    return Result(_run_json(text, threads), text)
+    return Result(_run_json(text, threads, start_text, step), text)

@@ -88,6 +88,36 @@ TEST_F(Cli, ConvergedRunWritesBothFilesAndExitsZero) {
     EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << "temporary left: " << entry.path();
 }
 
+TEST_F(Cli, ARunGoesOnFromAKeptStepOfAnEarlierRun) {
+  json m = cantilever();
+  m["analysis"]["control"]["steps"] = 4;
+  const std::string model = write("ok.json", m.dump());
+  const std::string whole = (dir_ / "whole").string(), rest = (dir_ / "rest").string();
+  ASSERT_EQ(run_cli("run " + model + " -q --out " + whole).exit_code, 0);
+  const Outcome o = run_cli("run " + model + " --from " + whole + "/results.json#2 --out " + rest);
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("step 3 "), std::string::npos) << o.output;  // numbered on
+  EXPECT_EQ(o.output.find("step 1 "), std::string::npos) << o.output;
+  const json a = json::parse(std::ifstream(fs::path(whole) / "results.json"));
+  const json b = json::parse(std::ifstream(fs::path(rest) / "results.json"));
+  ASSERT_EQ(b["steps"].size(), 2u);
+  EXPECT_EQ(b["steps"][0]["step"], 3);
+  EXPECT_EQ(b["steps"][1]["displacements"], a["steps"][3]["displacements"]);  // the same, bit for bit
+  // What cannot be gone on from: one line naming the results file, exit 2, nothing written.
+  for (const auto& [from, reason] : std::vector<std::pair<std::string, std::string>>{
+           {whole + "/results.json#9", "steps: no step 9 in these results"},
+           {whole + "/results.json#two", "#two: expected a step number"},
+           {whole + "/nothing.json", "cannot open"},
+           {model, "format: not a tsmframe results file"}}) {
+    const Outcome bad = run_cli("run " + model + " --from " + from + " --out " + (dir_ / "bad").string());
+    EXPECT_EQ(bad.exit_code, 2) << from << ": " << bad.output;
+    EXPECT_EQ(bad.output.rfind(from.substr(0, from.find('#')), 0), 0u) << bad.output;
+    EXPECT_NE(bad.output.find(reason), std::string::npos) << bad.output;
+    EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
+    EXPECT_FALSE(fs::exists(dir_ / "bad"));
+  }
+}
+
 TEST_F(Cli, QuietRunPrintsNothing) {
   const std::string model = write("ok.json", cantilever().dump());
   const Outcome o = run_cli("run " + model + " --quiet --out " + (dir_ / "out").string());

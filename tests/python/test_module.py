@@ -82,7 +82,12 @@ def test_one_contact_entry_for_many_nodes():
     assert len(touching) == 2
     assert r.contact_force[-1, touching[0]] == pytest.approx(r.contact_force[-1, touching[1]], rel=1e-6)
     listed = ring([1, 2] + list(range(105, 123)))
-    assert listed.results_json == r.results_json
+    def without_state(result):  # the restart state lists the contacts in the order they were made
+        document = json.loads(result.results_json)
+        for step in document["steps"]:
+            step.pop("state", None)
+        return document
+    assert without_state(listed) == without_state(r)
     with pytest.raises(ValueError, match="give node or nodes"):
         tf.Model().contact(1, nodes=[2])
 
@@ -230,6 +235,22 @@ def test_stages_built_in_code_hold_what_earlier_stages_applied():
     # Loads given before the first stage are refused where they are given.
     with pytest.raises(ValueError, match="before the first stage"):
         cantilever().load(2, fy=1.0).stage("late")
+
+
+def test_a_run_goes_on_from_a_kept_step_of_an_earlier_one(tmp_path):
+    # tf.run(m, start=result, step=k) is the CLI's --from: the steps after k, bit for bit.
+    m = tf.Model("elastica").material("m", E=1.0, G=0.5).section("s", A=1e4, I=1.0)
+    m.node(1, 0, 0).node(2, 1, 0).member(1, 2, "m", "s", divisions=10).support(1, "fixed").load(2, fy=4.0).analysis(steps=6)
+    whole = tf.run(m)
+    rest = tf.run(m, start=whole, step=2)
+    assert rest.ok, rest.message
+    assert list(rest.step) == [3, 4, 5, 6]
+    assert np.array_equal(rest.displacements[-1], whole.displacements[-1])
+    whole.write(tmp_path / "whole")
+    done = tf.run(m, start=tmp_path / "whole" / "results.json")  # from its last step: nothing is left to run
+    assert done.ok and len(done.step) == 0
+    with pytest.raises(ValueError, match="start: steps: no step 9"):
+        tf.run(m, start=whole, step=9)
 
 
 def test_a_shallow_arch_built_in_code_snaps_through_and_says_so():

@@ -176,6 +176,16 @@ int ContactSet::release_as_pulling(const std::vector<int>& which, const Eigen::V
   return released;
 }
 
+void ContactSet::restore(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                         std::vector<ContactState>& states) const {
+  for (int k = 0; k < contact_count(); ++k) {
+    const ContactCandidates& contact = geometry_.contact(k);
+    if (states[k].reference.side.size() == contact.candidates.size()) continue;
+    states[k].reference.side.assign(contact.candidates.size(), 0);
+    reset_sides(geometry_, contact, D, rotations, 0, states[k]);
+  }
+}
+
 void ContactSet::accept(const Eigen::VectorXd& D, const std::vector<double>& rotations,
                         std::vector<ContactState>& states) const {
   for (int k = 0; k < contact_count(); ++k) {

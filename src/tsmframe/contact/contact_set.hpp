@@ -86,6 +86,10 @@ class ContactSet {
   /// current sides as reference.
   void accept(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
               std::vector<ContactState>& states) const;
+  /// States read back without their references (a restart, solver/restart.hpp): each takes its
+  /// sides at this converged state as reference, as accept() gives an inactive contact.
+  void restore(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+               std::vector<ContactState>& states) const;
 
  private:
   /// The life cycle of one active contact at an update.

@@ -36,6 +36,42 @@ void write_curves(JsonWriter& w, const Model& model, const solver::StepRecord& s
   w.end_object();
 }
 
+/// What a run restarted from this step needs beside its displacements (restart_reader.hpp).
+void write_restart_state(JsonWriter& w, const Model& model, const solver::StepRecord& step) {
+  w.key("state").begin_object();
+  w.key("path_parameter").value(step.path_parameter);
+  w.key("chord_rotations").begin_array();
+  for (const double beta : step.chord_rotations) w.value(beta);
+  w.end_array();
+  w.key("contacts").begin_array();
+  for (const contact::ContactState& c : step.contact_states) {
+    w.newline().begin_object().key("active").value(c.active);
+    if (c.active) {
+      w.key("element").value(model.elements[c.element].id).key("side").value(c.side).key("alpha").value(c.alpha);
+      w.key("force").value(c.force).key("Y").value(c.Y).key("entering").value(c.entering);
+      w.key("push").begin_array().value(c.push[0]).value(c.push[1]).end_array();
+      if (c.vertex) {
+        w.key("vertex").begin_object().key("element").value(model.elements[c.vertex->element].id);
+        w.key("side").value(c.vertex->side).key("Y").value(c.vertex->Y).end_object();
+      }
+    }
+    w.end_object();
+  }
+  w.end_array();
+  if (!model.stages.empty()) {
+    w.key("stage_load_factors").begin_array();
+    for (const double lambda : step.stage_load_factors) w.value(lambda);
+    w.end_array();
+  }
+  if (!step.stage_start.empty()) {
+    w.key("stage_start").begin_array();
+    for (const auto& [dof, value] : step.stage_start)
+      w.begin_array().value(model.nodes[dof / dofs_per_node].id).value(dof_name(dof % dofs_per_node)).value(value).end_array();
+    w.end_array();
+  }
+  w.end_object();
+}
+
 void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& step, const std::vector<bool>& supported,
                 const ResultsOptions& options) {
   w.newline().begin_object();
@@ -73,6 +109,7 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
     w.key("reactions");
     write_triples(w, model, step.reactions, &supported);
     if (options.curves) write_curves(w, model, step);
+    if (step.converged) write_restart_state(w, model, step);
   }
   if (step.converged) {
     // Every active contact, on every converged step (also those without full state).
@@ -160,10 +197,9 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
   w.end_array();
   if (!model.stages.empty()) {  // where each stage that ran ended
     w.newline().key("stages").begin_array();
-    for (size_t k = 0; k < result.stages.size(); ++k) {
-      const solver::StageEnd& end = result.stages[k];
+    for (const solver::StageEnd& end : result.stages) {
       w.newline().begin_object();
-      w.key("stage").value(static_cast<int>(k) + 1).key("name").value(model.stages[k].name);
+      w.key("stage").value(end.stage + 1).key("name").value(model.stages[end.stage].name);
       w.key("status").value(solver::status_name(end.status)).key("last_step").value(end.last_step);
       w.key("load_factor").value(end.load_factor);
       w.end_object();

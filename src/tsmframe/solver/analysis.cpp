@@ -5,10 +5,14 @@
 
 namespace tsm::solver {
 
-RunResult run_analysis(const Model& model, const StepObserver& observer, const StopRequest* stop) {
-  if (!model.stages.empty()) return run_stages(model, observer, stop);
+RunResult run_analysis(const Model& model, const StepObserver& observer, const StopRequest* stop, const RestartPoint* from) {
+  if (!model.stages.empty()) return run_stages(model, observer, stop, from);
   State state;
-  return run_stage(model, state, observer, stop);
+  if (!from) return run_stage(model, state, observer, stop);
+  state = from->state;
+  RunResult result = run_stage(model, state, numbered_observer(observer, from->step, 0), stop);
+  number_on(result, from->step);
+  return result;
 }
 
 }  // namespace tsm::solver

@@ -72,6 +72,7 @@ class ArcLengthStepping {
 };
 
 RunResult ArcLengthStepping::run(State& state) {
+  recorder_.start_from(state);
   while (converged_steps_ < control_.max_steps) {
     if (stop_requested(stop_)) {
       interrupt(state);

@@ -123,6 +123,10 @@ LoadStepping::Attempt LoadStepping::next_attempt() const {
 
 RunResult LoadStepping::run(State& state) {
   const int grid_steps = control_.steps * legs_;
+  // A run restarted along its path (restart.hpp) goes on from where that state was.
+  t_ = state.path_parameter;
+  grid_index_ = static_cast<int>(std::floor(t_ * control_.steps + 1e-9));
+  recorder_.start_from(state);
   while (grid_index_ < grid_steps) {
     if (stop_requested(stop_)) {
       interrupt(state);
@@ -170,7 +174,8 @@ void LoadStepping::check_bifurcation(State& state) {
 }
 
 void LoadStepping::converged(const Attempt& attempt, StepRecord record, const NewtonOutcome& outcome, State& state) {
-  t_ = attempt.t_end;
+  t_ = state.path_parameter = attempt.t_end;
+  record.path_parameter = t_;
   if (attempt.reaches_grid) ++grid_index_;
   halvings_ = 0;
   const double grown = std::min(2.0 * increment_, nominal_);

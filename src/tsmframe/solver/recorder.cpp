@@ -39,7 +39,32 @@ double largest_move(const Eigen::VectorXd& now, const Eigen::VectorXd* before) {
   return std::sqrt(largest);
 }
 
+/// The contacts as a restart needs them: what each touches, without the references detection
+/// compares with (per candidate element; restored from the state) or the step's memory (cleared
+/// at every converged step).
+std::vector<contact::ContactState> kept_contacts(const std::vector<contact::ContactState>& contacts) {
+  std::vector<contact::ContactState> kept(contacts.size());
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    const contact::ContactState& c = contacts[k];
+    kept[k].active = c.active;
+    kept[k].element = c.element;
+    kept[k].side = c.side;
+    kept[k].alpha = c.alpha;
+    kept[k].force = c.force;
+    kept[k].Y = c.Y;
+    kept[k].push[0] = c.push[0];
+    kept[k].push[1] = c.push[1];
+    kept[k].vertex = c.vertex;
+    kept[k].entering = c.entering;
+  }
+  return kept;
+}
+
 }  // namespace
+
+void Recorder::start_from(const State& state) {
+  if (state.displacements.size() > 0 && state.displacements.any()) start_ = state.displacements;
+}
 
 Recorder::Recorder(const Model& model, const TsmProblem& problem, const StepObserver& observer, RunResult& result,
                    bool defer_forces)
@@ -67,17 +92,21 @@ void Recorder::converged(StepRecord record, const NewtonOutcome& outcome, const 
   for (size_t m = 0; m < settings.monitor.size(); ++m)
     record.monitored.segment<3>(dofs_per_node * m) = state.displacements.segment<3>(dofs_per_node * settings.monitor[m]);
   // From the step before, or from where the run started (an earlier stage's end; else nil).
-  const Eigen::VectorXd* before = last_with_state_ >= 0               ? &result_.steps[last_with_state_].displacements
-                                  : model_.start_displacements.size() ? &model_.start_displacements
-                                                                       : nullptr;
+  const Eigen::VectorXd* before = last_with_state_ >= 0 ? &result_.steps[last_with_state_].displacements
+                                  : start_.size() > 0   ? &start_
+                                                        : nullptr;
   record.largest_move = largest_move(state.displacements, before);
   // The previous step's state goes first (unless the output keeps it): the peak memory holds one state, not two.
   if (last_with_state_ >= 0 && !keeps_state(settings.output, result_.steps[last_with_state_].step)) {
     StepRecord& previous = result_.steps[last_with_state_];
     previous.has_state = false;
     previous.displacements = previous.element_forces = previous.reactions = Eigen::VectorXd();
+    previous.chord_rotations = {};
+    previous.contact_states = {};
   }
   record.displacements = state.displacements;
+  record.chord_rotations = state.chord_rotations;
+  record.contact_states = kept_contacts(state.contacts);
   forces_pending_ = defer_forces_ && !keeps_state(settings.output, record.step);
   if (!forces_pending_) {
     record.element_forces = problem_.element_forces(state);

@@ -35,6 +35,9 @@ class Recorder {
   const Eigen::VectorXd* newest_displacements() const {
     return last_with_state_ >= 0 ? &result_.steps[last_with_state_].displacements : nullptr;
   }
+  /// The state the run starts from: the first step's largest move is measured from it (an
+  /// earlier stage's end, a restart; nil when unloaded).
+  void start_from(const State& state);
   /// Replaces the newest converged step (arc-length landing exactly on its `until`).
   void replace_last(StepRecord record, const NewtonOutcome& outcome, const State& state);
   /// At the end of the run, with `state` the newest converged step's: its deferred element forces.
@@ -49,6 +52,7 @@ class Recorder {
   int last_with_state_ = -1;
   bool defer_forces_ = false;
   std::vector<int> moved_dofs_;
+  Eigen::VectorXd start_;  ///< start_from's displacements (empty: nil)
   bool forces_pending_ = false;  ///< the newest converged step still lacks its element forces
 };
 

@@ -38,7 +38,7 @@ RunResult run_stage(const Model& model, State& state, const StepObserver& observ
     util::assign_touched(zero_rotations, model.elements.size(), 0.0);
     state = State{util::zeros_touched(model.dof_count()), 0.0, std::move(zero_rotations), contacts.initial_states()};
   }
-  state.load_factor = 0.0;  // the stage's own λ starts at nil
+  contacts.restore(state.displacements, state.chord_rotations, state.contacts);  // a restart's
   newton.reset(state);
   RunResult result = control.type == ControlType::arc_length
                          ? run_arc_length_stepping(model, dofs, newton, problem, state, observer, stop)

@@ -13,7 +13,8 @@ namespace tsm::solver {
 /// Runs the path of a one-stage model (no `stages`; stage_model makes one of a staged model's
 /// stages) from `state` — empty displacements: the unloaded state — with λ from 0; `state` ends
 /// as the newest converged state. The model must be valid and free of mechanisms (see
-/// find_mechanism); non-convergence is reported in the result's status. `stop` (null: none) is
+/// find_mechanism); the state's λ and path parameter say where along the path it starts (a
+/// restart; 0 otherwise); non-convergence is reported in the result's status. `stop` (null: none) is
 /// polled before each attempt: once requested, the run ends there, status `interrupted`, every
 /// converged step kept.
 RunResult run_stage(const Model& model, State& state, const StepObserver& observer = {}, const StopRequest* stop = nullptr);

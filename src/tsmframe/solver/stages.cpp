@@ -9,25 +9,35 @@
 namespace tsm::solver {
 namespace {
 
-/// The newest converged step a stage's result kept (0: none).
+/// The newest converged step a result kept (0: none).
 int last_converged_step(const RunResult& result) {
   for (auto it = result.steps.rbegin(); it != result.steps.rend(); ++it)
     if (it->converged) return it->step;
   return 0;
 }
 
-/// Moves one stage's result into the whole run's: steps numbered on from `first_step`.
-void append_stage(RunResult& run, RunResult stage_result, int stage, const std::string& name, int steps_before) {
+/// Where the dofs stage `s` prescribes or controls stand at its start (what a restart within
+/// it needs to build its model again).
+std::vector<std::pair<int, double>> stage_start_values(const Model& model, int s, const StageStart& start) {
+  std::vector<int> dofs;
+  for (const PrescribedTarget& p : model.stages[s].prescribed) dofs.push_back(p.dof);
+  const Control& control = model.stages[s].control;
+  if (control.type == ControlType::displacement) dofs.push_back(dofs_per_node * control.node + control.dof);
+  std::vector<std::pair<int, double>> values;
+  for (const int dof : dofs) values.emplace_back(dof, start.displacements.size() > 0 ? start.displacements[dof] : 0.0);
+  return values;
+}
+
+/// Moves one stage's result into the whole run's (its steps already numbered on).
+void append_stage(RunResult& run, RunResult stage_result, int stage, const std::string& name, const StageStart& start,
+                  const std::vector<std::pair<int, double>>& stage_start) {
   for (StepRecord& record : stage_result.steps) {
-    record.step += steps_before;
     record.stage = stage;
+    if (record.has_state) record.stage_start = stage_start, record.stage_load_factors = start.final_load_factors;
     run.steps.push_back(std::move(record));
   }
-  for (LimitPoint p : stage_result.limit_points) run.limit_points.push_back({p.step + steps_before, p.maximum, p.load_factor});
-  for (CriticalPoint p : stage_result.critical_points) {
-    p.step += steps_before;
-    run.critical_points.push_back(p);
-  }
+  run.limit_points.insert(run.limit_points.end(), stage_result.limit_points.begin(), stage_result.limit_points.end());
+  run.critical_points.insert(run.critical_points.end(), stage_result.critical_points.begin(), stage_result.critical_points.end());
   for (const std::string& note : stage_result.notes) run.notes.push_back(in_stage_text(note, stage, name));
   run.status = stage_result.status;
   run.failure = stage_result.failure;
@@ -36,26 +46,44 @@ void append_stage(RunResult& run, RunResult stage_result, int stage, const std::
 
 }  // namespace
 
-RunResult run_stages(const Model& model, const StepObserver& observer, const StopRequest* stop) {
+StepObserver numbered_observer(const StepObserver& observer, int steps_before, int stage) {
+  if (!observer) return {};
+  return [&observer, steps_before, stage](const StepRecord& record) {
+    StepRecord copy = record;
+    copy.step += steps_before;
+    copy.stage = stage;
+    observer(copy);
+  };
+}
+
+void number_on(RunResult& result, int steps_before) {
+  for (StepRecord& record : result.steps) record.step += steps_before;
+  for (LimitPoint& p : result.limit_points) p.step += steps_before;
+  for (CriticalPoint& p : result.critical_points) p.step += steps_before;
+}
+
+RunResult run_stages(const Model& model, const StepObserver& observer, const StopRequest* stop, const RestartPoint* from) {
   RunResult run;
   State state;  // the unloaded state, then each stage's end
   StageStart start;
-  int steps_before = 0;
-  for (int s = 0; s < static_cast<int>(model.stages.size()); ++s) {
+  int steps_before = 0, first = 0;
+  if (from) {  // within stage `first`, whose start is the restart point's own but at its prescribed dofs
+    state = from->state;
+    first = from->stage;
+    steps_before = from->step;
+    start.final_load_factors = from->final_load_factors;
+    start.displacements = state.displacements;
+    for (const auto& [dof, value] : from->stage_start) start.displacements[dof] = value;
+  }
+  for (int s = first; s < static_cast<int>(model.stages.size()); ++s) {
     const Model stage = stage_model(model, s, start);
-    StepObserver numbered;
-    if (observer)
-      numbered = [&observer, s, steps_before](const StepRecord& record) {
-        StepRecord copy = record;
-        copy.step += steps_before;
-        copy.stage = s;
-        observer(copy);
-      };
-    RunResult result = run_stage(stage, state, numbered, stop);
+    if (s > first || !from) state.load_factor = state.path_parameter = 0.0;  // the stage's own λ starts at nil
+    RunResult result = run_stage(stage, state, numbered_observer(observer, steps_before, s), stop);
+    number_on(result, steps_before);
     const int last = last_converged_step(result);
-    run.stages.push_back({last > 0 ? last + steps_before : 0, state.load_factor, result.status});
-    steps_before += last;
-    append_stage(run, std::move(result), s, model.stages[s].name, steps_before - last);
+    run.stages.push_back({s, last, state.load_factor, result.status});
+    if (last > 0) steps_before = last;
+    append_stage(run, std::move(result), s, model.stages[s].name, start, stage_start_values(model, s, start));
     if (run.status != Status::converged) break;
     start.final_load_factors.push_back(state.load_factor);
     start.displacements = state.displacements;

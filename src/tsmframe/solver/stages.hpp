@@ -3,14 +3,22 @@
 // earlier stages applied held at their final level (stage_model), the steps numbered through.
 
 #include "tsmframe/model/model.hpp"
+#include "tsmframe/solver/restart.hpp"
 #include "tsmframe/solver/step_record.hpp"
 #include "tsmframe/solver/stop_request.hpp"
 
 namespace tsm::solver {
 
-/// Runs `model`'s stages in turn from the unloaded state. A stage that does not reach its end
-/// ends the run there (its status and message, said of the stage), every converged step of it
-/// and of the stages before kept.
-RunResult run_stages(const Model& model, const StepObserver& observer = {}, const StopRequest* stop = nullptr);
+/// Runs `model`'s stages in turn from the unloaded state, or from a restart point (its stage
+/// goes on from there, the steps numbered on from its step). A stage that does not reach its
+/// end ends the run there (its status and message, said of the stage), every converged step of
+/// it and of the stages before kept.
+RunResult run_stages(const Model& model, const StepObserver& observer = {}, const StopRequest* stop = nullptr,
+                     const RestartPoint* from = nullptr);
+
+/// The observer seeing each step numbered on from `steps_before`, in stage `stage`.
+StepObserver numbered_observer(const StepObserver& observer, int steps_before, int stage);
+/// A result's steps (and limit and critical points) numbered on from `steps_before`.
+void number_on(RunResult& result, int steps_before);
 
 }  // namespace tsm::solver

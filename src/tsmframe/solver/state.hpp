@@ -14,6 +14,9 @@ struct State {
   double load_factor = 0.0;            ///< λ
   std::vector<double> chord_rotations; ///< β per element
   std::vector<contact::ContactState> contacts;  ///< one per contact of the model
+  /// How far along its control's path (load and displacement control: λ's path parameter t, the
+  /// legs of `path` counted whole; load_stepping.cpp): where a restarted run goes on from.
+  double path_parameter = 0.0;
 };
 
 }  // namespace tsm::solver

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "tsmframe/contact/contact_state.hpp"
 #include "tsmframe/solver/criterion.hpp"
 #include "tsmframe/solver/failure.hpp"
 #include "tsmframe/solver/status.hpp"
@@ -61,6 +62,16 @@ struct StepRecord {
   double axial_strain = 0.0;
   int strained_element = -1;
   Eigen::VectorXd reactions;           ///< all dofs; zero where the dof is free
+  /// What a run restarted from this step needs beside its displacements (restart.hpp): where
+  /// along its control's path it is (State::path_parameter), the elements' chord rotations
+  /// (totals, carried through turns), the contacts (without their references and step memory),
+  /// and, in a staged run, the λ each earlier stage ended at and where the dofs its stage
+  /// prescribes or controls stood at the stage's start (dof, value).
+  double path_parameter = 0.0;
+  std::vector<double> chord_rotations;
+  std::vector<contact::ContactState> contact_states;
+  std::vector<double> stage_load_factors;
+  std::vector<std::pair<int, double>> stage_start;
   std::vector<ContactPoint> contacts;  ///< one per contact of the model (converged steps)
   /// Per iterate (iterate 0 = the step's start), one entry per contact: how α moved.
   std::vector<std::vector<ContactPoint>> contact_iterates;
@@ -84,6 +95,7 @@ struct CriticalPoint {
 
 /// Where one stage of a staged run ended (Model::stages, in order; the stages run).
 struct StageEnd {
+  int stage = 0;              ///< its index (Model::stages)
   int last_step = 0;          ///< its newest converged step (0: none converged)
   double load_factor = 0.0;   ///< its λ there
   Status status = Status::converged;
