@@ -213,6 +213,10 @@ int study(const StudyOptions& options) {
     std::cerr << options.study << ": " << e.what() << '\n';
     return exit_bad_input;
   }
+  if (const std::optional<std::string> invalid = tsm::study::invalid_in_every_case(definition)) {
+    std::cerr << options.study << ": " << *invalid << '\n';
+    return exit_bad_input;
+  }
   const tsm::solver::StopRequest& stop = tsm::app::install_stop_signals();
   tsm::io::OutputDirectory output(options.out, {"study.csv", "study.json", "cases"});  // as a run's (run above)
   const size_t total = definition.case_count();

@@ -15,11 +15,14 @@ namespace {
 
 /// The study in `text` (model_file relative to `directory`); ValueError (JSON path: reason).
 study::Study read_study(const std::string& text, const std::string& directory) {
+  study::Study definition;
   try {
-    return study::read_study(io::parse_json(text), directory);
+    definition = study::read_study(io::parse_json(text), directory);
   } catch (const io::InputError& e) {
     throw py::value_error(e.what());  // the CLI's "JSON.path: reason"
   }
+  if (const std::optional<std::string> invalid = study::invalid_in_every_case(definition)) throw py::value_error(*invalid);
+  return definition;
 }
 
 std::string study_json(const std::string& text, const std::string& directory, int jobs) {

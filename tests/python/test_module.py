@@ -131,6 +131,11 @@ def test_a_study_runs_its_cases_and_returns_their_rows():
     assert not rows[1]["converged"] and rows[1]["message"]  # one Newton iteration is not enough
     with pytest.raises(ValueError, match=r"record\[0\]\.quantity: unknown quantity"):
         tf.study({**definition, "record": [{"name": "x", "quantity": "stress"}]})
+    # A base model invalid where no parameter reaches: refused before any case runs.
+    broken = json.loads(json.dumps(definition))
+    broken["model"]["members"][0]["material"] = "stel"
+    with pytest.raises(ValueError, match=r'^model: members\[0\]\.material: unknown material "stel" \(in the first and the last case alike'):
+        tf.study(broken)
 
 
 def test_a_study_file_that_is_no_json_says_so_as_the_command_line_does(tmp_path):

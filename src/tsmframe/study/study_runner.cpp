@@ -40,6 +40,23 @@ json case_model(const Study& study, const std::vector<size_t>& choice) {
   return m;
 }
 
+std::optional<std::string> invalid_in_every_case(const Study& study) {
+  const auto refusal = [&](size_t index) -> std::optional<std::string> {
+    try {
+      io::read_model(case_model(study, case_choice(study, index)));
+    } catch (const io::InputError& e) {
+      return std::string(e.what());
+    } catch (const io::SystemError&) {  // memory a case may lack is its own row's to say
+    }
+    return std::nullopt;
+  };
+  const size_t cases = study.case_count();
+  if (cases == 0) return std::nullopt;
+  const std::optional<std::string> first = refusal(0);
+  if (!first || (cases > 1 && refusal(cases - 1) != first)) return std::nullopt;
+  return "model: " + *first + " (in the first and the last case alike: no parameter of the sweep mends it)";
+}
+
 namespace {
 
 /// A record's node and contact (an index into the model's contacts) in one case's model.

@@ -5,6 +5,7 @@
 // row too, never a crash of the sweep.
 
 #include <functional>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -54,5 +55,11 @@ std::vector<size_t> case_choice(const Study& study, size_t index);
 /// The case's model JSON: the base model with the case's assignments, in order. Throws
 /// io::InputError where an assignment's pointer names no place in the model so far (assignment.hpp).
 nlohmann::json case_model(const Study& study, const std::vector<size_t>& choice);
+
+/// Why no case can run: the first and the last case's models are refused at the same JSON path
+/// for the same reason (a fault of the base model no parameter reaches): "model: PATH: reason …"; nothing
+/// when either is valid or they differ. Read before the study runs, so that such a study is bad
+/// input (exit 2) rather than a million rows of it.
+std::optional<std::string> invalid_in_every_case(const Study& study);
 
 }  // namespace tsm::study
