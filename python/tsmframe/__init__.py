@@ -73,14 +73,16 @@ class Model:
         return self
 
     def member(self, start, end, material, section, divisions=1, element="euler-bernoulli", arc=None, release=None,
-               load=None, pressure=None, end_springs=None):
+               load=None, pressure=None, end_springs=None, foundation=None):
         """A straight member (or an arc: arc=(centre_x, centre_y, sweep_radians), or the model file's
         {"center": [x, y], "sweep": s}) of `divisions` elements;
         release: "start", "end" or "both" puts a hinge (no moment) at that end; load=(fx, fy): a
         distributed load, force per unit length in global directions; pressure=p: a follower load
         per unit current length, normal to the deformed member, pushing from its left side (seen
         from start to end) to its right (load may also be the file's {"fx": …, "fy": …}); end_springs={"start": k, "end": k}: rotational springs
-        (semi-rigid connections, moment per radian) between the member's ends and their nodes."""
+        (semi-rigid connections, moment per radian) between the member's ends and their nodes;
+        foundation=k: an elastic (Winkler) foundation, force per length per unit deflection, normal to
+        the member as drawn."""
         entry = {"from": _ref(start), "to": _ref(end), "divisions": divisions, "element": element,
                  "material": material, "section": section}
         if arc is not None:  # (cx, cy, sweep) or the file's {"center": [cx, cy], "sweep": s}
@@ -95,7 +97,21 @@ class Model:
             entry["load"].update(dict(load) if isinstance(load, dict) else {"fx": load[0], "fy": load[1]})
         if pressure is not None:
             entry["load"]["pressure"] = pressure
+        if foundation is not None:
+            entry["foundation"] = foundation
         self._doc["members"].append(entry)
+        return self
+
+    def spring(self, node, kx=None, ky=None, kr=None, k=None, direction=None):
+        """Linear springs from a node to the ground: kx, ky (force per length along x, y), kr (moment
+        per radian), or k along direction=(dx, dy)."""
+        entry = {"node": _ref(node)}
+        for key, value in (("kx", kx), ("ky", ky), ("kr", kr), ("k", k)):
+            if value is not None:
+                entry[key] = value
+        if direction is not None:
+            entry["direction"] = list(direction)
+        self._doc.setdefault("springs", []).append(entry)
         return self
 
     def support(self, node, type=None, fix=None):

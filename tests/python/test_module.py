@@ -242,6 +242,23 @@ def test_stages_built_in_code_hold_what_earlier_stages_applied():
         cantilever().load(2, fy=1.0).stage("late")
 
 
+def test_springs_and_a_foundation_built_in_code():
+    # A cantilever tip on a spring twice its own stiffness takes two thirds of the load; a beam
+    # on a foundation (k) under its own load w per length sinks w/k away from its ends.
+    m = tf.Model("tip on a spring").material("s", E=2e11).section("x", A=1e-2, I=1e-4)
+    k = 2 * 3 * 2e11 * 1e-4 / 4.0 ** 3
+    m.node(1, 0, 0).node(2, 4, 0).member(1, 2, "s", "x", divisions=8).support(1, "fixed").spring(2, ky=k).load(2, fy=-1e3)
+    r = tf.run(m)
+    assert r.ok, r.message
+    assert r.displacement(2)[1] == pytest.approx(-1e3 / (1.5 * k), rel=1e-6)
+    b = tf.Model("beam on a foundation").material("s", E=2e11).section("x", A=1e-2, I=1e-4)
+    b.node(1, 0, 0).node(2, 40, 0).member(1, 2, "s", "x", divisions=80, load=(0.0, -1e3), foundation=1e8).support(1, fix=["ux"])
+    r = tf.run(b)
+    assert r.ok, r.message
+    middle = r.displacements[-1][list(r.node_xy[:, 0]).index(20.0)]  # 20 decay lengths from either end
+    assert middle[1] == pytest.approx(-1e3 / 1e8, rel=1e-6)
+
+
 def test_a_run_goes_on_from_a_kept_step_of_an_earlier_one(tmp_path):
     # tf.run(m, start=result, step=k) is the CLI's --from: the steps after k, bit for bit.
     m = tf.Model("elastica").material("m", E=1.0, G=0.5).section("s", A=1e4, I=1.0)

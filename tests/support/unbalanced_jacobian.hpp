@@ -1,5 +1,5 @@
 #pragma once
-// ∂(internal force − λ · reference load)/∂D over the free equations by central differences, for
+// ∂(internal force − λ · reference load − dead load)/∂D over the free equations by central differences, for
 // the tests of tangents whose loads turn with the structure (follower loads): the Jacobian the
 // assembled tangent with its rank-one terms must equal.
 
@@ -26,8 +26,11 @@ inline Eigen::MatrixXd unbalanced_force_jacobian(assembly::GlobalSystem& system,
     std::vector<double> rp = rotations, rm = rotations;
     system.evaluate(plus, rp, false, ep);
     system.evaluate(minus, rm, false, em);
-    const Eigen::VectorXd fp = ep.internal_force - lambda * ep.reference_load;
-    const Eigen::VectorXd fm = em.internal_force - lambda * em.reference_load;
+    // An evaluation leaves the reference load empty when no load turns (it is the model's then).
+    const Eigen::VectorXd& model_load = system.model().reference_load;
+    Eigen::VectorXd fp = ep.internal_force - lambda * (ep.reference_load.size() > 0 ? ep.reference_load : model_load);
+    Eigen::VectorXd fm = em.internal_force - lambda * (em.reference_load.size() > 0 ? em.reference_load : model_load);
+    if (ep.dead_load.size() > 0) fp -= ep.dead_load, fm -= em.dead_load;  // an earlier stage's follower loads
     for (int r = 0; r < n; ++r) J(r, c) = (fp[dofs.dof(r)] - fm[dofs.dof(r)]) / (2 * h);
   }
   return J;

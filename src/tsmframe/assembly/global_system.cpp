@@ -22,7 +22,7 @@ std::array<int, 6> element_dofs(int start, int end) {
 }  // namespace
 
 GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs)
-    : follower_loads_(model, dofs), model_(model), dofs_(dofs) {
+    : follower_loads_(model, dofs), springs_(model, dofs), model_(model), dofs_(dofs) {
   const int n_elements = static_cast<int>(model.elements.size());
   const int n_blocks = dofs.block_count();
   // Elements in the tangent's memory order (by the smaller block of their two nodes), cut into
@@ -380,6 +380,11 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
       chunk_largest_end_rotation_[chunk] = largest;
     });
   }
+  if (!springs_.empty()) {  // after the elements' first writes, before the contacts, as in evaluate_contact_change
+    springs_.add_forces(displacements, nullptr, out.internal_force);
+    if (with_tangent)
+      springs_.add_blocks(nullptr, out.prescribed_coupling, [&](int i, int j, const Eigen::Matrix3d& k) { add_block(i, j, k); });
+  }
   if (!follower_loads_.empty()) {  // before the contacts and the masks, as in evaluate_contact_change
     follower_loads_.reference_load(displacements, out.reference_load);
     if (follower_loads_.has_dead()) follower_loads_.dead_load(displacements, out.dead_load);
@@ -461,6 +466,10 @@ void GlobalSystem::evaluate_contact_change(const Eigen::VectorXd& displacements,
   // The re-evaluated elements formed their (i, j) blocks anew: their follower loads' coupling
   // joins them again, in the same order as in evaluate() (after the elements, before contacts).
   follower_loads_.couplings(load_factor_, &contact_node_, [&](int i, int j, const Eigen::Matrix3d& k) { add_block(i, j, k); });
+  if (!springs_.empty()) {  // and the springs at those nodes
+    springs_.add_forces(displacements, &contact_node_, out.internal_force);
+    springs_.add_blocks(&contact_node_, out.prescribed_coupling, [&](int i, int j, const Eigen::Matrix3d& k) { add_block(i, j, k); });
+  }
   for (const int node : nodes) contact_node_[node] = 0;
   out.contacts.clear();
   contact_rank_one_.clear();

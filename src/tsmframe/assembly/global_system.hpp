@@ -15,6 +15,7 @@
 #include "tsmframe/assembly/contact_assembly.hpp"
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/assembly/follower_loads.hpp"
+#include "tsmframe/assembly/nodal_springs.hpp"
 #include "tsmframe/assembly/rounding_floor.hpp"
 #include "tsmframe/contact/contact_set.hpp"
 #include "tsmframe/element/beam_element.hpp"
@@ -144,6 +145,7 @@ class GlobalSystem {
   void evaluate_contact(const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
                         const std::vector<double>& previous_rotations, bool with_tangent, Evaluation& out);
   FollowerLoads follower_loads_;                    ///< the members' pressure (assembly/follower_loads)
+  NodalSprings springs_;                            ///< springs to the ground (assembly/nodal_springs)
   std::vector<linalg::RankOne> follower_rank_one_;  ///< follower_rank_one()
   double load_factor_ = 0.0;                        ///< set_load_factor
 

@@ -62,7 +62,7 @@ class Reader {
   Model read() {
     expect_object(doc_, "(document)");
     check_keys(doc_, "", {"$schema", "format", "title", "units", "materials", "sections", "gravity", "nodes", "members",
-                          "supports", "loads", "prescribed", "contacts", "analysis", "stages"});
+                          "supports", "springs", "loads", "prescribed", "contacts", "analysis", "stages"});
     if (doc_.contains("stages")) refuse_unstaged_keys(doc_);
     read_header();
     sections_.emplace(doc_);
@@ -73,6 +73,7 @@ class Reader {
     read_members(mesh);
     mesh.finish();
     read_supports();
+    read_springs();
     loads_.emplace(model_, [this](const json& value, const std::string& path) { return node_ref(value, path); });
     read_loads();
     read_prescribed();
@@ -206,7 +207,8 @@ class Reader {
   /// Member k's values, in the order they are checked.
   MemberInput read_member(const json& m, const std::string& path, size_t k) {
     expect_object(m, path);
-    check_keys(m, path, {"from", "to", "divisions", "element", "material", "section", "arc", "release", "end_springs", "load"});
+    check_keys(m, path, {"from", "to", "divisions", "element", "material", "section", "arc", "release", "end_springs", "load",
+                         "foundation"});
     MemberInput member;
     if (!m.contains("from")) fail(child(path, "from"), "missing (required)");
     if (!m.contains("to")) fail(child(path, "to"), "missing (required)");
@@ -235,6 +237,7 @@ class Reader {
       connected_members_.insert(static_cast<int>(k));
     }
     if (m.contains("arc")) member.arc = read_arc(m["arc"], child(path, "arc"));
+    if (auto k = optional_number(m, "foundation", path)) member.foundation = positive(*k, child(path, "foundation"));
     return member;
   }
 
@@ -266,6 +269,35 @@ class Reader {
         else fail(child(path, "type"), "unknown support type " + quote_text(type) + " (expected fixed, pinned, roller-x or roller-y)");
       }
       for (int dof : fixed) model_.constrained[dofs_per_node * node + dof] = true;
+    }
+  }
+
+  /// "springs": linear springs to the ground at nodes — kx, ky, kr (along x, y, about the
+  /// rotation) or k along a "direction" [dx, dy] — each a NodalSpring.
+  void read_springs() {
+    if (!doc_.contains("springs")) return;
+    const json& springs = doc_["springs"];
+    expect_array(springs, "springs");
+    for (size_t k = 0; k < springs.size(); ++k) {
+      const std::string path = child("springs", k);
+      const json& s = springs[k];
+      expect_object(s, path);
+      check_keys(s, path, {"node", "kx", "ky", "kr", "k", "direction"});
+      const int node = required_node(s, path);
+      if (s.contains("k") != s.contains("direction")) fail(path, "give \"k\" with a \"direction\" [dx, dy], or kx, ky, kr");
+      const size_t before = model_.springs.size();
+      const auto add = [&](const char* key, NodalSpring::Kind kind, const Eigen::Vector2d& direction) {
+        if (auto k = optional_number(s, key, path)) model_.springs.push_back({node, kind, direction, positive(*k, child(path, key))});
+      };
+      add("kx", NodalSpring::Kind::translation, Eigen::Vector2d::UnitX());
+      add("ky", NodalSpring::Kind::translation, Eigen::Vector2d::UnitY());
+      add("kr", NodalSpring::Kind::rotation, Eigen::Vector2d::UnitX());
+      if (s.contains("direction")) {
+        const Eigen::Vector2d d = point(s["direction"], child(path, "direction"));
+        if (!(d.norm() > 0.0)) fail(child(path, "direction"), "must not be [0, 0]");
+        add("k", NodalSpring::Kind::translation, d.normalized());
+      }
+      if (model_.springs.size() == before) fail(path, "give kx, ky, kr, or k with a direction");
     }
   }
 

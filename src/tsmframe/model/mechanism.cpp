@@ -87,6 +87,27 @@ void members_by_root(Parts& parts) {
     if (parts.held[k]) parts.members[parts.root(k)].push_back(k);
 }
 
+/// Whether the springs at node k hold each dof its supports leave free: the free translations'
+/// directions spanned by translation springs, a free rotation by a rotation spring.
+bool held_by_springs(const Model& model, int k) {
+  Eigen::Matrix2d spanned = Eigen::Matrix2d::Zero();
+  bool rotation = false, any = false;
+  for (const NodalSpring& s : model.springs) {
+    if (s.node != k) continue;
+    any = true;
+    if (s.kind == NodalSpring::Kind::rotation) rotation = true;
+    else spanned += s.direction * s.direction.transpose();
+  }
+  if (!any) return false;
+  for (const int dof : {ux, uy})
+    if (!model.constrained[dofs_per_node * k + dof] && !model.constrained[dofs_per_node * k + 1 - dof] &&
+        std::abs(spanned.determinant()) < 1e-12)
+      return false;  // both free: the springs must span the plane
+    else if (!model.constrained[dofs_per_node * k + dof] && spanned(dof, dof) < 1e-12)
+      return false;
+  return rotation || model.constrained[dofs_per_node * k + rz];
+}
+
 /// The first node no element holds with a dof its supports leave free, named with that dof, or
 /// none. A contact node resting on a beam as drawn is held by it along the normal there: enough
 /// if that is its one free translation's direction, in part (a load riding on a beam: ux
@@ -101,6 +122,7 @@ std::optional<std::string> unheld_node(const Model& model, const std::vector<boo
     int free_translations = 0, free_dof = -1;
     for (const int dof : {ux, uy})
       if (!model.constrained[dofs_per_node * k + dof]) ++free_translations, free_dof = dof;
+    if (held_by_springs(model, k)) continue;
     if (resting_contacts_hold && contact_node && free_translations == 1 && model.constrained[dofs_per_node * k + rz])
       if (const auto r = resting_contact(model, *spec); r && std::abs(r->normal[free_dof]) > 1e-6) continue;
     for (int dof = 0; dof < dofs_per_node; ++dof)
@@ -138,7 +160,13 @@ std::vector<Touch> resting_touches(const Model& model, Parts& parts, bool restin
   return touches;
 }
 
-using Resting = std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>;  // (point, normal) of contacts holding a part
+/// What holds a part beside its supports: a contact resting on it, or a translation spring, along
+/// `normal` at `point`; a rotation spring (`rotation`: it holds the part's rotation alone).
+struct Restraint {
+  Eigen::Vector2d point, normal;
+  bool rotation = false;
+};
+using Resting = std::vector<Restraint>;
 
 /// The part's rigid-body modes against its supports: the Gram matrix of the constraint rows
 /// (translation x, y; rotation about the centre, scaled by the part's extent so the columns are
@@ -170,9 +198,10 @@ Modes modes_of(const Model& model, const std::vector<char>& hinge, const std::ve
     for (int dof = 0; dof < dofs_per_node; ++dof)
       if (model.constrained[dofs_per_node * k + dof] && (dof != rz || !hinge[k])) gram += rows[dof] * rows[dof].transpose();
   }
-  for (const auto& [point, normal] : resting) {
-    const Eigen::Vector2d p = (point - m.centre) / m.extent;
-    const Eigen::Vector3d row(normal.x(), normal.y(), -normal.x() * p.y() + normal.y() * p.x());
+  for (const Restraint& r : resting) {
+    const Eigen::Vector2d p = (r.point - m.centre) / m.extent;
+    const Eigen::Vector3d row = r.rotation ? Eigen::Vector3d(0.0, 0.0, 1.0)
+                                           : Eigen::Vector3d(r.normal.x(), r.normal.y(), -r.normal.x() * p.y() + r.normal.y() * p.x());
     gram += row * row.transpose();
   }
   m.eig.compute(gram);
@@ -215,6 +244,10 @@ bool pass_touches(const std::vector<Touch>& touches, std::vector<char>& used, Ho
 Holding hold_parts(const Model& model, const std::vector<char>& hinge, Parts& parts, const std::vector<Touch>& touches) {
   const int n = model.node_count();
   Holding holding{std::vector<Resting>(n), std::vector<char>(n, 0)};
+  for (const NodalSpring& s : model.springs)  // a spring holds its node's part as a support would
+    if (parts.held[s.node] && !(s.kind == NodalSpring::Kind::rotation && hinge[s.node]))
+      holding.resting[parts.root(s.node)].push_back(
+          {model.nodes[s.node].position, s.direction, s.kind == NodalSpring::Kind::rotation});
   std::vector<char> used(touches.size(), 0);
   for (bool changed = true; changed;) {
     changed = pass_touches(touches, used, holding);

@@ -99,6 +99,12 @@ void MemberMesh::add(const MemberInput& member) {
       const double length = (model_.nodes[e.end].position - model_.nodes[e.start].position).norm();
       element_loads_.push_back({e.start, e.end, member.load.x() * length / 2.0, member.load.y() * length / 2.0});
     }
+    if (member.foundation > 0.0) {  // k per unit length along the drawn element, half to each end, along its normal
+      const Eigen::Vector2d chord = model_.nodes[e.end].position - model_.nodes[e.start].position;
+      const Eigen::Vector2d normal = Eigen::Vector2d(-chord.y(), chord.x()).normalized();
+      const double half = member.foundation * chord.norm() / 2.0;
+      for (const int node : {e.start, e.end}) model_.springs.push_back({node, NodalSpring::Kind::translation, normal, half});
+    }
     if (loaded && member.divisions >= 2 && d == member.divisions / 2) loaded_middles_.push_back(current);
     previous = current;
   }

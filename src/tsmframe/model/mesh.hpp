@@ -35,6 +35,9 @@ struct MemberInput {
   double flexibility_from = 0.0, flexibility_to = 0.0;    ///< end springs' 1/k (MemberExtras), 0: rigid
   Eigen::Vector2d load = Eigen::Vector2d::Zero();         ///< distributed, per unit length, global x and y
   double pressure = 0.0;                                  ///< follower load (MemberExtras)
+  /// An elastic (Winkler) foundation's stiffness per unit length (0: none): each element gets
+  /// springs of k l/2 at its ends along its normal as drawn (Model::springs).
+  double foundation = 0.0;
 };
 
 /// A member whose geometry cannot be meshed. `value` names the member's value at fault, for the

@@ -130,6 +130,15 @@ struct FollowerForce {
   bool dead = false;
 };
 
+/// A linear spring from a node to the ground (docs/format.md, "springs"): along a fixed unit
+/// direction (a translation spring: force −k d (d·u)) or about the node's rotation (−k θ).
+struct NodalSpring {
+  int node = 0;  ///< node index
+  enum class Kind { translation, rotation } kind = Kind::translation;
+  Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  ///< unit; translation springs
+  double stiffness = 0.0;                                ///< > 0: force per length, or moment per radian
+};
+
 struct OutputSelection {
   enum class Kind { all, last, every } kind = Kind::all;
   int every = 1;
@@ -198,6 +207,7 @@ struct Model {
   /// unloaded state). The constrained dofs stand there at λ = 0.
   Eigen::VectorXd start_displacements;
   std::vector<ContactSpec> contacts;
+  std::vector<NodalSpring> springs;
   AnalysisSettings analysis;
   /// A staged analysis (empty: one stage, the loads and control above). The members' loads,
   /// pressures and self-weight (reference_load, MemberExtras) are the first stage's, with its own.
