@@ -17,7 +17,9 @@ inline std::vector<std::string> format_words() {
       "euler-bernoulli", "material", "section", "arc", "center", "sweep", "release", "start", "end", "both",
       "end_springs", "load", "fx", "fy", "mz", "pressure", "supports", "node", "fix", "type", "fixed", "pinned",
       "roller-x", "roller-y", "ux", "uy", "rz", "loads", "prescribed", "contacts", "element", "frame", "chord",
-      "cantilever", "gap", "edge", "max_stiffness_ratio", "sliding_tangent", "all", "extra",
+      "cantilever", "gap", "edge", "max_stiffness_ratio", "sliding_tangent", "all", "extra", "normal", "deflected",
+      "between", "follower", "gravity", "density", "springs", "kx", "ky", "kr", "k", "direction", "foundation",
+      "stages", "increment",
       // analysis
       "analysis", "control", "steps", "path", "displacement", "target", "arc-length", "initial_increment",
       "min_increment", "max_increment", "max_steps", "until", "value", "load_factor", "tolerance", "max_iterations",

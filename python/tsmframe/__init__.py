@@ -139,6 +139,15 @@ class Model:
         self._applied("loads").append(entry)
         return self
 
+    def load_along(self, member, at, fx=0.0, fy=0.0, mz=0.0, follower=False):
+        """A point load along a member (index, in the order added), at a fraction 0 < at < 1 of its
+        length from its start: the mesh puts a node there."""
+        entry = {"member": int(member), "at": at, "fx": fx, "fy": fy, "mz": mz}
+        if follower:
+            entry["follower"] = True
+        self._applied("loads").append(entry)
+        return self
+
     def prescribe(self, node, increment=False, **dofs):
         """Prescribed displacements reached at λ = 1, e.g. prescribe(100, uy=2.0); in a stage, the
         values are where the dofs end (increment=True: by how much they move in the stage)."""

@@ -257,6 +257,13 @@ def test_springs_and_a_foundation_built_in_code():
     assert r.ok, r.message
     middle = r.displacements[-1][list(r.node_xy[:, 0]).index(20.0)]  # 20 decay lengths from either end
     assert middle[1] == pytest.approx(-1e3 / 1e8, rel=1e-6)
+    # A point load along a member: the simply supported beam's P a²b²/3EIL under it.
+    s = tf.Model("off-node load").material("s", E=2e11).section("x", A=1e-2, I=1e-4)
+    s.node(1, 0, 0).node(2, 4, 0).member(1, 2, "s", "x", divisions=4).support(1, "pinned").support(2, "roller-x")
+    r = tf.run(s.load_along(0, 0.3, fy=-1e3))
+    assert r.ok, r.message
+    under = r.displacements[-1][list(np.round(r.node_xy[:, 0], 12)).index(1.2)]
+    assert under[1] == pytest.approx(-1e3 * 1.2 ** 2 * 2.8 ** 2 / (3 * 2e11 * 1e-4 * 4), rel=1e-6)
 
 
 def test_a_run_goes_on_from_a_kept_step_of_an_earlier_one(tmp_path):

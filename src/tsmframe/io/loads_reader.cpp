@@ -1,5 +1,6 @@
 #include "tsmframe/io/loads_reader.hpp"
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "tsmframe/io/input_error.hpp"
@@ -18,9 +19,8 @@ void LoadsReader::read_loads(const json& loads, const std::string& lpath, Eigen:
     const std::string path = child(lpath, k);
     const json& l = loads[k];
     expect_object(l, path);
-    check_keys(l, path, {"node", "fx", "fy", "mz", "follower"});
-    if (!l.contains("node")) fail(child(path, "node"), "missing (required)");
-    const int node = node_(l["node"], child(path, "node"));
+    check_keys(l, path, {"node", "member", "at", "fx", "fy", "mz", "follower"});
+    const int node = load_node(l, path);
     const bool follower = l.contains("follower") && boolean(l["follower"], child(path, "follower"));
     const char* keys[3] = {"fx", "fy", "mz"};
     Eigen::Vector3d value = Eigen::Vector3d::Zero();
@@ -34,6 +34,16 @@ void LoadsReader::read_loads(const json& loads, const std::string& lpath, Eigen:
     load[dofs_per_node * node + rz] += value[rz];  // a moment turns with nothing
     if ((value.array() != 0.0).any()) loaded_.insert(node);
   }
+}
+
+/// A load's node: given ("node"), or a member's station ("member", "at": member_stations).
+int LoadsReader::load_node(const json& l, const std::string& path) const {
+  if (l.contains("node") && (l.contains("member") || l.contains("at"))) fail(path, "give \"node\", or \"member\" and \"at\", not both");
+  if (l.contains("node")) return node_(l["node"], child(path, "node"));
+  if (!l.contains("member") && !l.contains("at")) fail(child(path, "node"), "missing (required, or give \"member\" and \"at\")");
+  const int node = station_(static_cast<int>(integer(l.at("member"), child(path, "member"))), number(l.at("at"), child(path, "at")));
+  if (node < 0) fail(path, "no node at that station");  // member_stations made one for every entry it read
+  return node;
 }
 
 /// A force that turns with its node ("follower": true): it needs a node an element end turns
@@ -100,6 +110,43 @@ std::vector<Stage> LoadsReader::read_stages(const json& stages, const OutputSele
     read.push_back(std::move(stage));
   }
   return read;
+}
+
+namespace {
+
+/// One loads array's stations into `stations`.
+void add_stations(const json& loads, const std::string& lpath, std::vector<std::vector<double>>& stations) {
+  if (!loads.is_array()) return;
+  for (size_t k = 0; k < loads.size(); ++k) {
+    const json& l = loads[k];
+    if (!l.is_object() || (!l.contains("member") && !l.contains("at"))) continue;
+    const std::string path = child(lpath, k);
+    if (!l.contains("member")) fail(child(path, "member"), "missing (a load at \"at\" names its member)");
+    if (!l.contains("at")) fail(child(path, "at"), "missing (where along the member, a fraction of its length: 0 < at < 1)");
+    const long member = integer(l["member"], child(path, "member"));
+    if (member < 0 || member >= static_cast<long>(stations.size()))
+      fail(child(path, "member"), "unknown member " + std::to_string(member) + " (members are numbered 0 to " +
+                                      std::to_string(static_cast<long>(stations.size()) - 1) + " in file order)");
+    const double at = number(l["at"], child(path, "at"));
+    if (!(at > 0.0 && at < 1.0)) fail(child(path, "at"), "must lie between 0 and 1 (a fraction of the member's length from its \"from\" node)");
+    stations[member].push_back(at);
+  }
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> member_stations(const json& document, size_t members) {
+  std::vector<std::vector<double>> stations(members);
+  if (document.contains("loads")) add_stations(document["loads"], "loads", stations);
+  if (document.contains("stages") && document["stages"].is_array())
+    for (size_t s = 0; s < document["stages"].size(); ++s)
+      if (document["stages"][s].is_object() && document["stages"][s].contains("loads"))
+        add_stations(document["stages"][s]["loads"], child(child("stages", s), "loads"), stations);
+  for (std::vector<double>& list : stations) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return stations;
 }
 
 void refuse_unstaged_keys(const json& document) {

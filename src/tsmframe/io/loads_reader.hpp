@@ -4,6 +4,7 @@
 // prescribed displacements, control and output).
 
 #include <Eigen/Core>
+#include <functional>
 #include <nlohmann/json_fwd.hpp>
 #include <set>
 #include <string>
@@ -19,7 +20,11 @@ namespace tsm::io {
 /// InputError.
 class LoadsReader {
  public:
-  LoadsReader(const Model& model, NodeResolver node) : model_(model), node_(std::move(node)) {}
+  /// The node at a member's station (a point load's "member" and "at"; mesh.hpp), −1: none.
+  using StationResolver = std::function<int(int member, double at)>;
+
+  LoadsReader(const Model& model, NodeResolver node, StationResolver station)
+      : model_(model), node_(std::move(node)), station_(std::move(station)) {}
 
   /// A "loads" array at `path`: nodal forces and moments into `load` (per dof), follower forces
   /// into `followers`.
@@ -39,12 +44,19 @@ class LoadsReader {
 
  private:
   FollowerForce follower_force(const std::string& path, int node, const Eigen::Vector2d& force);
+  int load_node(const nlohmann::json& l, const std::string& path) const;
 
   const Model& model_;
   NodeResolver node_;
+  StationResolver station_;
   std::vector<char> hinge_, turned_;  ///< hinge_nodes and turned_nodes, once a load asks
   std::set<int> loaded_, prescribed_;
 };
+
+/// The stations of each member's point loads ("member" and "at" in the loads of `document` and
+/// of its stages), checked, ascending and distinct, per member (of `members`). A load entry not
+/// well formed enough to tell is left to read_loads.
+std::vector<std::vector<double>> member_stations(const nlohmann::json& document, size_t members);
 
 /// With "stages", the loads, prescribed displacements and control belong to the stages: refuses
 /// them at the document's top level.

@@ -74,7 +74,9 @@ class Reader {
     mesh.finish();
     read_supports();
     read_springs();
-    loads_.emplace(model_, [this](const json& value, const std::string& path) { return node_ref(value, path); });
+    loads_.emplace(
+        model_, [this](const json& value, const std::string& path) { return node_ref(value, path); },
+        [&mesh](int member, double at) { return mesh.station_node(member, at); });
     read_loads();
     read_prescribed();
     fix_free_rotations(model_);  // a moment on a hinge was refused with its load
@@ -181,9 +183,11 @@ class Reader {
     if (!doc_.contains("members")) fail("members", "missing (required)");
     const json& members = doc_["members"];
     expect_array(members, "members");
+    const std::vector<std::vector<double>> stations = member_stations(doc_, members.size());
     for (size_t k = 0; k < members.size(); ++k) {
       const std::string path = child("members", k);
-      const MemberInput member = read_member(members[k], path, k);
+      MemberInput member = read_member(members[k], path, k);
+      member.stations = stations[k];
       try {
         mesh.add(member);
       } catch (const MeshError& e) {

@@ -67,32 +67,73 @@ std::vector<Eigen::Vector2d> MemberMesh::interior_points(const MemberInput& memb
   return points;
 }
 
+Eigen::Vector2d MemberMesh::point_at(const MemberInput& member, double fraction) const {
+  const Eigen::Vector2d a = model_.nodes[member.from].position, b = model_.nodes[member.to].position;
+  if (!member.arc) return a + (b - a) * fraction;
+  const Eigen::Vector2d& centre = member.arc->centre;
+  const double start = std::atan2(a.y() - centre.y(), a.x() - centre.x()), angle = start + member.arc->sweep * fraction;
+  return centre + (a - centre).norm() * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+}
+
+MemberMesh::Interior MemberMesh::interior(const MemberInput& member) const {
+  constexpr double snap = 1e-6;  // a station this close to a division point (of the length) is that point
+  const std::vector<Eigen::Vector2d> divisions = interior_points(member);
+  const std::vector<double>& stations = member.stations;
+  Interior in;
+  size_t s = 0;
+  for (; s < stations.size() && stations[s] <= snap; ++s) in.station_at.push_back({stations[s], -2});
+  for (long d = 1; d <= member.divisions; ++d) {
+    const double f = static_cast<double>(d) / member.divisions;
+    for (; s < stations.size() && stations[s] < f - snap; ++s) {  // a node of its own, between division points
+      in.station_at.push_back({stations[s], static_cast<int>(in.points.size())});
+      in.points.push_back(point_at(member, stations[s]));
+      in.division.push_back(0);
+    }
+    for (; s < stations.size() && stations[s] <= f + snap; ++s)
+      in.station_at.push_back({stations[s], d < member.divisions ? static_cast<int>(in.points.size()) : -1});
+    if (d == member.divisions) break;
+    in.points.push_back(divisions[d - 1]);
+    in.division.push_back(d);
+  }
+  return in;
+}
+
+int MemberMesh::station_node(int member, double fraction) const {
+  if (member < 0 || member >= static_cast<int>(station_nodes_.size())) return -1;
+  for (const auto& [f, node] : station_nodes_[member])
+    if (f == fraction) return node;
+  return -1;
+}
+
 void MemberMesh::add(const MemberInput& member) {
   const int index = model_.member_count;
   if (member.pressure != 0.0 || member.flexibility_from > 0.0 || member.flexibility_to > 0.0) {
     model_.member_extras.resize(index + 1);
     model_.member_extras[index] = {member.pressure, member.flexibility_from, member.flexibility_to};
   }
-  const std::vector<Eigen::Vector2d> interior = interior_points(member);
+  const Interior interior = this->interior(member);
   const bool loaded = member.load.x() != 0.0 || member.load.y() != 0.0 || member.pressure != 0.0;
+  const long elements = static_cast<long>(interior.points.size()) + 1;
+  const int first_node = model_.node_count();
   int previous = member.from;
-  for (long d = 1; d <= member.divisions; ++d) {
+  for (long q = 1; q <= elements; ++q) {
     int current = member.to;
-    if (d < member.divisions) {
+    if (q < elements) {
       if (next_id_ == std::numeric_limits<int>::max()) throw MeshError(MeshError::Value::member, "node ids overflow");
-      model_.nodes.push_back({next_id_++, interior[d - 1]});
+      model_.nodes.push_back({next_id_++, interior.points[q - 1]});
       current = model_.node_count() - 1;
     }
+    const long d = q < elements ? interior.division[q - 1] : member.divisions;  // 0: a station's node
     Element e;
     e.id = static_cast<int>(model_.elements.size()) + 1;
     e.start = previous;
     e.end = current;
     e.member = index;
     e.theory = member.theory;
-    e.release_start = member.release_start && d == 1;
-    e.release_end = member.release_end && d == member.divisions;
-    e.member_start = d == 1;
-    e.member_end = d == member.divisions;
+    e.release_start = member.release_start && q == 1;
+    e.release_end = member.release_end && q == elements;
+    e.member_start = q == 1;
+    e.member_end = q == elements;
     e.section = member.section;
     model_.elements.push_back(e);
     if (member.load.x() != 0.0 || member.load.y() != 0.0) {  // per unit length along the drawn element, half to each end
@@ -108,6 +149,9 @@ void MemberMesh::add(const MemberInput& member) {
     if (loaded && member.divisions >= 2 && d == member.divisions / 2) loaded_middles_.push_back(current);
     previous = current;
   }
+  station_nodes_.resize(index + 1);
+  for (const auto& [fraction, at] : interior.station_at)
+    station_nodes_[index].push_back({fraction, at == -2 ? member.from : at == -1 ? member.to : first_node + at});
   ++model_.member_count;
 }
 

@@ -38,6 +38,10 @@ struct MemberInput {
   /// An elastic (Winkler) foundation's stiffness per unit length (0: none): each element gets
   /// springs of k l/2 at its ends along its normal as drawn (Model::springs).
   double foundation = 0.0;
+  /// Where point loads act along it (loads' "member" and "at"): fractions of its length (of its
+  /// sweep, on an arc) in (0, 1), ascending; each is a node (a division point, or one added
+  /// between, splitting that element in two).
+  std::vector<double> stations;
 };
 
 /// A member whose geometry cannot be meshed. `value` names the member's value at fault, for the
@@ -67,6 +71,8 @@ class MemberMesh {
   /// Per member with a distributed load or pressure, in member order: its middle node (a
   /// generated one; none for a single division).
   const std::vector<int>& loaded_middles() const { return loaded_middles_; }
+  /// The node at a station of a member (MemberInput::stations), or −1 if it has none there.
+  int station_node(int member, double fraction) const;
 
  private:
   /// An element's share of its member's distributed load, at each of its two nodes.
@@ -75,11 +81,22 @@ class MemberMesh {
     double fx, fy;
   };
   std::vector<Eigen::Vector2d> interior_points(const MemberInput& member) const;
+  /// The member's point at a fraction of its length (its sweep, on an arc).
+  Eigen::Vector2d point_at(const MemberInput& member, double fraction) const;
+  /// Its interior nodes' points and fractions in order: the division points and the stations
+  /// between them; each station's node index offset (into this list) in `station_at`.
+  struct Interior {
+    std::vector<Eigen::Vector2d> points;
+    std::vector<long> division;                      ///< per point: its division d, 0 for a station's
+    std::vector<std::pair<double, int>> station_at;  ///< (fraction, index in points; −1: `to`, −2: `from`)
+  };
+  Interior interior(const MemberInput& member) const;
 
   Model& model_;
   int next_id_;
   std::vector<ElementLoad> element_loads_;
   std::vector<int> loaded_middles_;
+  std::vector<std::vector<std::pair<double, int>>> station_nodes_;  ///< per member: (fraction, node index)
 };
 
 /// Fixes the rotation of every node no element end turns with: a node no element holds (a rigid
