@@ -53,7 +53,7 @@ def moved_curves(results, rows):
     (a plate pushed at both ends), their sum. [(label, displacements, forces)], [] if none."""
     columns = [c for c in (rows[0].keys() if rows else []) if c[:3] in ("Rx_", "Ry_", "Mz_")]
     states = [s for s in results["steps"] if "displacements" in s and float(s["load_factor"]) != 0.0]
-    if not columns or not states:
+    if not columns or not states or "stage" in rows[0]:  # a staged run's λ starts again each stage
         return []
     last = states[-1]
     kind = {"Rx": 0, "Ry": 1, "Mz": 2}
@@ -91,6 +91,17 @@ def force_displacement(results, rows, plots):
     return True
 
 
+def stage_runs(rows):
+    """steps.csv's rows by stage, in order: [(stage, rows)] (one run of all rows without stages)."""
+    runs = []
+    for r in rows:
+        stage = r.get("stage", "1")
+        if not runs or runs[-1][0] != stage:
+            runs.append((stage, []))
+        runs[-1][1].append(r)
+    return runs or [("1", [])]
+
+
 def main(directory, shown=None):
     with open(os.path.join(directory, "results.json")) as f:
         results = json.load(f)
@@ -124,22 +135,26 @@ def main(directory, shown=None):
     translations = [c for c in columns if c[:2] != "rz"]
     rotations = [c for c in columns if c[:2] == "rz"]
     fig, ax = plt.subplots(figsize=(8, 5))
-    lam = [0.0] + [float(r["load_factor"]) for r in rows]
     # Rotations (radians) on an axis of their own, at the top, when there are translations too:
     # on one axis a frame's metres or millimetres squash them flat, or they squash the metres.
     rotation_ax = ax.twiny() if translations and rotations else ax
     lines = []
+    stages = stage_runs(rows)
     for i, c in enumerate(columns):  # colours by column: the second axis would restart the cycle
         on = rotation_ax if c in rotations else ax
-        style = "x--" if on is not ax else ".-"
-        lines += on.plot([0.0] + [float(r[c]) for r in rows], lam, style, ms=3, lw=1, color=f"C{i % 10}",
-                         label=f"{c[:2]} of node {c[3:]}")
+        start = 0.0
+        for k, (stage, stage_rows) in enumerate(stages):  # each stage from where the one before ended, at its λ = 0
+            style = ("x" if on is not ax else ".") + ("-", "--", ":", "-.")[k % 4]
+            label = f"{c[:2]} of node {c[3:]}" + (f", stage {stage}" if len(stages) > 1 else "")
+            lines += on.plot([start] + [float(r[c]) for r in stage_rows], [0.0] + [float(r["load_factor"]) for r in stage_rows],
+                             style, ms=3, lw=1, color=f"C{i % 10}", label=label)
+            start = float(stage_rows[-1][c])
     if rotation_ax is ax:
         ax.set_xlabel("rotation rz (rad)" if not translations else "displacement (ux, uy)")
     else:
         ax.set_xlabel("displacement (ux, uy), bottom axis")
         rotation_ax.set_xlabel("rotation rz (rad), top axis, dashed")
-    ax.set_ylabel("load factor λ")
+    ax.set_ylabel("load factor λ" + (" (each stage's own)" if len(stages) > 1 else ""))
     ax.grid(True, alpha=0.3)
     if columns:
         ax.legend(lines, [line.get_label() for line in lines], fontsize=8)

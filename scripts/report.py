@@ -196,6 +196,9 @@ def examples(out):
         converged = [s for s in steps if s["converged"]]
         summary = (f"{results['status']}: {len(converged)} steps, {sum(s['iterations'] for s in steps)} iterations"
                    + (f", λ = {converged[-1]['load_factor']:.4g} at the end" if converged else ""))
+        if results.get("stages"):  # a staged run: where each stage ended
+            summary += "; " + ", ".join(f"stage {s['stage']}{' (' + s['name'] + ')' if s['name'] else ''} to step {s['last_step']}"
+                                        for s in results["stages"])
         states = [s for s in steps if "displacements" in s]
         if len(states) > 6:
             states = [states[round(k * (len(states) - 1) / 5)] for k in range(6)]
