@@ -65,6 +65,10 @@ TEST(Restart, ALoadControlledElasticaGoesOnBitForBit) {
   expect_restart_equals_whole_run(cantilever({{"type", "load"}, {"steps", 8}}), 3);
   // A load path with legs (load, unload): the path parameter, not λ, says where it is.
   expect_restart_equals_whole_run(cantilever({{"type", "load"}, {"steps", 3}, {"path", {1.0, 0.25}}}), 4);
+  // Every second step kept: the restarted run keeps the same steps (numbered on, not from 1).
+  json every_second = cantilever({{"type", "load"}, {"steps", 8}});
+  every_second["analysis"]["output"] = 2;
+  expect_restart_equals_whole_run(every_second, 4);
 }
 
 TEST(Restart, ADisplacementControlledRunGoesOnBitForBit) {

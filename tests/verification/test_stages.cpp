@@ -167,6 +167,29 @@ TEST(Stages, AStageThatFailsKeepsTheStepsBeforeItAndSaysWhichStage) {
   EXPECT_EQ(r.stages[1].status, tsm::solver::Status::step_limit);
 }
 
+TEST(Stages, ADisplacementControlThatStartsAtItsTargetRunsNoStepAndSaysSo) {
+  // Stage 1 pulls the tip along the axis (uy stays 0); stage 2 asks uy to reach 0 — where it is;
+  // stage 3 goes on. A later stage's target may be 0 (the reader takes it: it starts elsewhere).
+  json m = cantilever();
+  m["stages"] = json::array({{{"loads", json::array({{{"node", 2}, {"fx", 0.1}}})}},
+                             {{"name", "idle"}, {"loads", json::array({{{"node", 2}, {"fy", 0.1}}})},
+                              {"control", {{"type", "displacement"}, {"node", 2}, {"dof", "uy"}, {"target", 0.0}}}},
+                             {{"loads", json::array({{{"node", 2}, {"fy", 0.1}}})}, {"control", load_control(2)}}});
+  tsm::Model model;
+  const tsm::solver::RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  ASSERT_EQ(r.steps.size(), 3u);
+  EXPECT_EQ(r.steps[1].step, 2);
+  EXPECT_EQ(r.steps[1].stage, 2);
+  ASSERT_EQ(r.notes.size(), 1u);
+  EXPECT_EQ(r.notes[0], "In stage 2 (\"idle\"): its displacement control starts at its target (uy of node 2 = 0): nothing to drive, no step run");
+  EXPECT_EQ(r.stages[1].last_step, 0);
+  // Stage 3 bends the cantilever under the tension stage 1 left: v = P/T (L − tanh(kL)/k), k = √(T/EI)
+  // (stage 2's load never applied: it ran no step).
+  const double k = std::sqrt(0.1), exact = (0.1 / 0.1) * (1.0 - std::tanh(k) / k);
+  EXPECT_NEAR(node_displacement(model, r.steps.back(), 2)[1] / exact, 1.0, 2e-3);
+}
+
 TEST(Stages, TheReaderRefusesWhatAStagedModelCannotMean) {
   json m = cantilever();
   m["stages"] = json::array({{{"loads", json::array({{{"node", 2}, {"fy", 1.0}}})}}});

@@ -50,7 +50,7 @@ void read_displacement_control(const json& c, const std::string& path, const Con
   if (!c.contains("dof")) fail(child(path, "dof"), "missing (required)");
   control.dof = dof_from_name(string(c["dof"], child(path, "dof")), child(path, "dof"));
   control.target = required_number(c, "target", path);
-  if (control.target == 0.0) fail(child(path, "target"), "must not be zero");
+  if (control.target == 0.0 && at.at_rest) fail(child(path, "target"), "must not be zero");
   if (at.constrained[dofs_per_node * control.node + control.dof])
     fail(child(path, "dof"), std::string("the controlled dof ") + dof_name(control.dof) + " of node " +
                                  std::to_string(model.nodes[control.node].id) + " is fixed or prescribed");

@@ -21,6 +21,9 @@ struct ControlContext {
   const Model& model;
   const std::vector<bool>& constrained;
   const NodeResolver& node;
+  /// The path starts from the unloaded state (a displacement control's target ≠ 0); false for a
+  /// later stage, which starts where the one before ended.
+  bool at_rest = true;
 };
 
 /// Reads a "control" object at `path` (a controlled or watched dof must be free). Throws InputError.

@@ -104,7 +104,7 @@ std::vector<Stage> LoadsReader::read_stages(const json& stages, const OutputSele
     if (!stage.load.any()) stage.load.resize(0);
     if (st.contains("prescribed")) stage.prescribed = read_prescribed(st["prescribed"], child(path, "prescribed"), true);
     for (const PrescribedTarget& p : stage.prescribed) constrained[p.dof] = true;
-    if (st.contains("control")) read_control(st["control"], child(path, "control"), {model_, constrained, node_}, stage.control);
+    if (st.contains("control")) read_control(st["control"], child(path, "control"), {model_, constrained, node_, k == 0}, stage.control);
     stage.output = output;
     if (st.contains("output")) read_output(st["output"], child(path, "output"), stage.output);
     read.push_back(std::move(stage));

@@ -10,9 +10,9 @@ RunResult run_analysis(const Model& model, const StepObserver& observer, const S
   State state;
   if (!from) return run_stage(model, state, observer, stop);
   state = from->state;
-  RunResult result = run_stage(model, state, numbered_observer(observer, from->step, 0), stop);
-  number_on(result, from->step);
-  return result;
+  Model restarted = model;
+  restarted.analysis.first_step = from->step + 1;  // numbered on from the kept step
+  return run_stage(restarted, state, observer, stop);
 }
 
 }  // namespace tsm::solver

@@ -276,4 +276,12 @@ std::string in_stage_text(const std::string& text, int stage, const std::string&
   return "In " + stage_name + ": " + text;
 }
 
+std::string control_at_target_text(const Model& stage) {
+  const Control& control = stage.analysis.control;
+  std::ostringstream os;
+  os << "its displacement control starts at its target (" << dof_name(control.dof) << " of node "
+     << stage.nodes[control.node].id << " = " << control.target << "): nothing to drive, no step run";
+  return os.str();
+}
+
 }  // namespace tsm::solver

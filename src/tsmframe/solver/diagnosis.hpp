@@ -19,6 +19,8 @@ std::string step_failure_text(const StepFailure& failure, const Model& model);
 std::string failed_step_text(const RunFailure& failure, const Model& model);
 /// The run's message: where it stopped, why, and what may help.
 std::string run_failure_text(const RunFailure& failure, const Model& model);
+/// A stage's displacement control that starts at its target: nothing to drive.
+std::string control_at_target_text(const Model& stage);
 /// A stage's sentence (its run's message or a note) said of that stage (`stage`: its index).
 std::string in_stage_text(const std::string& text, int stage, const std::string& name);
 

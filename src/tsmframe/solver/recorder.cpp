@@ -74,6 +74,7 @@ Recorder::Recorder(const Model& model, const TsmProblem& problem, const StepObse
 StepRecord Recorder::start(const NewtonOutcome& outcome, int cutbacks) const {
   StepRecord record;
   record.step = next_step();
+  record.stage = model_.analysis.stage;
   record.iterations = outcome.iterations;
   record.residual_norms = outcome.residual_norms;
   record.cutbacks = cutbacks;

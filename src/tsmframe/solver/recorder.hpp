@@ -23,7 +23,7 @@ class Recorder {
   Recorder(const Model& model, const TsmProblem& problem, const StepObserver& observer, RunResult& result,
            bool defer_forces = false);
 
-  int next_step() const { return static_cast<int>(result_.steps.size()) + 1; }
+  int next_step() const { return model_.analysis.first_step + static_cast<int>(result_.steps.size()); }
   /// A record for the outcome of one attempt.
   StepRecord start(const NewtonOutcome& outcome, int cutbacks) const;
   void converged(StepRecord record, const NewtonOutcome& outcome, const State& state);

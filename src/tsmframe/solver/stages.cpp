@@ -1,5 +1,7 @@
 #include "tsmframe/solver/stages.hpp"
 
+#include <optional>
+#include <string>
 #include <utility>
 
 #include "tsmframe/model/stage.hpp"
@@ -28,11 +30,17 @@ std::vector<std::pair<int, double>> stage_start_values(const Model& model, int s
   return values;
 }
 
+/// A stage whose displacement control starts at its target has no path: said of the stage.
+std::optional<std::string> nothing_to_drive(const Model& stage, int s, const std::string& name) {
+  const Control& control = stage.analysis.control;
+  if (control.type != ControlType::displacement || control.target != control.start) return std::nullopt;
+  return in_stage_text(control_at_target_text(stage), s, name);
+}
+
 /// Moves one stage's result into the whole run's (its steps already numbered on).
 void append_stage(RunResult& run, RunResult stage_result, int stage, const std::string& name, const StageStart& start,
                   const std::vector<std::pair<int, double>>& stage_start) {
   for (StepRecord& record : stage_result.steps) {
-    record.stage = stage;
     if (record.has_state) record.stage_start = stage_start, record.stage_load_factors = start.final_load_factors;
     run.steps.push_back(std::move(record));
   }
@@ -45,22 +53,6 @@ void append_stage(RunResult& run, RunResult stage_result, int stage, const std::
 }
 
 }  // namespace
-
-StepObserver numbered_observer(const StepObserver& observer, int steps_before, int stage) {
-  if (!observer) return {};
-  return [&observer, steps_before, stage](const StepRecord& record) {
-    StepRecord copy = record;
-    copy.step += steps_before;
-    copy.stage = stage;
-    observer(copy);
-  };
-}
-
-void number_on(RunResult& result, int steps_before) {
-  for (StepRecord& record : result.steps) record.step += steps_before;
-  for (LimitPoint& p : result.limit_points) p.step += steps_before;
-  for (CriticalPoint& p : result.critical_points) p.step += steps_before;
-}
 
 RunResult run_stages(const Model& model, const StepObserver& observer, const StopRequest* stop, const RestartPoint* from) {
   RunResult run;
@@ -76,10 +68,17 @@ RunResult run_stages(const Model& model, const StepObserver& observer, const Sto
     for (const auto& [dof, value] : from->stage_start) start.displacements[dof] = value;
   }
   for (int s = first; s < static_cast<int>(model.stages.size()); ++s) {
-    const Model stage = stage_model(model, s, start);
+    Model stage = stage_model(model, s, start);
+    stage.analysis.first_step = steps_before + 1;  // numbered on through the stages
+    stage.analysis.stage = s;
     if (s > first || !from) state.load_factor = state.path_parameter = 0.0;  // the stage's own λ starts at nil
-    RunResult result = run_stage(stage, state, numbered_observer(observer, steps_before, s), stop);
-    number_on(result, steps_before);
+    if (const std::optional<std::string> note = nothing_to_drive(stage, s, model.stages[s].name)) {
+      run.notes.push_back(*note);
+      run.stages.push_back({s, 0, 0.0, Status::converged});
+      start.final_load_factors.push_back(0.0);
+      continue;
+    }
+    RunResult result = run_stage(stage, state, observer, stop);
     const int last = last_converged_step(result);
     run.stages.push_back({s, last, state.load_factor, result.status});
     if (last > 0) steps_before = last;

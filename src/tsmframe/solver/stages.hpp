@@ -16,9 +16,5 @@ namespace tsm::solver {
 RunResult run_stages(const Model& model, const StepObserver& observer = {}, const StopRequest* stop = nullptr,
                      const RestartPoint* from = nullptr);
 
-/// The observer seeing each step numbered on from `steps_before`, in stage `stage`.
-StepObserver numbered_observer(const StepObserver& observer, int steps_before, int stage);
-/// A result's steps (and limit and critical points) numbered on from `steps_before`.
-void number_on(RunResult& result, int steps_before);
 
 }  // namespace tsm::solver
