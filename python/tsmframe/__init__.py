@@ -157,10 +157,11 @@ class Model:
         self._applied("prescribed").append(entry)
         return self
 
-    def stage(self, name="", control=None, steps=None, output=None):
+    def stage(self, name="", control=None, steps=None, output=None, contacts=None):
         """Starts a stage (docs/format.md, "Stages"): the load() and prescribe() calls after it are
         its own, scaled by its λ from 0; what earlier stages applied stays at its final level. The
-        members' loads and self-weight are the first stage's. control as in analysis(), or steps=N."""
+        members' loads and self-weight are the first stage's. control as in analysis(), or steps=N;
+        contacts: the indices of the contact() entries that exist in the stage (default: all)."""
         if control is not None and steps is not None:
             raise ValueError("stage: give control or steps, not both")
         if "stages" not in self._doc and (self._doc["loads"] or self._doc["prescribed"]):
@@ -174,6 +175,8 @@ class Model:
             entry["control"] = control
         if output is not None:
             entry["output"] = output
+        if contacts is not None:
+            entry["contacts"] = [int(c) for c in contacts]
         self._doc.setdefault("stages", []).append(entry)
         return self
 

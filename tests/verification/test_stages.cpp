@@ -144,6 +144,39 @@ TEST(Stages, ARollerPressedIntoACantileverThenSlidAlongItPushesAsTheClosedFormSa
   EXPECT_NEAR(node_displacement(model, r.steps.back(), 100)[0], 0.4, 1e-15);
 }
 
+TEST(Stages, AContactLeftOutOfAStageLetsGoAndComesBackWhereItsNodeThenIs) {
+  // Stage 1 presses a roller δ into a cantilever (EI 1) at a = 0.45; stage 2 leaves the contact
+  // out ("contacts": []) and moves the roller on down through where the beam was: the beam
+  // springs back straight. Stage 3 brings the contact back and lifts the roller 3δ: it meets the
+  // beam from below and lifts it δ, pushing 3EIδ/a³ up.
+  const double depth = 1e-3, a = 0.45;
+  json m = cantilever();
+  m["analysis"]["tolerance"] = 1e-10;
+  m["nodes"].push_back({{"id", 100}, {"x", a}, {"y", 0.0}});
+  m["contacts"] = json::array({{{"node", 100}, {"members", "all"}}});
+  m["stages"] = json::array(
+      {{{"name", "press"}, {"prescribed", json::array({{{"node", 100}, {"ux", 0.0}, {"uy", -depth}}})}, {"control", load_control(2)}},
+       {{"name", "away"}, {"contacts", json::array()}, {"prescribed", json::array({{{"node", 100}, {"uy", -2.0 * depth}}})}, {"control", load_control(2)}},
+       {{"name", "lift"}, {"contacts", {0}}, {"prescribed", json::array({{{"node", 100}, {"uy", 3.0 * depth}, {"increment", true}}})},
+        {"control", load_control(6)}}});
+  tsm::Model model;
+  const tsm::solver::RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  ASSERT_EQ(r.steps.size(), 10u);
+  EXPECT_GE(contact_of(r.steps[1]).element, 0);  // pressed
+  EXPECT_NEAR(contact_of(r.steps[1]).force, 3.0 * depth / (a * a * a), 1e-3 * 3.0 * depth / (a * a * a));
+  for (int k : {2, 3}) EXPECT_LT(contact_of(r.steps[k]).element, 0) << "step " << k + 1;  // left out
+  EXPECT_LT(node_displacement(model, r.steps[3], 2).head<2>().norm(), 1e-12);  // sprung back straight
+  const tsm::solver::StepRecord& last = r.steps.back();
+  ASSERT_GE(contact_of(last).element, 0);
+  EXPECT_NEAR(node_displacement(model, last, 100)[1], depth, 1e-15);
+  EXPECT_NEAR(contact_of(last).force, 3.0 * depth / (a * a * a), 2e-3 * 3.0 * depth / (a * a * a));
+  EXPECT_GT(node_displacement(model, last, 2)[1], 0.0);  // lifted from below
+  json bad = m;
+  bad["stages"][1]["contacts"] = {1};
+  EXPECT_NE(refusal(bad).find("stages[1].contacts[0]: no contacts entry 1"), std::string::npos) << refusal(bad);
+}
+
 TEST(Stages, AStageThatFailsKeepsTheStepsBeforeItAndSaysWhichStage) {
   // Stage 2's arc-length control runs out of steps long before its λ = 1 (status step-limit).
   json m = cantilever();

@@ -87,7 +87,28 @@ std::vector<PrescribedTarget> LoadsReader::read_prescribed(const json& prescribe
   return targets;
 }
 
-std::vector<Stage> LoadsReader::read_stages(const json& stages, const OutputSelection& output) {
+namespace {
+
+/// A stage's "contacts": the entries of the model's "contacts" that exist in it (indices), the
+/// others off.
+std::vector<char> contacts_off(const json& named, const std::string& path, const std::vector<int>& entries) {
+  expect_array(named, path);
+  const long count = static_cast<long>(entries.size()) - 1;
+  std::vector<char> off(entries.back(), 1);
+  for (size_t k = 0; k < named.size(); ++k) {
+    const long entry = integer(named[k], child(path, k));
+    if (entry < 0 || entry >= count)
+      fail(child(path, k), "no contacts entry " + std::to_string(entry) + " (the model's \"contacts\" has " +
+                                std::to_string(count) + (count == 1 ? " entry" : " entries") + ", numbered from 0)");
+    std::fill(off.begin() + entries[entry], off.begin() + entries[entry + 1], 0);
+  }
+  return off;
+}
+
+}  // namespace
+
+std::vector<Stage> LoadsReader::read_stages(const json& stages, const OutputSelection& output,
+                                            const std::vector<int>& contact_entries) {
   expect_array(stages, "stages");
   if (stages.empty() || stages.size() > 1000) fail("stages", "give 1 to 1000 stages");
   std::vector<Stage> read;
@@ -96,7 +117,7 @@ std::vector<Stage> LoadsReader::read_stages(const json& stages, const OutputSele
     const std::string path = child("stages", k);
     const json& st = stages[k];
     expect_object(st, path);
-    check_keys(st, path, {"name", "loads", "prescribed", "control", "output"});
+    check_keys(st, path, {"name", "loads", "prescribed", "contacts", "control", "output"});
     Stage stage;
     if (st.contains("name")) stage.name = string(st["name"], child(path, "name"));
     stage.load = Eigen::VectorXd::Zero(model_.dof_count());
@@ -104,6 +125,7 @@ std::vector<Stage> LoadsReader::read_stages(const json& stages, const OutputSele
     if (!stage.load.any()) stage.load.resize(0);
     if (st.contains("prescribed")) stage.prescribed = read_prescribed(st["prescribed"], child(path, "prescribed"), true);
     for (const PrescribedTarget& p : stage.prescribed) constrained[p.dof] = true;
+    if (st.contains("contacts")) stage.contact_off = contacts_off(st["contacts"], child(path, "contacts"), contact_entries);
     if (st.contains("control")) read_control(st["control"], child(path, "control"), {model_, constrained, node_, k == 0}, stage.control);
     stage.output = output;
     if (st.contains("output")) read_output(st["output"], child(path, "output"), stage.output);

@@ -35,7 +35,10 @@ class LoadsReader {
   std::vector<PrescribedTarget> read_prescribed(const nlohmann::json& prescribed, const std::string& path, bool increments);
   /// A "stages" array: each stage's loads, prescribed displacements, control (its dof free of
   /// the supports and of this and earlier stages' prescribed dofs) and output (else `output`).
-  std::vector<Stage> read_stages(const nlohmann::json& stages, const OutputSelection& output);
+  /// `contact_entries`: the first contact (Model::contacts) of each "contacts" entry, and their
+  /// count last — a stage's "contacts" names entries.
+  std::vector<Stage> read_stages(const nlohmann::json& stages, const OutputSelection& output,
+                                 const std::vector<int>& contact_entries);
 
   /// Nodes a load entry names with a nonzero value.
   const std::set<int>& loaded_nodes() const { return loaded_; }

@@ -397,6 +397,7 @@ class Reader {
     for (size_t k = 0; k < contacts.size(); ++k) {
       const std::string path = child("contacts", k);
       const json& c = contacts[k];
+      contact_entries_.push_back(static_cast<int>(model_.contacts.size()));
       expect_object(c, path);
       check_keys(c, path, {"node", "nodes", "members", "between", "element", "frame", "normal", "gap", "edge", "max_stiffness_ratio", "sliding_tangent"});
       if (c.contains("between")) {
@@ -529,7 +530,8 @@ class Reader {
   void read_analysis(const std::vector<int>& loaded_middles) {
     if (doc_.contains("analysis"))
       read_analysis_settings(doc_["analysis"], model_, [this](const json& value, const std::string& path) { return node_ref(value, path); });
-    if (doc_.contains("stages")) model_.stages = loads_->read_stages(doc_["stages"], model_.analysis.output);
+    contact_entries_.push_back(static_cast<int>(model_.contacts.size()));  // the count, after the last entry's first
+    if (doc_.contains("stages")) model_.stages = loads_->read_stages(doc_["stages"], model_.analysis.output, contact_entries_);
     std::set<int> named = loads_->loaded_nodes();
     if (!model_.stages.empty()) named.insert(loads_->prescribed_nodes().begin(), loads_->prescribed_nodes().end());
     if (!doc_.contains("analysis") || !doc_["analysis"].contains("monitor"))
@@ -544,6 +546,7 @@ class Reader {
   std::optional<Eigen::Vector2d> gravity_;  ///< "gravity", if given
   std::set<int> connected_members_;  ///< members with a moment release or an end spring ("release", "end_springs")
   std::optional<LoadsReader> loads_;  ///< once the supports are read
+  std::vector<int> contact_entries_;  ///< the first contact of each "contacts" entry (LoadsReader::read_stages)
   std::unordered_map<int, int> ids_;
   // The contacts' look-ups (index_members): each member's first element, the members at each
   // node (CSR), and the nodes that have a contact entry already.

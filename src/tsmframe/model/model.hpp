@@ -174,6 +174,9 @@ struct Stage {
   Eigen::VectorXd load;                      ///< per dof, nodal (empty: none)
   std::vector<FollowerForce> follower_forces;
   std::vector<PrescribedTarget> prescribed;  ///< dofs held from here on
+  /// Per contact (Model::contacts): 1 where it does not exist in this stage — never in touch, let
+  /// go at the stage's start (empty: every contact exists).
+  std::vector<char> contact_off;
   Control control;
   OutputSelection output;
 };

@@ -48,6 +48,8 @@ Model stage_model(const Model& model, int stage, const StageStart& start) {
   if (!m.reference_prescribed.any()) m.reference_prescribed.resize(0);
   if (!at_rest) m.start_displacements = start.displacements;
 
+  for (size_t c = 0; c < s.contact_off.size(); ++c)
+    if (s.contact_off[c]) m.contacts[c].members.clear();  // no candidate: never detected
   m.analysis.control = s.control;
   m.analysis.output = s.output;
   Control& control = m.analysis.control;

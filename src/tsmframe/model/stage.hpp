@@ -20,7 +20,8 @@ struct StageStart {
 /// The one-stage model that runs stage `stage` of `model` (which has stages) from `start`: its
 /// reference load and prescribed increments are the stage's (the first stage's with the
 /// members' loads), its dead load what the earlier stages applied at their final λ, its
-/// constraints the supports and every dof prescribed so far, its control and output the stage's.
+/// constraints the supports and every dof prescribed so far, its control and output the stage's;
+/// a contact the stage leaves out touches no member.
 Model stage_model(const Model& model, int stage, const StageStart& start);
 
 }  // namespace tsm

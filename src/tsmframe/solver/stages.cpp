@@ -4,6 +4,7 @@
 #include <string>
 #include <utility>
 
+#include "tsmframe/contact/contact_state.hpp"
 #include "tsmframe/model/stage.hpp"
 #include "tsmframe/solver/diagnosis.hpp"
 #include "tsmframe/solver/run_stage.hpp"
@@ -72,6 +73,9 @@ RunResult run_stages(const Model& model, const StepObserver& observer, const Sto
     stage.analysis.first_step = steps_before + 1;  // numbered on through the stages
     stage.analysis.stage = s;
     if (s > first || !from) state.load_factor = state.path_parameter = 0.0;  // the stage's own λ starts at nil
+    const std::vector<char>& off = model.stages[s].contact_off;
+    for (size_t c = 0; c < off.size() && c < state.contacts.size(); ++c)
+      if (off[c]) state.contacts[c] = contact::ContactState{};  // let go; its references restored when it is back
     if (const std::optional<std::string> note = nothing_to_drive(stage, s, model.stages[s].name)) {
       run.notes.push_back(*note);
       run.stages.push_back({s, 0, 0.0, Status::converged});
