@@ -62,12 +62,34 @@ const json& kept_step(const json& steps, int step, std::string& path) {
   fail("steps", "no step " + std::to_string(step) + " in these results");
 }
 
-/// The control that goes on from the kept step must follow a path of known parameter.
-void check_control(const Model& model, int stage, const std::string& path) {
+/// Per node id, [ux, uy, rz] (results.json's displacements) into all dofs.
+Eigen::VectorXd read_triples(const json& triples, const std::string& path, const Model& model) {
+  Eigen::VectorXd values = Eigen::VectorXd::Zero(model.dof_count());
+  for (int k = 0; k < model.node_count(); ++k) {
+    const std::string id = std::to_string(model.nodes[k].id), at = child(path, id);
+    const json& d = triples.at(id);
+    if (!d.is_array() || d.size() != 3) fail(at, "expected [ux, uy, rz]");
+    for (int dof = 0; dof < dofs_per_node; ++dof) values[dofs_per_node * k + dof] = number(d[dof], child(at, dof));
+  }
+  return values;
+}
+
+/// Arc-length control's memory at the kept step: it goes on as the whole run did. The step must
+/// have been taken under arc-length control if the model's control (its stage's) is one.
+void read_arc_length(const json& state, const std::string& path, const Model& model, int stage, solver::State& out) {
   const Control& control = model.stages.empty() ? model.analysis.control : model.stages[stage].control;
-  if (control.type == ControlType::arc_length)
-    fail(path, std::string("the ") + (model.stages.empty() ? "model's" : "step's stage's") +
-                   " control is arc-length: a run under arc-length control cannot be restarted yet (issue 29)");
+  if ((control.type == ControlType::arc_length) != state.contains("arc_length"))
+    fail(child(path, "arc_length"), control.type == ControlType::arc_length
+                                        ? "the step was not taken under arc-length control, which the model's is"
+                                        : "the step was taken under arc-length control, which the model's is not");
+  if (!state.contains("arc_length")) return;
+  const json& arc = state["arc_length"];
+  const std::string at = child(path, "arc_length");
+  out.arc_length.next_arc = positive(required_number(arc, "next_arc", at), child(at, "next_arc"));
+  out.arc_length.converged_steps = static_cast<int>(bounded_integer(arc.at("steps"), child(at, "steps"), 0, 2'000'000'000L));
+  out.arc_length.previous_load_increment = required_number(arc, "previous_load_increment", at);
+  if (arc.contains("previous_increment"))
+    out.arc_length.previous_increment = read_triples(arc["previous_increment"], child(at, "previous_increment"), model);
 }
 
 /// Each contact's state at the kept step (element ids made indices).
@@ -122,19 +144,12 @@ solver::RestartPoint read_restart(const json& results, int step, const Model& mo
       fail(path, model.stages.empty() ? "results of a staged run; this model has no stages" : "results of a run without stages; this model has stages");
     if (s.contains("stage"))
       point.stage = static_cast<int>(bounded_integer(s["stage"], child(path, "stage"), 1, static_cast<long>(model.stages.size()))) - 1;
-    check_control(model, point.stage, path);
     const std::string spath = child(path, "state");
     const json& state = s.at("state");
     point.state.load_factor = required_number(s, "load_factor", path);
     point.state.path_parameter = required_number(state, "path_parameter", spath);
-    point.state.displacements = Eigen::VectorXd::Zero(model.dof_count());
-    const json& displacements = s.at("displacements");
-    for (int k = 0; k < model.node_count(); ++k) {
-      const std::string id = std::to_string(model.nodes[k].id), at = child(child(path, "displacements"), id);
-      const json& d = displacements.at(id);
-      if (!d.is_array() || d.size() != 3) fail(at, "expected [ux, uy, rz]");
-      for (int dof = 0; dof < dofs_per_node; ++dof) point.state.displacements[dofs_per_node * k + dof] = number(d[dof], child(at, dof));
-    }
+    point.state.displacements = read_triples(s.at("displacements"), child(path, "displacements"), model);
+    read_arc_length(state, spath, model, point.stage, point.state);
     const json& rotations = state.at("chord_rotations");
     if (!rotations.is_array() || rotations.size() != model.elements.size())
       fail(child(spath, "chord_rotations"), "expected one chord rotation per element");

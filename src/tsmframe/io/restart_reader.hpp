@@ -12,8 +12,8 @@
 namespace tsm::io {
 
 /// Step `step` of `results` (0: the newest step with state), checked to come from a run of
-/// `model` (the same nodes, elements and contacts) whose control can go on from it (load or
-/// displacement control). Throws InputError at the JSON path at fault.
+/// `model` (the same nodes, elements and contacts, and under arc-length control where the model's
+/// control is one). Throws InputError at the JSON path at fault.
 solver::RestartPoint read_restart(const nlohmann::json& results, int step, const Model& model);
 
 /// The same of a file "PATH" or "PATH#STEP" (the caller names the file with the error).

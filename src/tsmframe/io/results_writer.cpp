@@ -58,6 +58,15 @@ void write_restart_state(JsonWriter& w, const Model& model, const solver::StepRe
     w.end_object();
   }
   w.end_array();
+  if (const solver::ArcLengthMemory& arc = step.arc_memory; arc.next_arc > 0.0) {
+    w.key("arc_length").begin_object().key("next_arc").value(arc.next_arc).key("steps").value(arc.converged_steps);
+    w.key("previous_load_increment").value(arc.previous_load_increment);
+    if (arc.previous_increment.size() > 0) {
+      w.key("previous_increment");
+      write_triples(w, model, arc.previous_increment, nullptr);
+    }
+    w.end_object();
+  }
   if (!model.stages.empty()) {
     w.key("stage_load_factors").begin_array();
     for (const double lambda : step.stage_load_factors) w.value(lambda);

@@ -73,6 +73,18 @@ class ArcLengthStepping {
 
 RunResult ArcLengthStepping::run(State& state) {
   recorder_.start_from(state);
+  if (const ArcLengthMemory& memory = state.arc_length; memory.next_arc > 0.0) {  // a restart: go on as before
+    if (watching_ && watched(control_, state.load_factor, state.displacements) == control_.until_value) {
+      result_.status = Status::converged;  // it had landed on its `until`: the whole run ended there
+      return std::move(result_);
+    }
+    arc_ = memory.next_arc;
+    converged_steps_ = memory.converged_steps;
+    constraint_.previous_increment.resize(memory.previous_increment.size() > 0 ? dofs_.free_count() : 0);  // none after a jump
+    for (Eigen::Index eq = 0; eq < constraint_.previous_increment.size(); ++eq)
+      constraint_.previous_increment[eq] = memory.previous_increment[dofs_.dof(static_cast<int>(eq))];
+    constraint_.previous_load_increment = memory.previous_load_increment;
+  }
   while (converged_steps_ < control_.max_steps) {
     if (stop_requested(stop_)) {
       interrupt(state);
@@ -117,6 +129,11 @@ bool ArcLengthStepping::converged(StepRecord record, const NewtonOutcome& outcom
   halvings_ = 0;
   const double factor = std::clamp(std::sqrt(aim_iterations / std::max(1, outcome.iterations)), 0.5, 2.0);
   arc_ = std::clamp(arc_ * factor, control_.min_increment, control_.max_increment);
+  ArcLengthMemory& memory = state.arc_length;  // kept with the state, for a restart from it
+  memory.next_arc = arc_;
+  memory.converged_steps = converged_steps_;
+  memory.previous_increment = state.displacements - start;
+  memory.previous_load_increment = constraint_.previous_load_increment;
   const bool reached = watching_ && crosses_until(start, state);
   State landed;  // the step's start, taken before recording lets its displacements go
   if (reached) saved_.restore(landed);
@@ -169,6 +186,7 @@ bool ArcLengthStepping::jump_across(State& state) {
   halvings_ = 0;
   arc_ = control_.initial_increment;
   ++converged_steps_;
+  state.arc_length = {arc_, converged_steps_, Eigen::VectorXd(), constraint_.previous_load_increment};
   recorder_.converged(std::move(crossed), across, state);
   return true;
 }

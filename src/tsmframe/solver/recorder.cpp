@@ -103,10 +103,12 @@ void Recorder::converged(StepRecord record, const NewtonOutcome& outcome, const 
     previous.has_state = false;
     previous.displacements = previous.element_forces = previous.reactions = Eigen::VectorXd();
     previous.chord_rotations = {};
+    previous.arc_memory = {};
     previous.contact_states = {};
   }
   record.displacements = state.displacements;
   record.chord_rotations = state.chord_rotations;
+  record.arc_memory = state.arc_length;
   record.contact_states = kept_contacts(state.contacts);
   forces_pending_ = defer_forces_ && !keeps_state(settings.output, record.step);
   if (!forces_pending_) {

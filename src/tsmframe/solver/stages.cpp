@@ -72,7 +72,10 @@ RunResult run_stages(const Model& model, const StepObserver& observer, const Sto
     Model stage = stage_model(model, s, start);
     stage.analysis.first_step = steps_before + 1;  // numbered on through the stages
     stage.analysis.stage = s;
-    if (s > first || !from) state.load_factor = state.path_parameter = 0.0;  // the stage's own λ starts at nil
+    if (s > first || !from) {  // the stage's own λ starts at nil, its path afresh
+      state.load_factor = state.path_parameter = 0.0;
+      state.arc_length = ArcLengthMemory{};
+    }
     const std::vector<char>& off = model.stages[s].contact_off;
     for (size_t c = 0; c < off.size() && c < state.contacts.size(); ++c)
       if (off[c]) state.contacts[c] = contact::ContactState{};  // let go; its references restored when it is back

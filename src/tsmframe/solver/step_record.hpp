@@ -10,6 +10,7 @@
 #include "tsmframe/contact/contact_state.hpp"
 #include "tsmframe/solver/criterion.hpp"
 #include "tsmframe/solver/failure.hpp"
+#include "tsmframe/solver/state.hpp"
 #include "tsmframe/solver/status.hpp"
 
 namespace tsm::solver {
@@ -68,6 +69,7 @@ struct StepRecord {
   /// and, in a staged run, the λ each earlier stage ended at and where the dofs its stage
   /// prescribes or controls stood at the stage's start (dof, value).
   double path_parameter = 0.0;
+  ArcLengthMemory arc_memory;  ///< under arc-length control (state.hpp)
   std::vector<double> chord_rotations;
   std::vector<contact::ContactState> contact_states;
   std::vector<double> stage_load_factors;
