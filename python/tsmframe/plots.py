@@ -32,11 +32,20 @@ def plot_shape(result, steps=(-1,), ax=None, undeformed=True, **kw):
 
 
 def plot_load_displacement(result, node_id, dof="uy", ax=None, **kw):
+    """λ against one dof over the steps with state; a staged run's stages each from where the one
+    before ended (its λ starts again at 0), solid, dashed, …."""
     ax = _axes(ax)
     lam, values = result.history(node_id, dof)
-    ax.plot(np.concatenate([[0.0], values]), np.concatenate([[0.0], lam]), ".-", label=f"{dof} of node {node_id}", **kw)
+    stages = np.array([result.stage[np.flatnonzero(result.step == s)[0]] for s in result.state_steps])
+    start, styles = 0.0, ("-", "--", ":", "-.")
+    for k, stage in enumerate(dict.fromkeys(stages.tolist())):
+        here = stages == stage
+        label = f"{dof} of node {node_id}" + (f", stage {stage}" if len(set(stages.tolist())) > 1 else "")
+        ax.plot(np.concatenate([[start], values[here]]), np.concatenate([[0.0], lam[here]]), "." + styles[k % 4],
+                label=label, **kw)
+        start = values[here][-1]
     ax.set_xlabel(f"{dof} of node {node_id}")
-    ax.set_ylabel("load factor λ")
+    ax.set_ylabel("load factor λ" + (" (each stage's own)" if len(set(stages.tolist())) > 1 else ""))
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     return ax

@@ -236,6 +236,11 @@ def test_stages_built_in_code_hold_what_earlier_stages_applied():
     assert a.ok and b.ok, (a.message, b.message)
     assert list(a.stage) == [1, 1, 1, 2, 2, 2] and list(a.step) == [1, 2, 3, 4, 5, 6]
     assert [s["last_step"] for s in a.stages] == [3, 6]
+    import matplotlib
+    matplotlib.use("Agg")
+    lines = a.plot_load_displacement(2).lines  # each stage its own curve, from where the one before ended
+    assert [line.get_label() for line in lines] == ["uy of node 2, stage 1", "uy of node 2, stage 2"]
+    assert lines[1].get_xdata()[0] == lines[0].get_xdata()[-1] and lines[1].get_ydata()[0] == 0.0
     assert np.abs(a.displacements[-1] - b.displacements[-1]).max() < 1e-9 * np.abs(b.displacements[-1]).max()
     # Loads given before the first stage are refused where they are given.
     with pytest.raises(ValueError, match="before the first stage"):
