@@ -36,7 +36,10 @@ RunResult run_stage(const Model& model, State& state, const StepObserver& observ
   if (state.displacements.size() == 0) {  // the unloaded state
     std::vector<double> zero_rotations;
     util::assign_touched(zero_rotations, model.elements.size(), 0.0);
-    state = State{util::zeros_touched(model.dof_count()), 0.0, std::move(zero_rotations), contacts.initial_states()};
+    state = State{};
+    state.displacements = util::zeros_touched(model.dof_count());
+    state.chord_rotations = std::move(zero_rotations);
+    state.contacts = contacts.initial_states();
   }
   contacts.restore(state.displacements, state.chord_rotations, state.contacts);  // a restart's
   newton.reset(state);
