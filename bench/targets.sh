@@ -6,7 +6,7 @@
 # Usage: bash bench/targets.sh            (about a minute on 2 cores)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-[ -x build/bench/tsmframe_scaling ] || bash scripts/setup.sh >/dev/null
+[ -x build/bench/tsmframe_scaling ] || { bash scripts/setup.sh >/dev/null && cmake --build build -j2 --target benchmarks >/dev/null; }
 runs=${RUNS:-3}
 
 # A bench row's columns: 1 elements, 2 steps, 3 iterations, 4 ms/iteration,
