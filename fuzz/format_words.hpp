@@ -18,7 +18,7 @@ inline std::vector<std::string> format_words() {
       "end_springs", "load", "fx", "fy", "mz", "pressure", "supports", "node", "fix", "type", "fixed", "pinned",
       "roller-x", "roller-y", "ux", "uy", "rz", "loads", "prescribed", "contacts", "element", "frame", "chord",
       "cantilever", "gap", "edge", "max_stiffness_ratio", "sliding_tangent", "all", "extra", "normal", "deflected",
-      "between", "follower", "gravity", "density", "springs", "kx", "ky", "kr", "k", "direction", "foundation",
+      "between", "follower", "gravity", "density", "springs", "kx", "ky", "kr", "k", "direction", "foundation", "roller",
       "stages", "increment",
       // analysis
       "analysis", "control", "steps", "path", "displacement", "target", "arc-length", "initial_increment",

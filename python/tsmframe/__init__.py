@@ -114,13 +114,17 @@ class Model:
         self._doc.setdefault("springs", []).append(entry)
         return self
 
-    def support(self, node, type=None, fix=None):
-        """type: "fixed", "pinned", "roller-x", "roller-y"; or fix: a list out of "ux", "uy", "rz"."""
+    def support(self, node, type=None, fix=None, roller=None):
+        """type: "fixed", "pinned", "roller-x", "roller-y"; or fix: a list out of "ux", "uy", "rz";
+        or roller: (dx, dy), a roller on a plane of that direction (a skew roller; fix=["rz"] may
+        join it)."""
         entry = {"node": _ref(node)}
         if type is not None:
             entry["type"] = type
         if fix is not None:
             entry["fix"] = list(fix)
+        if roller is not None:
+            entry["roller"] = [float(roller[0]), float(roller[1])]
         self._doc["supports"].append(entry)
         return self
 

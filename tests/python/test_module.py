@@ -271,6 +271,22 @@ def test_springs_and_a_foundation_built_in_code():
     assert under[1] == pytest.approx(-1e3 * 1.2 ** 2 * 2.8 ** 2 / (3 * 2e11 * 1e-4 * 4), rel=1e-6)
 
 
+def test_a_skew_roller_built_in_code_pushes_across_its_plane():
+    # Pinned at one end, on a roller inclined at 30° at the other, P down at mid-span: the roller
+    # pushes across its plane with P / (2 cos 30°); the node stays on the plane.
+    m = tf.Model("skew roller").material("s", E=2e11).section("x", A=1e-2, I=1e-4)
+    c, s = math.cos(math.pi / 6), math.sin(math.pi / 6)
+    m.node(1, 0, 0).node(2, 4, 0).member(1, 2, "s", "x", divisions=8).support(1, "pinned")
+    r = tf.run(m.support(2, roller=(np.float64(c), s)).load([2.0, 0.0], fy=-1e3))
+    assert r.ok, r.message
+    rx, ry = r.reactions[-1][1][:2]
+    assert (rx, ry) == (pytest.approx(-1e3 / (2 * c) * s, rel=1e-6), pytest.approx(500.0, rel=1e-6))
+    u = r.displacement(2)
+    assert abs(-s * u[0] + c * u[1]) < 1e-15
+    with pytest.raises(ValueError, match=r"supports\[2\]\.roller"):
+        tf.run(m.support(2, roller=(0, 0)))
+
+
 def test_a_run_goes_on_from_a_kept_step_of_an_earlier_one(tmp_path):
     # tf.run(m, start=result, step=k) is the CLI's --from: the steps after k, bit for bit.
     m = tf.Model("elastica").material("m", E=1.0, G=0.5).section("s", A=1e4, I=1.0)

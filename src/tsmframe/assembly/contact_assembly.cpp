@@ -18,7 +18,7 @@ Eigen::VectorXd gather(const Eigen::VectorXd& displacements, const std::vector<i
   return d;
 }
 
-std::vector<ContactDirection> contact_directions(const Model& model, const DofMap& dofs,
+std::vector<ContactDirection> contact_directions(const Model& model, const DofMap& dofs, const NodalFrames& frames,
                                                  const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                                                  const std::vector<contact::ActiveContact>& contacts) {
   std::vector<ContactDirection> directions;
@@ -29,8 +29,10 @@ std::vector<ContactDirection> contact_directions(const Model& model, const DofMa
         contact::active_contact_response(a, gather(displacements, g), rotations[a.element], false);
     std::vector<int> equation(g.size());
     for (size_t k = 0; k < g.size(); ++k) equation[k] = dofs.equation(g[k]);
-    for (int p = 0; p < a.size(); ++p)
+    for (int p = 0; p < a.size(); ++p) {
       directions.push_back({equation, r.point_u.col(p), r.point_stiffness(p, p), r.forces[3 + p]});
+      frames.to_nodal(g, directions.back().u);
+    }
   }
   return directions;
 }

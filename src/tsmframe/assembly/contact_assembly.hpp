@@ -11,6 +11,7 @@
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/contact/contact_set.hpp"
 #include "tsmframe/model/model.hpp"
+#include "tsmframe/model/nodal_frames.hpp"
 
 namespace tsm::assembly {
 
@@ -33,7 +34,8 @@ Eigen::VectorXd gather(const Eigen::VectorXd& displacements, const std::vector<i
 
 /// Each active contact point's (in `contacts`' order, points in order) load direction and
 /// stiffness at `displacements` (chord rotations of that state's evaluation).
-std::vector<ContactDirection> contact_directions(const Model& model, const DofMap& dofs,
+/// At a skew roller u is in its frame (NodalFrames).
+std::vector<ContactDirection> contact_directions(const Model& model, const DofMap& dofs, const NodalFrames& frames,
                                                  const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                                                  const std::vector<contact::ActiveContact>& contacts);
 

@@ -13,7 +13,8 @@ Eigen::Vector2d turned(const FollowerForce& f, const Eigen::VectorXd& displaceme
 
 }  // namespace
 
-FollowerLoads::FollowerLoads(const Model& model, const DofMap& dofs) : model_(model), dofs_(dofs) {
+FollowerLoads::FollowerLoads(const Model& model, const DofMap& dofs, const NodalFrames& frames)
+    : model_(model), dofs_(dofs), frames_(frames) {
   for (const Element& e : model.elements)
     if (const double p = model.pressure(e), dead = model.dead_pressure(e); p != 0.0 || dead != 0.0)
       loads_.push_back({e.start, e.end, p, dead});
@@ -68,6 +69,8 @@ void FollowerLoads::skew_terms(double load_factor, const Eigen::VectorXd& displa
     // −λ ∂P/∂θ = −λ Q R(θ) F, Q (x, y) = (−y, x)
     linalg::RankOne term{{dofs_.equation(base + ux), dofs_.equation(base + uy), theta},
                          Eigen::Vector3d(scale * P.y(), -scale * P.x(), 0.0), Eigen::Vector3d(0.0, 0.0, 1.0)};
+    const int dofs[3] = {base + ux, base + uy, base + rz};
+    frames_.to_nodal(dofs, term.u);  // the rows at a skew roller
     out.push_back(std::move(term));
   }
   for (const Skew& skew : skew_) {

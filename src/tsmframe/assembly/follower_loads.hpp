@@ -18,12 +18,14 @@
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/linalg/rank_one.hpp"
 #include "tsmframe/model/model.hpp"
+#include "tsmframe/model/nodal_frames.hpp"
 
 namespace tsm::assembly {
 
 class FollowerLoads {
  public:
-  FollowerLoads(const Model& model, const DofMap& dofs);
+  /// `frames`: the skew rollers' (the skew terms' rows are turned into them).
+  FollowerLoads(const Model& model, const DofMap& dofs, const NodalFrames& frames);
   bool empty() const { return loads_.empty() && model_.follower_forces.empty(); }
 
   /// The reference load at `displacements` (all dofs): the model's, plus the follower loads on
@@ -69,6 +71,7 @@ class FollowerLoads {
 
   const Model& model_;
   const DofMap& dofs_;
+  const NodalFrames& frames_;
   std::vector<Load> loads_;                    ///< per loaded element, in the model's order
   struct Skew {
     int node = 0;

@@ -22,7 +22,7 @@ std::array<int, 6> element_dofs(int start, int end) {
 }  // namespace
 
 GlobalSystem::GlobalSystem(const Model& model, const DofMap& dofs)
-    : follower_loads_(model, dofs), springs_(model, dofs), model_(model), dofs_(dofs) {
+    : frames_(model), follower_loads_(model, dofs, frames_), springs_(model, dofs), model_(model), dofs_(dofs) {
   const int n_elements = static_cast<int>(model.elements.size());
   const int n_blocks = dofs.block_count();
   // Elements in the tangent's memory order (by the smaller block of their two nodes), cut into
@@ -293,10 +293,8 @@ double GlobalSystem::evaluate_element(int q, const Eigen::VectorXd& displacement
   for (int b = 0; b < 6; ++b) {
     const double dp = model_.reference_prescribed[g[b]];
     if (dp == 0.0 || dofs_.equation(g[b]) >= 0) continue;
-    for (int a = 0; a < 6; ++a) {
-      const int row = dofs_.equation(g[a]);
-      if (row >= 0 && (a < 3 ? at_i : at_j)) out.prescribed_coupling[row] += r.tangent(a, b) * dp;
-    }
+    for (int a = 0; a < 6; ++a)
+      if (a < 3 ? at_i : at_j) add_coupling(g[a], r.tangent(a, b) * dp, out.prescribed_coupling);
   }
   return end_rotation;
 }
@@ -335,14 +333,16 @@ void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen
   std::vector<int> equation(g.size());
   for (int k = 0; k < size; ++k) equation[k] = dofs_.equation(g[k]);
   for (int p = 0; p < a.size(); ++p)
-    if (r.sliding_u.col(p).squaredNorm() > 0.0 && r.sliding_v.col(p).squaredNorm() > 0.0)
+    if (r.sliding_u.col(p).squaredNorm() > 0.0 && r.sliding_v.col(p).squaredNorm() > 0.0) {
       contact_rank_one_.push_back({equation, r.sliding_u.col(p), r.sliding_v.col(p)});
+      frames_.to_nodal(g, contact_rank_one_.back().u);
+      frames_.to_nodal(g, contact_rank_one_.back().v);
+    }
   if (!has_prescribed_) return;
   for (int b = 0; b < size; ++b) {
     const double dp = model_.reference_prescribed[g[b]];
     if (dp == 0.0 || equation[b] >= 0) continue;
-    for (int k = 0; k < size; ++k)
-      if (equation[k] >= 0) out.prescribed_coupling[equation[k]] += r.tangent(k, b) * dp;
+    for (int k = 0; k < size; ++k) add_coupling(g[k], r.tangent(k, b) * dp, out.prescribed_coupling);
   }
 }
 
@@ -404,6 +404,7 @@ void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const
     evaluate_contact(a, displacements, previous_rotations, with_tangent, out);
     replaced_[a.element] = 0;
   }
+  if (!frames_.empty()) turn_to_nodal_frames(out, with_tangent);
   if (with_tangent) mask_constrained_dofs();
   out.id = ++evaluations_;
   tangent_of_ = with_tangent ? out.id : 0;
@@ -415,7 +416,8 @@ void GlobalSystem::evaluate_contact_change(const Eigen::VectorXd& displacements,
                                            const std::vector<contact::ActiveContact>& contacts) {
   const int version = pattern_version_;
   ensure_contact_pattern(contacts);
-  if (tangent_of_ == 0 || out.id != tangent_of_ || pattern_version_ != version) {
+  // A skew roller's frames turn the sums as a whole, after the loop: they are formed again whole.
+  if (tangent_of_ == 0 || out.id != tangent_of_ || pattern_version_ != version || !frames_.empty()) {
     evaluate(displacements, previous_rotations, true, out, contacts);
     return;
   }
@@ -518,7 +520,7 @@ Eigen::VectorXd GlobalSystem::element_forces(const Eigen::VectorXd& displacement
 std::vector<ContactDirection> GlobalSystem::contact_directions(const Eigen::VectorXd& displacements,
                                                               const std::vector<double>& rotations,
                                                               const std::vector<contact::ActiveContact>& contacts) const {
-  return assembly::contact_directions(model_, dofs_, displacements, rotations, contacts);
+  return assembly::contact_directions(model_, dofs_, frames_, displacements, rotations, contacts);
 }
 
 RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
@@ -554,29 +556,6 @@ RoundingFloor GlobalSystem::rounding_floor(const Eigen::VectorXd& displacements,
     shares.push_back(contact_rounding(a, gather(displacements, contact_dofs(model_.elements[a.element], a)),
                                       rotations[a.element]));
   return assembly::rounding_floor(squared, contacts, shares);
-}
-
-void GlobalSystem::mask_constrained_dofs() {
-  // The entries that touch a constrained dof are few (supports): listed once per pattern.
-  if (masked_version_ != pattern_version_) {
-    masked_entries_.clear();
-    for (int c = 0; c < tangent_.size; ++c)
-      for (int p = tangent_.column[c]; p < tangent_.column[c + 1]; ++p)
-        if ((block_mask_[tangent_.row[p]] | block_mask_[c]) != 0) masked_entries_.push_back({p, c});
-    masked_version_ = pattern_version_;
-  }
-  for (const auto& [p, c] : masked_entries_) {
-    const int r = tangent_.row[p];
-    const unsigned row_mask = block_mask_[r], column_mask = block_mask_[c];
-    linalg::Block& b = tangent_.value[p];
-    for (int d = 0; d < dofs_per_node; ++d) {
-      if (row_mask >> d & 1u) b.row(d).setZero();
-      if (column_mask >> d & 1u) b.col(d).setZero();
-    }
-    if (r == c)
-      for (int d = 0; d < dofs_per_node; ++d)
-        if (row_mask >> d & 1u) b(d, d) = 1.0;
-  }
 }
 
 }  // namespace tsm::assembly

@@ -22,6 +22,7 @@
 #include "tsmframe/linalg/block_matrix.hpp"
 #include "tsmframe/linalg/rank_one.hpp"
 #include "tsmframe/model/model.hpp"
+#include "tsmframe/model/nodal_frames.hpp"
 
 namespace tsm::assembly {
 
@@ -58,11 +59,15 @@ class GlobalSystem {
 
   const Model& model() const { return model_; }
   const DofMap& dofs() const { return dofs_; }
+  const NodalFrames& frames() const { return frames_; }
 
   /// Evaluates every element at `displacements` (all dofs), continuing each chord rotation from
   /// `previous_rotations` (which may be out.chord_rotations itself: rotations continued in
   /// place). With `with_tangent`, the tangent (see tangent()) is overwritten.
   /// Each active contact replaces its beam element by the three-node contact element.
+  /// At a skew roller (model/nodal_frames.hpp) the displacements are global and what the
+  /// evaluation yields for the solver — forces, loads, tangent, sliding terms, the prescribed
+  /// coupling — is in the node's frame (t, n).
   void evaluate(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                 bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts = {});
   /// The same evaluation with another contact set, at the state of the last evaluate() with
@@ -71,8 +76,8 @@ class GlobalSystem {
   /// evaluated again, and only what they write at those nodes is formed again, in the loop's
   /// order: `out` and the tangent are bit for bit what evaluate() would give. The cost does not
   /// grow with the model (those elements, their chunks' end rotations, the entries only contacts
-  /// write). Falls back to evaluate() when the state is not the last one's or the contacts need
-  /// a larger pattern.
+  /// write). Falls back to evaluate() when the state is not the last one's, the contacts need
+  /// a larger pattern or a skew roller turns frames.
   void evaluate_contact_change(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                                Evaluation& out, const std::vector<contact::ActiveContact>& contacts);
 
@@ -135,6 +140,14 @@ class GlobalSystem {
   /// the first one).
   void list_node_elements();
   void mask_constrained_dofs();
+  /// The evaluation's vectors and tangent into the skew rollers' frames (before the masks).
+  void turn_to_nodal_frames(Evaluation& out, bool with_tangent);
+  /// Adds `value`, a global row `dof`'s share of K_fp D_p, to its free equation (a skew roller's
+  /// translation rows join its t equation).
+  void add_coupling(int dof, double value, Eigen::VectorXd& coupling) const {
+    const NodalFrames::Share share = frames_.row_share(dof);
+    if (const int row = dofs_.equation(share.nodal_dof); row >= 0) coupling[row] += share.weight * value;
+  }
   /// Marks the first writers (ElementRecord) and lists what no element writes; after every
   /// change of the pattern or of the loop's order.
   void mark_first_writers();
@@ -144,6 +157,7 @@ class GlobalSystem {
   void add_block(int node_a, int node_b, const Eigen::Matrix3d& value);
   void evaluate_contact(const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
                         const std::vector<double>& previous_rotations, bool with_tangent, Evaluation& out);
+  NodalFrames frames_;                              ///< the skew rollers' frames (empty: none)
   FollowerLoads follower_loads_;                    ///< the members' pressure (assembly/follower_loads)
   NodalSprings springs_;                            ///< springs to the ground (assembly/nodal_springs)
   std::vector<linalg::RankOne> follower_rank_one_;  ///< follower_rank_one()
@@ -216,6 +230,8 @@ class GlobalSystem {
   std::vector<linalg::RankOne> contact_rank_one_;
   std::vector<std::pair<int, int>> contact_pairs_;  ///< node pairs joined only by contact elements
   int pattern_version_ = 0;
+  std::vector<std::pair<int, int>> turned_entries_;  ///< (entry, block column) touching a skew roller's node
+  int turned_version_ = -1;                          ///< pattern version turned_entries_ was listed for
   std::vector<std::pair<int, int>> masked_entries_;  ///< (entry, block column) touching a constrained dof
   int masked_version_ = -1;                          ///< pattern version masked_entries_ was listed for
   // What a contact change needs of the last evaluation (evaluate_contact_change).

@@ -17,6 +17,7 @@
 #include "tsmframe/io/loads_reader.hpp"
 #include "tsmframe/io/member_options.hpp"
 #include "tsmframe/io/section_table.hpp"
+#include "tsmframe/io/supports_reader.hpp"
 #include "tsmframe/io/system_error.hpp"
 #include "tsmframe/model/hinges.hpp"
 #include "tsmframe/model/mechanism.hpp"
@@ -72,7 +73,7 @@ class Reader {
     MemberMesh mesh(model_);
     read_members(mesh);
     mesh.finish();
-    read_supports();
+    read_supports(doc_, [this](const json& value, const std::string& path) { return node_ref(value, path); }, model_);
     read_springs();
     loads_.emplace(
         model_, [this](const json& value, const std::string& path) { return node_ref(value, path); },
@@ -82,6 +83,8 @@ class Reader {
     fix_free_rotations(model_);  // a moment on a hinge was refused with its load
     read_contacts();
     read_analysis(mesh.loaded_middles());
+    check_skew_rollers(doc_, [this](const json& value, const std::string& path) { return node_ref(value, path); }, model_,
+                       loads_->prescribed_nodes());
     check_kept_states(model_);
     // The whole run's memory, before the run spends it (and before the checks below, which take
     // time in proportion to contacts × candidate elements).
@@ -243,37 +246,6 @@ class Reader {
     if (m.contains("arc")) member.arc = read_arc(m["arc"], child(path, "arc"));
     if (auto k = optional_number(m, "foundation", path)) member.foundation = positive(*k, child(path, "foundation"));
     return member;
-  }
-
-  void read_supports() {
-    if (!doc_.contains("supports")) return;
-    const json& supports = doc_["supports"];
-    expect_array(supports, "supports");
-    for (size_t k = 0; k < supports.size(); ++k) {
-      const std::string path = child("supports", k);
-      const json& s = supports[k];
-      expect_object(s, path);
-      check_keys(s, path, {"node", "fix", "type"});
-      const int node = required_node(s, path);
-      if (!s.contains("fix") && !s.contains("type")) fail(path, "give \"fix\" (a list of ux, uy, rz) or \"type\"");
-      std::set<int> fixed;
-      if (s.contains("fix")) {
-        expect_array(s["fix"], child(path, "fix"));
-        for (size_t d = 0; d < s["fix"].size(); ++d) {
-          const std::string dpath = child(child(path, "fix"), d);
-          fixed.insert(dof_from_name(string(s["fix"][d], dpath), dpath));
-        }
-      }
-      if (s.contains("type")) {
-        const std::string type = string(s["type"], child(path, "type"));
-        if (type == "fixed") fixed.insert({ux, uy, rz});
-        else if (type == "pinned") fixed.insert({ux, uy});
-        else if (type == "roller-x") fixed.insert(uy);
-        else if (type == "roller-y") fixed.insert(ux);
-        else fail(child(path, "type"), "unknown support type " + quote_text(type) + " (expected fixed, pinned, roller-x or roller-y)");
-      }
-      for (int dof : fixed) model_.constrained[dofs_per_node * node + dof] = true;
-    }
   }
 
   /// "springs": linear springs to the ground at nodes — kx, ky, kr (along x, y, about the

@@ -6,6 +6,7 @@
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/io/input_file.hpp"
 #include "tsmframe/io/json_input.hpp"
+#include "tsmframe/model/nodal_frames.hpp"
 
 namespace tsm::io {
 namespace {
@@ -149,6 +150,7 @@ solver::RestartPoint read_restart(const json& results, int step, const Model& mo
     point.state.load_factor = required_number(s, "load_factor", path);
     point.state.path_parameter = required_number(state, "path_parameter", spath);
     point.state.displacements = read_triples(s.at("displacements"), child(path, "displacements"), model);
+    NodalFrames(model).to_nodal(point.state.displacements);  // the state's frames at skew rollers
     read_arc_length(state, spath, model, point.stage, point.state);
     const json& rotations = state.at("chord_rotations");
     if (!rotations.is_array() || rotations.size() != model.elements.size())

@@ -1,7 +1,10 @@
 #include "tsmframe/model/mechanism.hpp"
 
+#include "tsmframe/model/nodal_frames.hpp"
+
 #include "tsmframe/element/chord.hpp"
 #include "tsmframe/model/hinges.hpp"
+#include "tsmframe/model/nodal_frames.hpp"
 #include "tsmframe/model/resting_contact.hpp"
 
 #include <algorithm>
@@ -99,11 +102,13 @@ bool held_by_springs(const Model& model, int k) {
     else spanned += s.direction * s.direction.transpose();
   }
   if (!any) return false;
+  const Eigen::Matrix3d T = NodalFrames(model).frame(k);  // a skew roller frees its t
   for (const int dof : {ux, uy})
     if (!model.constrained[dofs_per_node * k + dof] && !model.constrained[dofs_per_node * k + 1 - dof] &&
         std::abs(spanned.determinant()) < 1e-12)
       return false;  // both free: the springs must span the plane
-    else if (!model.constrained[dofs_per_node * k + dof] && spanned(dof, dof) < 1e-12)
+    else if (const Eigen::Vector2d axis = T.col(dof).head<2>();
+             !model.constrained[dofs_per_node * k + dof] && axis.dot(spanned * axis) < 1e-12)
       return false;
   return rotation || model.constrained[dofs_per_node * k + rz];
 }
@@ -191,9 +196,13 @@ Modes modes_of(const Model& model, const std::vector<char>& hinge, const std::ve
   m.centre /= static_cast<double>(part.size());
   m.extent = std::max((hi - lo).norm(), 1e-300);
   Eigen::Matrix3d gram = Eigen::Matrix3d::Zero();
+  const NodalFrames frames(model);
   for (int k : part) {
     const Eigen::Vector2d p = (model.nodes[k].position - m.centre) / m.extent;
-    const Eigen::Vector3d rows[3] = {{1.0, 0.0, -p.y()}, {0.0, 1.0, p.x()}, {0.0, 0.0, 1.0}};
+    // A held translation holds along its frame's axis: x or y, or a skew roller's normal.
+    const Eigen::Matrix3d T = frames.frame(k);
+    const auto held = [&](int d) { return Eigen::Vector3d(T(0, d), T(1, d), -T(0, d) * p.y() + T(1, d) * p.x()); };
+    const Eigen::Vector3d rows[3] = {held(ux), held(uy), {0.0, 0.0, 1.0}};
     // A fixed rotation where every element end is hinged holds nothing of the part.
     for (int dof = 0; dof < dofs_per_node; ++dof)
       if (model.constrained[dofs_per_node * k + dof] && (dof != rz || !hinge[k])) gram += rows[dof] * rows[dof].transpose();

@@ -139,6 +139,15 @@ struct NodalSpring {
   double stiffness = 0.0;                                ///< > 0: force per length, or moment per radian
 };
 
+/// A support on an inclined plane (a skew roller): the node rolls along `along` (unit) and is held
+/// normal to it. Its translations are solved for in the roller's frame (t, n) = (along, normal),
+/// the n dof held (Model::constrained at its uy slot; model/nodal_frames.hpp).
+struct SkewRoller {
+  int node = 0;  ///< node index
+  Eigen::Vector2d along = Eigen::Vector2d::UnitX();
+  Eigen::Vector2d normal() const { return {-along.y(), along.x()}; }
+};
+
 struct OutputSelection {
   enum class Kind { all, last, every } kind = Kind::all;
   int every = 1;
@@ -215,6 +224,8 @@ struct Model {
   Eigen::VectorXd start_displacements;
   std::vector<ContactSpec> contacts;
   std::vector<NodalSpring> springs;
+  /// Supports on inclined planes, one per node at most; a roller along x or y is a plain support.
+  std::vector<SkewRoller> skew_rollers;
   AnalysisSettings analysis;
   /// A staged analysis (empty: one stage, the loads and control above). The members' loads,
   /// pressures and self-weight (reference_load, MemberExtras) are the first stage's, with its own.

@@ -63,7 +63,7 @@ std::vector<contact::ContactState> kept_contacts(const std::vector<contact::Cont
 }  // namespace
 
 void Recorder::start_from(const State& state) {
-  if (state.displacements.size() > 0 && state.displacements.any()) start_ = state.displacements;
+  if (state.displacements.size() > 0 && state.displacements.any()) start_ = problem_.physical(state);
 }
 
 Recorder::Recorder(const Model& model, const TsmProblem& problem, const StepObserver& observer, RunResult& result,
@@ -89,14 +89,15 @@ void Recorder::converged(StepRecord record, const NewtonOutcome& outcome, const 
   record.criterion = outcome.criterion;
   record.slid_off = outcome.slid_off;
   record.has_state = true;
+  const Eigen::VectorXd& displacements = problem_.physical(state);  // global: what a record holds
   record.monitored.resize(dofs_per_node * static_cast<int>(settings.monitor.size()));
   for (size_t m = 0; m < settings.monitor.size(); ++m)
-    record.monitored.segment<3>(dofs_per_node * m) = state.displacements.segment<3>(dofs_per_node * settings.monitor[m]);
+    record.monitored.segment<3>(dofs_per_node * m) = displacements.segment<3>(dofs_per_node * settings.monitor[m]);
   // From the step before, or from where the run started (an earlier stage's end; else nil).
   const Eigen::VectorXd* before = last_with_state_ >= 0 ? &result_.steps[last_with_state_].displacements
                                   : start_.size() > 0   ? &start_
                                                         : nullptr;
-  record.largest_move = largest_move(state.displacements, before);
+  record.largest_move = largest_move(displacements, before);
   // The previous step's state goes first (unless the output keeps it): the peak memory holds one state, not two.
   if (last_with_state_ >= 0 && !keeps_state(settings.output, result_.steps[last_with_state_].step)) {
     StepRecord& previous = result_.steps[last_with_state_];
@@ -106,7 +107,7 @@ void Recorder::converged(StepRecord record, const NewtonOutcome& outcome, const 
     previous.arc_memory = {};
     previous.contact_states = {};
   }
-  record.displacements = state.displacements;
+  record.displacements = displacements;
   record.chord_rotations = state.chord_rotations;
   record.arc_memory = state.arc_length;
   record.contact_states = kept_contacts(state.contacts);

@@ -31,9 +31,10 @@ class Recorder {
   /// first: its inertia is that step's, where it tells the stability (`tells`).
   void started_from_newest(const NewtonOutcome& outcome, bool tells);
   /// Displacements of the newest converged step, held in its record until a later step
-  /// converges (null before the first converged step).
+  /// converges (null before the first converged step, and where a skew roller's frame makes
+  /// the state's differ from the record's global ones).
   const Eigen::VectorXd* newest_displacements() const {
-    return last_with_state_ >= 0 ? &result_.steps[last_with_state_].displacements : nullptr;
+    return last_with_state_ >= 0 && !problem_.turns_frames() ? &result_.steps[last_with_state_].displacements : nullptr;
   }
   /// The state the run starts from: the first step's largest move is measured from it (an
   /// earlier stage's end, a restart; nil when unloaded).

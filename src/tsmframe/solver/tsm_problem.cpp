@@ -51,6 +51,7 @@ bool TsmProblem::evaluate(State& state, bool contacts_only) {
   const Model& model = system_.model();
   system_.set_load_factor(state.load_factor);
   for (int dof : equations_.constrained_dofs) state.displacements[dof] = model.prescribed_at(dof, state.load_factor);
+  const Eigen::VectorXd& u = physical(state);
   bool changed = false;
   // The predictor runs contact nodes through their beams by as much as the step extrapolates:
   // Y at its iterate measures that, not the contact force, and along the bent beam's normal it
@@ -62,13 +63,13 @@ bool TsmProblem::evaluate(State& state, bool contacts_only) {
     const std::vector<contact::ActiveContact> active = active_contacts(state);
     // The rotations are continued in place (one vector, not two): lent to the evaluation.
     std::swap(state.chord_rotations, eval_.chord_rotations);
-    if (pass > 0 || contacts_only) system_.evaluate_contact_change(state.displacements, eval_.chord_rotations, eval_, active);
-    else system_.evaluate(state.displacements, eval_.chord_rotations, true, eval_, active);
+    if (pass > 0 || contacts_only) system_.evaluate_contact_change(u, eval_.chord_rotations, eval_, active);
+    else system_.evaluate(u, eval_.chord_rotations, true, eval_, active);
     std::swap(state.chord_rotations, eval_.chord_rotations);
     if (!contacts_) return false;
     if (pass == max_passes) break;
     const contact::ContactChanges changes =
-        contacts_->update(state.displacements, state.chord_rotations, eval_.contacts, state.contacts, false);
+        contacts_->update(u, state.chord_rotations, eval_.contacts, state.contacts, false);
     if (!changes.any()) break;
     changed = true;
     switches_ += changes.activated + changes.released;
@@ -84,7 +85,7 @@ std::vector<contact::ActiveContact> TsmProblem::active_contacts(const State& sta
 }
 
 assembly::RoundingFloor TsmProblem::rounding_floor(const State& state, bool with_contacts) const {
-  return system_.rounding_floor(state.displacements, state.chord_rotations,
+  return system_.rounding_floor(physical(state), state.chord_rotations,
                                 with_contacts ? active_contacts(state) : std::vector<contact::ActiveContact>());
 }
 
@@ -101,7 +102,7 @@ Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms
   const auto refill = [&](BlockMatrix&) {
     const std::vector<contact::ActiveContact> active = active_contacts(state);
     assembly::Evaluation scratch;
-    system_.evaluate(state.displacements, state.chord_rotations, true, scratch, active);
+    system_.evaluate(physical(state), state.chord_rotations, true, scratch, active);
   };
   // K_ff = tangent + the sliding terms in use (all, or none); with `rhs`, solved for it in place.
   // A follower load's skew terms always join.
@@ -174,10 +175,10 @@ Settlement TsmProblem::at_convergence(State& state) {
     }
     return settlement;
   }
-  if (contacts_ && contacts_->passed_through(state.displacements, state.chord_rotations, state.contacts)) {
+  if (contacts_ && contacts_->passed_through(physical(state), state.chord_rotations, state.contacts)) {
     // A contact released in this step let its node through a beam: it takes part again (the
     // active set needs it), and Newton iterates on; the switch count bounds the cycling.
-    switches_ += contacts_->allow_touching_again(state.displacements, state.chord_rotations, state.contacts);
+    switches_ += contacts_->allow_touching_again(physical(state), state.chord_rotations, state.contacts);
     if (switching_too_often()) {
       settlement.kind = Settlement::Kind::failed;
       settlement.failure.reason = StepFailure::Reason::contact_passed_through;
@@ -214,7 +215,7 @@ std::vector<std::pair<int, int>> TsmProblem::accept(State& state) {
   for (size_t k = 0; k < state.contacts.size(); ++k)
     if (!state.contacts[k].active && state.contacts[k].step.slid_off_element >= 0)
       slid_off.emplace_back(static_cast<int>(k), state.contacts[k].step.slid_off_element);
-  if (contacts_) contacts_->accept(state.displacements, state.chord_rotations, state.contacts);
+  if (contacts_) contacts_->accept(physical(state), state.chord_rotations, state.contacts);
   return slid_off;
 }
 
@@ -250,10 +251,10 @@ bool TsmProblem::release_pulling_contacts(State& state) {
   bool overwrote_tangent = false;
   const std::vector<int> also = look_ahead_releases(state, overwrote_tangent);
   const contact::ContactChanges changes =
-      contacts_->update(state.displacements, state.chord_rotations, eval_.contacts, state.contacts, true);
+      contacts_->update(physical(state), state.chord_rotations, eval_.contacts, state.contacts, true);
   if (!changes.any() && !overwrote_tangent) return false;
   switches_ += changes.activated + changes.released;
-  if (!also.empty()) switches_ += contacts_->release_as_pulling(also, state.displacements, state.chord_rotations, state.contacts);
+  if (!also.empty()) switches_ += contacts_->release_as_pulling(also, physical(state), state.chord_rotations, state.contacts);
   // The look-ahead's factorisation took the tangent's place: all of it is evaluated again.
   evaluate(state, !overwrote_tangent);
   return changes.any() || !also.empty();
@@ -298,7 +299,7 @@ std::vector<int> TsmProblem::look_ahead_releases(State& state, bool& overwrote_t
       std::any_of(active.begin(), active.end(), [](const contact::ActiveContact& a) { return a.size() > 1; }))
     return also;
   const std::vector<assembly::ContactDirection> directions =
-      system_.contact_directions(state.displacements, state.chord_rotations, active);
+      system_.contact_directions(physical(state), state.chord_rotations, active);
   analyse_pattern();
   overwrote_tangent = true;
   if (!solver_.factorize(system_.tangent_for_factorisation(), system_.contact_rank_one())) return also;
@@ -352,7 +353,7 @@ std::vector<ContactPoint> TsmProblem::contact_points(const State& state) const {
 }
 
 Eigen::VectorXd TsmProblem::element_forces(const State& state) const {
-  return system_.element_forces(state.displacements, state.chord_rotations, active_contacts(state));
+  return system_.element_forces(physical(state), state.chord_rotations, active_contacts(state));
 }
 
 Eigen::VectorXd TsmProblem::reactions(double load_factor) const {
@@ -361,7 +362,15 @@ Eigen::VectorXd TsmProblem::reactions(double load_factor) const {
   const Eigen::VectorXd &P = reference_load(), &dead = dead_load();
   for (int dof : equations_.constrained_dofs)
     reactions[dof] = eval_.internal_force[dof] - (dead.size() > 0 ? load_factor * P[dof] + dead[dof] : load_factor * P[dof]);
+  system_.frames().to_global(reactions);  // a skew roller's normal reaction, in x and y
   return reactions;
+}
+
+const Eigen::VectorXd& TsmProblem::physical(const State& state) const {
+  if (system_.frames().empty()) return state.displacements;
+  physical_ = state.displacements;
+  system_.frames().to_global(physical_);
+  return physical_;
 }
 
 int TsmProblem::contact_on(const State& state, int element) const {

@@ -54,10 +54,17 @@ class TsmProblem final : public Problem {
   /// Element forces (N, M_i, M_j) at `state` (a converged state: its chord rotations are its
   /// evaluation's).
   Eigen::VectorXd element_forces(const State& state) const;
-  /// Support reactions of the last evaluation: F − λ F_ref on constrained dofs, 0 elsewhere.
+  /// Support reactions of the last evaluation: F − λ F_ref on constrained dofs, 0 elsewhere,
+  /// global (a skew roller's in x and y).
   Eigen::VectorXd reactions(double load_factor) const;
+  /// The state's displacements, global: the state holds a skew roller's node's translations in
+  /// its frame (model/nodal_frames.hpp); elsewhere they are the state's own.
+  const Eigen::VectorXd& physical(const State& state) const;
+  /// Whether the state's displacements are not global (a skew roller turns a frame).
+  bool turns_frames() const { return !system_.frames().empty(); }
 
  private:
+  mutable Eigen::VectorXd physical_;  ///< physical()'s, where frames turn
   /// Evaluates at `state` and settles its contacts (detect, release, hand over; re-evaluating
   /// after each change). Returns whether the contact set changed. `contacts_only`: the state is
   /// the last evaluation's, only its contacts changed (what they touch is evaluated again).

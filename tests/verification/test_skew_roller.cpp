@@ -1,0 +1,215 @@
+// A support on an inclined plane (a skew roller, "roller": [dx, dy]; issue 29). The solver takes
+// its node's translations along and across the plane as unknowns (model/nodal_frames.hpp).
+// Checked: a whole model turned by an angle, its roller-x turned into a skew roller, is the
+// original turned, through large rotations, with follower loads, a spring and a pressure at the
+// roller (exact: the equations do not depend on the frame); the reactions of a simply supported
+// beam on an inclined roller against statics; the turned tangent and its rank-one terms against
+// central differences; a restart from a kept step; mechanisms and bad input named.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "support/dense.hpp"
+#include "support/models.hpp"
+#include "tsmframe/io/restart_reader.hpp"
+#include "tsmframe/io/results_writer.hpp"
+#include "tsmframe/model/nodal_frames.hpp"
+
+namespace {
+
+using namespace tsm::test;
+
+constexpr double E = 2e11, A = 1e-2, I = 1e-4, L = 4.0;
+
+Eigen::Vector2d turned(const Eigen::Vector2d& v, double angle) { return Eigen::Rotation2Dd(angle) * v; }
+
+/// A shallow two-member arch from node 1 (pinned) over node 3 to node 2 on a roller, all turned
+/// by `angle`: the roller along the turned x (roller-x when not turned). A crown load large enough
+/// to bend the arch flat (the roller travels 0.35 m, a ninth of the span), a follower force at the
+/// roller, a pressure on the first member and a spring at the roller.
+json turned_arch(double angle) {
+  const auto node = [&](int id, double x, double y) {
+    const Eigen::Vector2d p = turned({x, y}, angle);
+    return json{{"id", id}, {"x", p.x()}, {"y", p.y()}};
+  };
+  const auto vector = [&](double x, double y) {
+    const Eigen::Vector2d p = turned({x, y}, angle);
+    return json::array({p.x(), p.y()});
+  };
+  const Eigen::Vector2d crown = turned({0.0, -2e6}, angle), push = turned({5e4, 2.5e4}, angle);
+  json roller = {{"node", 2}};
+  if (angle == 0.0) roller["type"] = "roller-x";
+  else roller["roller"] = vector(2.0, 0.0);  // any length
+  return {{"materials", {{"steel", {{"E", E}}}}},
+          {"sections", {{"s", {{"A", A}, {"I", 0.1 * I}}}}},
+          {"nodes", json::array({node(1, 0.0, 0.0), node(2, L, 0.0), node(3, L / 2, 0.4)})},
+          {"members", json::array({{{"from", 1}, {"to", 3}, {"divisions", 6}, {"material", "steel"}, {"section", "s"}, {"load", {{"pressure", 5e3}}}},
+                                   {{"from", 3}, {"to", 2}, {"divisions", 6}, {"material", "steel"}, {"section", "s"}}})},
+          {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, roller})},
+          {"springs", json::array({{{"node", 2}, {"k", 5e4}, {"direction", vector(1.0, 1.0)}}})},
+          {"loads", json::array({{{"node", 3}, {"fx", crown.x()}, {"fy", crown.y()}},
+                                 {{"node", 2}, {"fx", push.x()}, {"fy", push.y()}, {"follower", true}}})},
+          {"analysis", {{"tolerance", 1e-12}, {"control", {{"type", "load"}, {"steps", 8}}}}}};
+}
+
+TEST(SkewRoller, AModelTurnedWithItsRollerIsTheModelTurned) {
+  tsm::Model plain, skew;
+  const tsm::solver::RunResult a = run(turned_arch(0.0), plain);
+  ASSERT_EQ(a.status, tsm::solver::Status::converged) << a.message;
+  const double angle = 0.6;
+  const tsm::solver::RunResult b = run(turned_arch(angle), skew);
+  ASSERT_EQ(b.status, tsm::solver::Status::converged) << b.message;
+  ASSERT_EQ(skew.skew_rollers.size(), 1u);
+  ASSERT_EQ(a.steps.size(), b.steps.size());
+  const double spread = std::abs(node_displacement(plain, a.steps.back(), 2)[0]);
+  EXPECT_GT(spread, 0.08 * L) << "the roller travels far (large rotations)";
+  double worst = 0.0, worst_reaction = 0.0, largest_reaction = 0.0;
+  for (size_t s = 0; s < a.steps.size(); ++s)
+    for (int k = 0; k < plain.node_count(); ++k) {
+      const Eigen::Vector3d u = a.steps[s].displacements.segment<3>(3 * k), w = b.steps[s].displacements.segment<3>(3 * k);
+      worst = std::max({worst, (turned(u.head<2>(), angle) - w.head<2>()).norm(), std::abs(u[2] - w[2]) * L});
+      const Eigen::Vector3d r = a.steps[s].reactions.segment<3>(3 * k), q = b.steps[s].reactions.segment<3>(3 * k);
+      worst_reaction = std::max(worst_reaction, (turned(r.head<2>(), angle) - q.head<2>()).norm());
+      largest_reaction = std::max(largest_reaction, r.head<2>().norm());
+    }
+  std::printf("[figure] turned by %.1f rad: displacements off by %.1e of the roller's travel %.3f m, reactions by %.1e\n",
+              angle, worst / spread, spread, worst_reaction / largest_reaction);
+  EXPECT_LT(worst, 1e-9 * spread);
+  EXPECT_LT(worst_reaction, 1e-8 * largest_reaction);
+  // The roller's node stays on its plane, exactly (its n is held).
+  const Eigen::Vector2d n = turned({0.0, 1.0}, angle);
+  for (const auto& step : b.steps) EXPECT_LT(std::abs(n.dot(step.displacements.segment<2>(3 * 1))), 1e-15 * L);
+}
+
+TEST(SkewRoller, ARollerAlongXIsRollerX) {
+  json m = turned_arch(0.0);
+  tsm::Model model;
+  const tsm::solver::RunResult a = run(m, model);
+  m["supports"][1] = {{"node", 2}, {"roller", {3.0, 0.0}}};
+  const tsm::solver::RunResult b = run(m, model);
+  EXPECT_TRUE(model.skew_rollers.empty());
+  ASSERT_EQ(a.steps.size(), b.steps.size());
+  EXPECT_TRUE(a.steps.back().displacements == b.steps.back().displacements);
+}
+
+TEST(SkewRoller, ASimplySupportedBeamOnAnInclinedRollerHasTheReactionsOfStatics) {
+  // Pinned at x = 0, on a roller inclined at β at x = L, P down at the middle (small: linear).
+  // The roller pushes across its plane: R_n = P / (2 cos β); the pin takes the rest,
+  // (P/2 tan β, P/2).
+  const double P = 1e3;
+  for (const double beta : {0.3, -0.9}) {
+    json m = beam_model({.L = L, .E = E, .A = A, .I = I, .divisions = 8});
+    m["supports"] = json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"roller", {std::cos(beta), std::sin(beta)}}}});
+    m["loads"] = json::array({{{"node", json::array({L / 2, 0.0})}, {"fy", -P}}});
+    m["analysis"]["tolerance"] = 1e-12;
+    tsm::Model model;
+    const tsm::solver::RunResult r = run(m, model);
+    ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+    const Eigen::VectorXd& R = r.steps.back().reactions;
+    const double Rn = P / (2.0 * std::cos(beta));
+    EXPECT_NEAR(R[3 * 1 + 0], -Rn * std::sin(beta), 1e-6 * P) << beta;
+    EXPECT_NEAR(R[3 * 1 + 1], Rn * std::cos(beta), 1e-6 * P) << beta;
+    EXPECT_NEAR(R[0], P / 2 * std::tan(beta), 1e-6 * P) << beta;
+    EXPECT_NEAR(R[1], P / 2, 1e-6 * P) << beta;
+  }
+}
+
+TEST(SkewRoller, TheTurnedTangentIsTheJacobian) {
+  // In the roller's frame: K = ∂(Tᵀ(F − λ P))/∂D_nodal, its follower force's rank-one term turned too.
+  const tsm::Model model = tsm::io::read_model(turned_arch(0.6));
+  const tsm::assembly::DofMap dofs(model);
+  tsm::assembly::GlobalSystem system(model, dofs);
+  const tsm::NodalFrames& frames = system.frames();
+  const double lambda = 0.7;
+  system.set_load_factor(lambda);
+  Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());  // nodal
+  for (int k = 0; k < model.dof_count(); ++k)
+    if (!model.constrained[k]) D[k] = 0.02 * std::sin(1.7 * k + 0.3);
+  const std::vector<double> rotations(model.elements.size(), 0.0);
+  const auto residual = [&](const Eigen::VectorXd& nodal, std::vector<double> chords, bool tangent, tsm::assembly::Evaluation& e) {
+    Eigen::VectorXd global = nodal;
+    frames.to_global(global);
+    system.evaluate(global, chords, tangent, e);
+    return Eigen::VectorXd(e.internal_force - lambda * e.reference_load);
+  };
+  tsm::assembly::Evaluation e;
+  residual(D, rotations, true, e);
+  std::vector<tsm::linalg::RankOne> terms = system.follower_rank_one();
+  const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent(), terms);
+  const int n = dofs.free_count();
+  Eigen::MatrixXd J(n, n);
+  const double h = 1e-6;
+  for (int c = 0; c < n; ++c) {
+    Eigen::VectorXd plus = D, minus = D;
+    plus[dofs.dof(c)] += h;
+    minus[dofs.dof(c)] -= h;
+    tsm::assembly::Evaluation ep, em;
+    const Eigen::VectorXd fp = residual(plus, e.chord_rotations, false, ep), fm = residual(minus, e.chord_rotations, false, em);
+    for (int r = 0; r < n; ++r) J(r, c) = (fp[dofs.dof(r)] - fm[dofs.dof(r)]) / (2 * h);
+  }
+  const int t = dofs.equation(3 * 1 + 0);  // the roller's t
+  ASSERT_GE(t, 0);
+  EXPECT_LT(dofs.equation(3 * 1 + 1), 0) << "its n is held";
+  EXPECT_LE((K - J).cwiseAbs().maxCoeff(), 1e-6 * K.cwiseAbs().maxCoeff());
+  EXPECT_LE((K.row(t) - J.row(t)).cwiseAbs().maxCoeff(), 1e-6 * K.row(t).cwiseAbs().maxCoeff());
+  // Left in global components, the roller's row would be the x row: far off.
+  tsm::Model unturned = model;
+  unturned.skew_rollers.clear();
+  tsm::assembly::GlobalSystem plain(unturned, dofs);
+  plain.set_load_factor(lambda);
+  tsm::assembly::Evaluation f;
+  std::vector<double> chords = rotations;
+  plain.evaluate(D, chords, true, f);
+  EXPECT_GT((dense_tangent(dofs, plain.tangent(), plain.follower_rank_one()).row(t) - J.row(t)).cwiseAbs().maxCoeff(),
+            1e-3 * K.row(t).cwiseAbs().maxCoeff());
+}
+
+TEST(SkewRoller, ARestartEndsWhereTheWholeRunDoes) {
+  // The kept step's displacements are global; the restart turns the roller's back into its frame
+  // (a rounding's worth off the state the whole run held: equal to 1e-12, not bit for bit).
+  tsm::Model model;
+  const tsm::solver::RunResult whole = run(turned_arch(0.6), model);
+  ASSERT_EQ(whole.status, tsm::solver::Status::converged) << whole.message;
+  std::ostringstream out;
+  tsm::io::write_results_json(out, model, whole);
+  const tsm::solver::RestartPoint point = tsm::io::read_restart(json::parse(out.str()), 4, model);
+  const tsm::solver::RunResult restarted = tsm::solver::run_analysis(model, {}, nullptr, &point);
+  ASSERT_EQ(restarted.status, tsm::solver::Status::converged) << restarted.message;
+  const Eigen::VectorXd &a = restarted.steps.back().displacements, &b = whole.steps.back().displacements;
+  EXPECT_LT((a - b).lpNorm<Eigen::Infinity>(), 1e-12 * b.lpNorm<Eigen::Infinity>());
+}
+
+TEST(SkewRoller, MechanismsAndBadInputAreNamed) {
+  // A bar on two rollers both along it slides along itself: a mechanism.
+  json m = beam_model({.L = 5.0, .divisions = 4});
+  m["nodes"][1] = {{"id", 2}, {"x", 3.0}, {"y", 4.0}};
+  m["supports"] = json::array({{{"node", 1}, {"roller", {3.0, 4.0}}}, {{"node", 2}, {"roller", {3.0, 4.0}}}});
+  m["loads"] = json::array({{{"node", 2}, {"fx", 1.0}}});
+  EXPECT_NE(refusal(m).find("mechanism"), std::string::npos) << refusal(m);
+  // Held across at one end, along at the other: it turns about the first.
+  m["supports"][1] = {{"node", 2}, {"roller", {-4.0, 3.0}}};
+  EXPECT_NE(refusal(m).find("free to rotate"), std::string::npos) << refusal(m);
+  m["supports"][0] = {{"node", 1}, {"type", "pinned"}};  // pinned, and held across at the other end: stable
+  m["supports"][1] = {{"node", 2}, {"roller", {3.0, 4.0}}};
+  EXPECT_EQ(refusal(m), "");
+  m["supports"][1] = {{"node", 2}, {"roller", {0.0, 0.0}}};
+  EXPECT_NE(refusal(m).find("supports[1].roller: the direction the node rolls along must not be [0, 0]"), std::string::npos) << refusal(m);
+  m["supports"][1] = {{"node", 2}, {"roller", {1.0, 1.0}}, {"fix", {"ux"}}};
+  EXPECT_NE(refusal(m).find("supports[1].roller: a roller holds the translation across its direction only"), std::string::npos)
+      << refusal(m);
+  m["supports"][1] = {{"node", 2}, {"roller", {1.0, 1.0}}, {"fix", {"rz"}}};  // a guided support: fine
+  EXPECT_EQ(refusal(m), "");
+  m["supports"][1] = {{"node", 2}, {"roller", {1.0, 1.0}}};
+  m["supports"].push_back({{"node", 2}, {"fix", {"ux"}}});
+  EXPECT_NE(refusal(m).find("supports[1].roller: node 2 has its translations held by another support too"), std::string::npos)
+      << refusal(m);
+  m["supports"].erase(2);
+  m["prescribed"] = json::array({{{"node", 2}, {"uy", 0.1}}});
+  EXPECT_NE(refusal(m).find("supports[1].roller: node 2 has a prescribed displacement"), std::string::npos) << refusal(m);
+  m.erase("prescribed");
+  m["analysis"]["control"] = {{"type", "displacement"}, {"node", 2}, {"dof", "ux"}, {"target", 0.1}};
+  EXPECT_NE(refusal(m).find("supports[1].roller: node 2 has its translation controlled"), std::string::npos) << refusal(m);
+}
+
+}  // namespace
