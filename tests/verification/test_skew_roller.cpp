@@ -2,7 +2,9 @@
 // its node's translations along and across the plane as unknowns (model/nodal_frames.hpp).
 // Checked: a whole model turned by an angle, its roller-x turned into a skew roller, is the
 // original turned, through large rotations, with follower loads, a spring and a pressure at the
-// roller (exact: the equations do not depend on the frame); the reactions of a simply supported
+// roller, under arc-length control, with a contact pressed then slid onto the roller's element
+// in a second stage (exact: the equations do not depend on the frame), Newton's residuals alike
+// iterate by iterate (the tangent turned right); the reactions of a simply supported
 // beam on an inclined roller against statics; the turned tangent and its rank-one terms against
 // central differences; a restart from a kept step; mechanisms and bad input named.
 #include <gtest/gtest.h>
@@ -53,6 +55,29 @@ json turned_arch(double angle) {
           {"analysis", {{"tolerance", 1e-12}, {"control", {{"type", "load"}, {"steps", 8}}}}}};
 }
 
+/// Newton converges alike in both runs, iterate by iterate down to the rounding floor (the
+/// turned tangent as good as the plain one; the iterate that lands under the tolerance may differ).
+void expect_same_convergence(const tsm::solver::RunResult& a, const tsm::solver::RunResult& b) {
+  for (size_t s = 0; s < a.steps.size(); ++s) {
+    const std::vector<double>&x = a.steps[s].residual_norms, &y = b.steps[s].residual_norms;
+    for (size_t i = 0; i < std::min(x.size(), y.size()) && x[i] > 1e-9; ++i)
+      EXPECT_NEAR(y[i] / x[i], 1.0, 1e-4) << "step " << s << ", iteration " << i;
+  }
+}
+
+/// Steps of two runs, the second of the model turned by `angle`: the largest difference of the
+/// displacements turned back, relative to the largest displacement.
+double turned_difference(const tsm::solver::RunResult& a, const tsm::solver::RunResult& b, int nodes, double angle) {
+  double worst = 0.0, largest = 0.0;
+  for (size_t s = 0; s < a.steps.size(); ++s)
+    for (int k = 0; k < nodes; ++k) {
+      const Eigen::Vector3d u = a.steps[s].displacements.segment<3>(3 * k), w = b.steps[s].displacements.segment<3>(3 * k);
+      worst = std::max({worst, (turned(u.head<2>(), angle) - w.head<2>()).norm(), std::abs(u[2] - w[2]) * L});
+      largest = std::max(largest, u.head<2>().norm());
+    }
+  return worst / largest;
+}
+
 TEST(SkewRoller, AModelTurnedWithItsRollerIsTheModelTurned) {
   tsm::Model plain, skew;
   const tsm::solver::RunResult a = run(turned_arch(0.0), plain);
@@ -62,6 +87,7 @@ TEST(SkewRoller, AModelTurnedWithItsRollerIsTheModelTurned) {
   ASSERT_EQ(b.status, tsm::solver::Status::converged) << b.message;
   ASSERT_EQ(skew.skew_rollers.size(), 1u);
   ASSERT_EQ(a.steps.size(), b.steps.size());
+  expect_same_convergence(a, b);
   const double spread = std::abs(node_displacement(plain, a.steps.back(), 2)[0]);
   EXPECT_GT(spread, 0.08 * L) << "the roller travels far (large rotations)";
   double worst = 0.0, worst_reaction = 0.0, largest_reaction = 0.0;
@@ -80,6 +106,61 @@ TEST(SkewRoller, AModelTurnedWithItsRollerIsTheModelTurned) {
   // The roller's node stays on its plane, exactly (its n is held).
   const Eigen::Vector2d n = turned({0.0, 1.0}, angle);
   for (const auto& step : b.steps) EXPECT_LT(std::abs(n.dot(step.displacements.segment<2>(3 * 1))), 1e-15 * L);
+}
+
+TEST(SkewRoller, UnderArcLengthControlTheTurnedModelFollowsTheSamePath) {
+  // The arc-length constraint measures translations by their length: the same in any frame.
+  tsm::Model plain, skew;
+  json a = turned_arch(0.0), b = turned_arch(-1.1);
+  for (json* m : {&a, &b}) (*m)["analysis"]["control"] = {{"type", "arc-length"}, {"initial_increment", 0.05}, {"max_steps", 12}};
+  const tsm::solver::RunResult ra = run(a, plain), rb = run(b, skew);
+  ASSERT_EQ(ra.steps.size(), 12u) << ra.message;
+  ASSERT_EQ(rb.steps.size(), 12u) << rb.message;
+  for (size_t s = 0; s < ra.steps.size(); ++s) EXPECT_NEAR(ra.steps[s].load_factor, rb.steps[s].load_factor, 1e-9) << s;
+  EXPECT_LT(turned_difference(ra, rb, plain.node_count(), -1.1), 1e-9);
+}
+
+TEST(SkewRoller, APusherPressingThenSlidingOntoTheRollersElementIsThePlainOneTurned) {
+  // Stage 1 presses a rigid pusher 0.2 m into a beam pinned at x = 0 and on a roller at x = L;
+  // stage 2 slides it 0.9 m toward the roller, through element ends onto the element that ends
+  // at the roller: the contact element's forces, tangent and sliding terms at the roller's node
+  // are turned with it.
+  const auto beam = [](double angle) {
+    const auto xy = [&](double x, double y) { return turned({x, y}, angle); };
+    const Eigen::Vector2d end = xy(L, 0.0), pusher = xy(2.9, 0.0), press = xy(0.0, -0.2), slide = xy(0.9, 0.0);
+    json roller = {{"node", 2}};
+    if (angle == 0.0) roller["type"] = "roller-x";
+    else roller["roller"] = {end.x(), end.y()};
+    return json{{"materials", {{"steel", {{"E", E}}}}},
+                {"sections", {{"s", {{"A", A}, {"I", I}}}}},
+                {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", end.x()}, {"y", end.y()}},
+                                       {{"id", 100}, {"x", pusher.x()}, {"y", pusher.y()}}})},
+                {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 8}, {"material", "steel"}, {"section", "s"}}})},
+                {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, roller})},
+                {"contacts", json::array({{{"node", 100}, {"members", "all"}}})},
+                {"stages", json::array({{{"name", "press"}, {"prescribed", json::array({{{"node", 100}, {"ux", press.x()}, {"uy", press.y()}}})},
+                                         {"control", {{"type", "load"}, {"steps", 4}}}},
+                                        {{"name", "slide"},
+                                         {"prescribed", json::array({{{"node", 100}, {"ux", slide.x()}, {"uy", slide.y()}, {"increment", true}}})},
+                                         {"control", {{"type", "load"}, {"steps", 18}}}}})},
+                {"analysis", {{"tolerance", 1e-12}}}};
+  };
+  tsm::Model plain, skew;
+  const tsm::solver::RunResult a = run(beam(0.0), plain), b = run(beam(0.8), skew);
+  ASSERT_EQ(a.status, tsm::solver::Status::converged) << a.message;
+  ASSERT_EQ(b.status, tsm::solver::Status::converged) << b.message;
+  ASSERT_EQ(a.steps.size(), b.steps.size());
+  ASSERT_EQ(a.steps.back().contacts.size(), 1u);
+  EXPECT_EQ(a.steps.back().contacts[0].element, 7) << "on the element that ends at the roller";
+  for (size_t s = 0; s < a.steps.size(); ++s) {
+    ASSERT_EQ(a.steps[s].contacts.size(), b.steps[s].contacts.size());
+    for (size_t c = 0; c < a.steps[s].contacts.size(); ++c) {
+      EXPECT_EQ(a.steps[s].contacts[c].element, b.steps[s].contacts[c].element) << s;
+      EXPECT_NEAR(a.steps[s].contacts[c].force, b.steps[s].contacts[c].force, 1e-8 * std::abs(a.steps[s].contacts[c].force)) << s;
+    }
+  }
+  EXPECT_LT(turned_difference(a, b, plain.node_count(), 0.8), 1e-9);
+  expect_same_convergence(a, b);
 }
 
 TEST(SkewRoller, ARollerAlongXIsRollerX) {
