@@ -103,15 +103,17 @@ def fixed_key_objects(model):
 # ---- the readers' key lists ------------------------------------------------------------------
 
 CHECK_KEYS = re.compile(r"check_keys\s*\((?:[^(){};]|\([^()]*\))*?\{([^{}]*)\}\s*\)", re.S)
+# for_each_entry(document, "key", {allowed keys}, …): an array's entries checked the same way.
+FOR_EACH_ENTRY = re.compile(r"for_each_entry\s*\([^,;]*,\s*\"[^\"]*\",\s*\{([^{}]*)\}", re.S)
 
 
 def reader_key_lists(folder):
-    """(file:line, frozenset of keys) of every check_keys call in src/tsmframe/<folder>/."""
+    """(file:line, frozenset of keys) of every check_keys (and for_each_entry) call in src/tsmframe/<folder>/."""
     lists = []
     for path in sorted(glob.glob(os.path.join(SOURCE, "src", "tsmframe", folder, "*.cpp"))):
         with open(path, encoding="utf-8") as f:
             text = f.read()
-        for m in CHECK_KEYS.finditer(text):
+        for m in [*CHECK_KEYS.finditer(text), *FOR_EACH_ENTRY.finditer(text)]:
             keys = re.findall(r'"([^"]*)"', m.group(1))
             line = text.count("\n", 0, m.start()) + 1
             lists.append((f"{os.path.relpath(path, SOURCE)}:{line}", frozenset(keys)))

@@ -90,6 +90,19 @@ void check_keys(const json& object, const std::string& path, std::initializer_li
   }
 }
 
+void for_each_entry(const json& document, const char* key, std::initializer_list<const char*> allowed,
+                    const std::function<void(const json& entry, const std::string& path)>& each) {
+  if (!document.contains(key)) return;
+  const json& entries = document[key];
+  expect_array(entries, key);
+  for (size_t k = 0; k < entries.size(); ++k) {
+    const std::string path = child(key, k);
+    expect_object(entries[k], path);
+    check_keys(entries[k], path, allowed);
+    each(entries[k], path);
+  }
+}
+
 double number(const json& value, const std::string& path) {
   if (!value.is_number()) fail(path, std::string("expected a number, found ") + type_name(value));
   const double x = value.get<double>();

@@ -40,6 +40,11 @@ void expect_array(const nlohmann::json& value, const std::string& path);
 /// Every key must be one of `allowed`, or "extra" (ignored, anywhere).
 void check_keys(const nlohmann::json& object, const std::string& path, std::initializer_list<const char*> allowed);
 
+/// Calls each(entry, path) for every entry of the array `document[key]` (none without the key),
+/// each an object with only `allowed` keys (a model file's "supports", "springs", …).
+void for_each_entry(const nlohmann::json& document, const char* key, std::initializer_list<const char*> allowed,
+                    const std::function<void(const nlohmann::json& entry, const std::string& path)>& each);
+
 /// A finite number within ±largest_number.
 double number(const nlohmann::json& value, const std::string& path);
 /// The number under `key`, if the object has the key.

@@ -251,14 +251,7 @@ class Reader {
   /// "springs": linear springs to the ground at nodes — kx, ky, kr (along x, y, about the
   /// rotation) or k along a "direction" [dx, dy] — each a NodalSpring.
   void read_springs() {
-    if (!doc_.contains("springs")) return;
-    const json& springs = doc_["springs"];
-    expect_array(springs, "springs");
-    for (size_t k = 0; k < springs.size(); ++k) {
-      const std::string path = child("springs", k);
-      const json& s = springs[k];
-      expect_object(s, path);
-      check_keys(s, path, {"node", "kx", "ky", "kr", "k", "direction"});
+    for_each_entry(doc_, "springs", {"node", "kx", "ky", "kr", "k", "direction"}, [&](const json& s, const std::string& path) {
       const int node = required_node(s, path);
       if (s.contains("k") != s.contains("direction")) fail(path, "give \"k\" with a \"direction\" [dx, dy], or kx, ky, kr");
       const size_t before = model_.springs.size();
@@ -274,7 +267,7 @@ class Reader {
         add("k", NodalSpring::Kind::translation, d.normalized());
       }
       if (model_.springs.size() == before) fail(path, "give kx, ky, kr, or k with a direction");
-    }
+    });
   }
 
   void read_loads() {

@@ -31,14 +31,7 @@ bool controls_translation(const Control& c, int node) {
 }  // namespace
 
 void read_supports(const json& document, const NodeResolver& node_of, Model& model) {
-  if (!document.contains("supports")) return;
-  const json& supports = document["supports"];
-  expect_array(supports, "supports");
-  for (size_t k = 0; k < supports.size(); ++k) {
-    const std::string path = child("supports", k);
-    const json& s = supports[k];
-    expect_object(s, path);
-    check_keys(s, path, {"node", "fix", "type", "roller"});
+  for_each_entry(document, "supports", {"node", "fix", "type", "roller"}, [&](const json& s, const std::string& path) {
     if (!s.contains("node")) fail(child(path, "node"), "missing (required)");
     const int node = node_of(s["node"], child(path, "node"));
     if (!s.contains("fix") && !s.contains("type") && !s.contains("roller"))
@@ -65,7 +58,7 @@ void read_supports(const json& document, const NodeResolver& node_of, Model& mod
       read_roller(s["roller"], child(path, "roller"), node, fixed, model);
     }
     for (int dof : fixed) model.constrained[dofs_per_node * node + dof] = true;
-  }
+  });
   for (const SkewRoller& r : model.skew_rollers) model.constrained[dofs_per_node * r.node + uy] = true;  // n, in its frame
 }
 
