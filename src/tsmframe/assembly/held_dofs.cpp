@@ -7,11 +7,12 @@ namespace tsm::assembly {
 
 void GlobalSystem::turn_to_nodal_frames(Evaluation& out, bool with_tangent) {
   frames_.to_nodal(out.internal_force);
-  // The fixed loads are the model's, global: the evaluation carries them turned.
-  if (out.reference_load.size() == 0) out.reference_load = model_.reference_load;
+  // The loads no follower load turned in this evaluation are the model's, global: the evaluation
+  // carries them turned, copied afresh each time (turning the last evaluation's again would turn twice).
+  if (follower_loads_.empty()) out.reference_load = model_.reference_load;
   if (out.reference_load.size() == 0) out.reference_load.setZero(model_.dof_count());
   frames_.to_nodal(out.reference_load);
-  if (out.dead_load.size() == 0 && model_.dead_load.size() > 0) out.dead_load = model_.dead_load;
+  if (!follower_loads_.has_dead()) out.dead_load = model_.dead_load;  // empty where none
   if (out.dead_load.size() > 0) frames_.to_nodal(out.dead_load);
   if (!with_tangent) return;
   if (turned_version_ != pattern_version_) {  // the entries in a turned node's row or column, once per pattern

@@ -120,6 +120,7 @@ bool held_by_springs(const Model& model, int k) {
 std::optional<std::string> unheld_node(const Model& model, const std::vector<bool>& held, bool resting_contacts_hold) {
   std::vector<const ContactSpec*> contact_of(model.node_count(), nullptr);  // a look-up, not a search per node
   for (const ContactSpec& c : model.contacts) contact_of[c.node] = &c;
+  const NodalFrames frames(model);
   for (int k = 0; k < model.node_count(); ++k) {
     if (held[k]) continue;
     const ContactSpec* spec = contact_of[k];
@@ -128,8 +129,10 @@ std::optional<std::string> unheld_node(const Model& model, const std::vector<boo
     for (const int dof : {ux, uy})
       if (!model.constrained[dofs_per_node * k + dof]) ++free_translations, free_dof = dof;
     if (held_by_springs(model, k)) continue;
-    if (resting_contacts_hold && contact_node && free_translations == 1 && model.constrained[dofs_per_node * k + rz])
-      if (const auto r = resting_contact(model, *spec); r && std::abs(r->normal[free_dof]) > 1e-6) continue;
+    if (resting_contacts_hold && contact_node && free_translations == 1 && model.constrained[dofs_per_node * k + rz]) {
+      const Eigen::Vector2d free_direction = frames.frame(k).col(free_dof).head<2>();  // x, y or a skew roller's t
+      if (const auto r = resting_contact(model, *spec); r && std::abs(r->normal.dot(free_direction)) > 1e-6) continue;
+    }
     for (int dof = 0; dof < dofs_per_node; ++dof)
       if (!model.constrained[dofs_per_node * k + dof])
         return "structure is a mechanism: node " + std::to_string(model.nodes[k].id) +
