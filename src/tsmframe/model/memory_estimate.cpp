@@ -13,8 +13,8 @@ namespace {
 // and node, lattices of 10⁵ and 4·10⁵ elements at 680 and 730 (more fill in the factor).
 constexpr double per_element = 326.0, per_node = 152.0;
 // A converged state with its results: displacements and reactions (3 doubles per node), element
-// forces (3 per element).
-constexpr double state_per_node = 48.0, state_per_element = 24.0;
+// forces (3 per element) and the chord rotation a restart goes on from (1 per element).
+constexpr double state_per_node = 48.0, state_per_element = 32.0;
 // A step's record (solver::StepRecord: 304 bytes of fields, the residual norms, the allocations'
 // headers), and what it shows in steps.csv: the monitored nodes' displacements, the reactions at
 // the moved dofs, every contact's point.

@@ -65,8 +65,8 @@ TEST(MemoryBudget, AnEstimateBeyondItIsRefusedInOneLineLargestPartFirst) {
     FAIL() << "not refused";
   } catch (const tsm::io::SystemError& error) {
     EXPECT_STREQ(error.what(),
-                 "members: the run needs ~5.5 GB of memory (10,000,000 elements and 10,000,000 nodes 4.8 GB, the state of "
-                 "1 step 720 MB, the program 6 MB), more than the machine's 2.0 GB available (MemAvailable)");
+                 "members: the run needs ~5.6 GB of memory (10,000,000 elements and 10,000,000 nodes 4.8 GB, the state of "
+                 "1 step 800 MB, the program 6 MB), more than the machine's 2.0 GB available (MemAvailable)");
   }
 }
 

@@ -25,10 +25,10 @@ TEST(MemoryEstimate, AChainWithoutContactsHandCounted) {
   EXPECT_DOUBLE_EQ(e.program.bytes, 6e6);
   EXPECT_DOUBLE_EQ(e.input.bytes, 10 * 1000);                  // the text and its document
   EXPECT_DOUBLE_EQ(e.elements.bytes, 326 * 100 + 152 * 101);    // 47,952
-  EXPECT_DOUBLE_EQ(e.kept_states.bytes, 48 * 101 + 24 * 100);  // displacements, reactions; element forces
+  EXPECT_DOUBLE_EQ(e.kept_states.bytes, 48 * 101 + 32 * 100);  // displacements, reactions; element forces, chord rotations
   EXPECT_DOUBLE_EQ(e.steps.bytes, 10 * (400 + 24 * 1));        // a record each, a monitored node's (u, v, θ)
   EXPECT_DOUBLE_EQ(e.contacts.bytes, 0.0);
-  EXPECT_DOUBLE_EQ(e.total(), 6e6 + 10'000 + 47'952 + 7'248 + 4'240);
+  EXPECT_DOUBLE_EQ(e.total(), 6e6 + 10'000 + 47'952 + 8'048 + 4'240);
   EXPECT_EQ(e.elements.name, "100 elements and 101 nodes");
   EXPECT_EQ(e.kept_states.name, "the state of 1 step");
   EXPECT_EQ(e.steps.name, "10 steps' records");
