@@ -327,7 +327,7 @@ TEST_F(Study, ACaseBeyondItsShareOfMemoryIsARowNotAnAbort) {
   EXPECT_EQ(r["cases"][0]["status"], "converged");
   EXPECT_EQ(r["cases"][1]["status"], "bad-input");
   const std::string message = r["cases"][1]["message"];
-  EXPECT_EQ(message.rfind("members: the run needs ~5.5 GB of memory (10,000,000 elements and 10,000,001 nodes 4.8 GB,", 0), 0u) << message;
+  EXPECT_EQ(message.rfind("members: the run needs ~5.6 GB of memory (10,000,000 elements and 10,000,001 nodes 4.8 GB,", 0), 0u) << message;
   EXPECT_NE(message.find("left by the address-space limit (ulimit -v) among 2 study jobs"), std::string::npos) << message;
 }
 
