@@ -298,10 +298,33 @@ std::vector<int> TsmProblem::look_ahead_releases(State& state, bool& overwrote_t
   if (!pulls || owner.size() != active.size() ||
       std::any_of(active.begin(), active.end(), [](const contact::ActiveContact& a) { return a.size() > 1; }))
     return also;
-  const std::vector<assembly::ContactDirection> directions =
-      system_.contact_directions(physical(state), state.chord_rotations, active);
-  analyse_pattern();
+  // The forecast is made along the chords' normals. Letting go of a point takes out its load
+  // Y u and its stiffness u uᵀ/c; along the bent beam's normal its tangent also carries the
+  // normal's turning, Y (g ∇w_αᵀ + ∇w_α gᵀ) with ∇w_α ≈ ½ c_α ∇Y = ½ c_α u/c: a term of the
+  // contact's own stiffness 1/c, times Y, that the forecast would leave behind in K as the point
+  // lets go. The forecast's balance, 1 − G_ii/c, is the compliance of the beam behind the contact
+  // against the contact's own: a few 10⁻³ of it where a flexible beam lies on a stiff one, and
+  // there the left-over term decides the sign of the forecast Y (a beam pressed onto another
+  // released two contacts per converged iterate, not the whole over-held zone). Whether a point
+  // lets go is Y's sign, the same along either normal (Y is the share along n), and the
+  // directions differ by the slope w', which vanishes as the mesh is refined. The state's own
+  // evaluation (eval_, whose contacts update() reads next) stays the bent beam's: the chords' is
+  // a scratch one, its tangent the one factorised below.
+  std::vector<contact::ActiveContact> along_chords = active;
+  bool bent = false;
+  for (contact::ActiveContact& a : along_chords)
+    for (contact::ContactElementData& d : a.data) {
+      const bool was_bent = std::exchange(d.normal, ContactNormal::chord) != ContactNormal::chord;
+      bent = bent || was_bent;
+    }
   overwrote_tangent = true;
+  if (bent) {
+    assembly::Evaluation chords;
+    system_.evaluate(physical(state), state.chord_rotations, true, chords, along_chords);
+  }
+  const std::vector<assembly::ContactDirection> directions =
+      system_.contact_directions(physical(state), state.chord_rotations, along_chords);
+  analyse_pattern();
   if (!solver_.factorize(system_.tangent_for_factorisation(), system_.contact_rank_one())) return also;
   const int n = static_cast<int>(directions.size());
   Eigen::VectorXd stiffness(n), Y(n);
