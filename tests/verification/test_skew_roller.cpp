@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <utility>
 #include <sstream>
 
 #include "support/dense.hpp"
@@ -79,6 +81,29 @@ double turned_difference(const tsm::solver::RunResult& a, const tsm::solver::Run
   return worst / largest;
 }
 
+/// A steel beam of 8 elements from node 1 at the origin to node 2 at `end`, node 100 at `node` a
+/// contact node on it (its `gap`), with `supports`.
+json beam_and_node_100(const Eigen::Vector2d& end, const Eigen::Vector2d& node, const json& supports, double gap) {
+  return {{"materials", {{"steel", {{"E", E}}}}},
+          {"sections", {{"s", {{"A", A}, {"I", I}}}}},
+          {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", end.x()}, {"y", end.y()}},
+                                 {{"id", 100}, {"x", node.x()}, {"y", node.y()}}})},
+          {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 8}, {"material", "steel"}, {"section", "s"}}})},
+          {"supports", supports},
+          {"contacts", json::array({{{"node", 100}, {"members", "all"}, {"gap", gap}}})},
+          {"analysis", {{"tolerance", 1e-12}}}};
+}
+
+/// Runs a model as `at(0)` gives it and turned by `angle`: both converge, in as many steps.
+std::pair<tsm::solver::RunResult, tsm::solver::RunResult> run_plain_and_turned(const std::function<json(double)>& at,
+                                                                               double angle, tsm::Model& plain, tsm::Model& skew) {
+  std::pair<tsm::solver::RunResult, tsm::solver::RunResult> runs{run(at(0.0), plain), run(at(angle), skew)};
+  EXPECT_EQ(runs.first.status, tsm::solver::Status::converged) << runs.first.message;
+  EXPECT_EQ(runs.second.status, tsm::solver::Status::converged) << runs.second.message;
+  EXPECT_EQ(runs.first.steps.size(), runs.second.steps.size());
+  return runs;
+}
+
 TEST(SkewRoller, AModelTurnedWithItsRollerIsTheModelTurned) {
   tsm::Model plain, skew;
   const tsm::solver::RunResult a = run(turned_arch(0.0), plain);
@@ -132,24 +157,16 @@ TEST(SkewRoller, APusherPressingThenSlidingOntoTheRollersElementIsThePlainOneTur
     json roller = {{"node", 2}};
     if (angle == 0.0) roller["type"] = "roller-x";
     else roller["roller"] = {end.x(), end.y()};
-    return json{{"materials", {{"steel", {{"E", E}}}}},
-                {"sections", {{"s", {{"A", A}, {"I", I}}}}},
-                {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", end.x()}, {"y", end.y()}},
-                                       {{"id", 100}, {"x", pusher.x()}, {"y", pusher.y()}}})},
-                {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 8}, {"material", "steel"}, {"section", "s"}}})},
-                {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, roller})},
-                {"contacts", json::array({{{"node", 100}, {"members", "all"}}})},
-                {"stages", json::array({{{"name", "press"}, {"prescribed", json::array({{{"node", 100}, {"ux", press.x()}, {"uy", press.y()}}})},
+    json m = beam_and_node_100(end, pusher, json::array({{{"node", 1}, {"type", "pinned"}}, roller}), 0.0);
+    m.update(json{{"stages", json::array({{{"name", "press"}, {"prescribed", json::array({{{"node", 100}, {"ux", press.x()}, {"uy", press.y()}}})},
                                          {"control", {{"type", "load"}, {"steps", 4}}}},
                                         {{"name", "slide"},
                                          {"prescribed", json::array({{{"node", 100}, {"ux", slide.x()}, {"uy", slide.y()}, {"increment", true}}})},
-                                         {"control", {{"type", "load"}, {"steps", 18}}}}})},
-                {"analysis", {{"tolerance", 1e-12}}}};
+                                         {"control", {{"type", "load"}, {"steps", 18}}}}})}});
+    return m;
   };
   tsm::Model plain, skew;
-  const tsm::solver::RunResult a = run(beam(0.0), plain), b = run(beam(0.8), skew);
-  ASSERT_EQ(a.status, tsm::solver::Status::converged) << a.message;
-  ASSERT_EQ(b.status, tsm::solver::Status::converged) << b.message;
+  const auto [a, b] = run_plain_and_turned(beam, 0.8, plain, skew);
   ASSERT_EQ(a.steps.size(), b.steps.size());
   ASSERT_EQ(a.steps.back().contacts.size(), 1u);
   EXPECT_EQ(a.steps.back().contacts[0].element, 7) << "on the element that ends at the roller";
@@ -174,23 +191,15 @@ TEST(SkewRoller, AContactNodeOnASkewRollerPressedOntoABeamIsThePlainOneTurned) {
     json roller = {{"node", 100}, {"fix", {"rz"}}};
     if (angle == 0.0) roller["type"] = "roller-y";
     else roller["roller"] = {xy(0.0, 1.0).x(), xy(0.0, 1.0).y()};
-    return json{{"materials", {{"steel", {{"E", E}}}}},
-                {"sections", {{"s", {{"A", A}, {"I", I}}}}},
-                {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", tip.x()}, {"y", tip.y()}},
-                                       {{"id", 100}, {"x", node.x()}, {"y", node.y()}}})},
-                {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 8}, {"material", "steel"}, {"section", "s"}}})},
-                {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, roller})},
-                {"contacts", json::array({{{"node", 100}, {"members", "all"}, {"gap", 0.1}}})},
-                {"stages", json::array({{{"name", "press"}, {"loads", json::array({{{"node", 100}, {"fx", down.x()}, {"fy", down.y()}}})},
+    json m = beam_and_node_100(tip, node, json::array({{{"node", 1}, {"type", "fixed"}}, roller}), 0.1);
+    m.update(json{{"stages", json::array({{{"name", "press"}, {"loads", json::array({{{"node", 100}, {"fx", down.x()}, {"fy", down.y()}}})},
                                          {"control", {{"type", "load"}, {"steps", 5}}}},
                                         {{"name", "more"}, {"loads", json::array({{{"node", 100}, {"fx", more.x()}, {"fy", more.y()}}})},
-                                         {"control", {{"type", "load"}, {"steps", 5}}}}})},
-                {"analysis", {{"tolerance", 1e-12}}}};
+                                         {"control", {{"type", "load"}, {"steps", 5}}}}})}});
+    return m;
   };
   tsm::Model plain, skew;
-  const tsm::solver::RunResult a = run(model(0.0), plain), b = run(model(0.5), skew);
-  ASSERT_EQ(a.status, tsm::solver::Status::converged) << a.message;
-  ASSERT_EQ(b.status, tsm::solver::Status::converged) << b.message;
+  const auto [a, b] = run_plain_and_turned(model, 0.5, plain, skew);
   ASSERT_EQ(a.steps.size(), b.steps.size());
   EXPECT_GT(std::abs(node_displacement(plain, a.steps.back(), 100)[1]), 0.01) << "pressed well into the beam";
   EXPECT_LT(turned_difference(a, b, plain.node_count(), 0.5), 1e-9);

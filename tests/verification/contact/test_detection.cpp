@@ -20,6 +20,17 @@ using namespace tsm::test;
 using tsm::solver::RunResult;
 using tsm::solver::StepRecord;
 
+/// The contacts in touch at a step, each checked to push.
+int pushing_contacts(const tsm::solver::StepRecord& step) {
+  int touching = 0;
+  for (const tsm::solver::ContactPoint& c : step.contacts)
+    if (c.element >= 0) {
+      ++touching;
+      EXPECT_GT(c.force, 0.0);
+    }
+  return touching;
+}
+
 TEST(ContactDetection, ManyContactsClosingTogetherSettleInOneLookAheadAndAFailureSaysHow) {
   // The two beams loaded in one step to the first contacts: the predictor closes 85 contacts,
   // of which one is right. Released a few per converged iterate (the outermost pulling ones),
@@ -32,12 +43,7 @@ TEST(ContactDetection, ManyContactsClosingTogetherSettleInOneLookAheadAndAFailur
   const RunResult settled = run(m, model);
   ASSERT_EQ(settled.status, tsm::solver::Status::converged) << settled.message;
   EXPECT_LE(settled.steps.back().iterations, 12);
-  int touching = 0;
-  for (const tsm::solver::ContactPoint& c : settled.steps.back().contacts)
-    if (c.element >= 0) {
-      ++touching;
-      EXPECT_GT(c.force, 0.0);
-    }
+  const int touching = pushing_contacts(settled.steps.back());
   EXPECT_GE(touching, 1);
   EXPECT_LE(touching, 5);
   expect_equilibrium(model, settled.steps.back());
@@ -61,13 +67,7 @@ TEST(ContactDetection, SevenHundredContactsAlongTheBentBeamsNormalSettleAsAlongT
   const RunResult r = run(pressed_beams(-2000.0, 10, 2100, 700), model);
   ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
   EXPECT_LE(r.steps.size(), 30u);
-  int touching = 0;
-  for (const tsm::solver::ContactPoint& c : r.steps.back().contacts)
-    if (c.element >= 0) {
-      ++touching;
-      EXPECT_GT(c.force, 0.0);
-    }
-  EXPECT_GT(touching, 300);
+  EXPECT_GT(pushing_contacts(r.steps.back()), 300);
   expect_equilibrium(model, r.steps.back());
 }
 
