@@ -73,7 +73,8 @@ class Reader {
     MemberMesh mesh(model_);
     read_members(mesh);
     mesh.finish();
-    read_supports(doc_, [this](const json& value, const std::string& path) { return node_ref(value, path); }, model_);
+    const std::vector<std::string> roller_paths =
+        read_supports(doc_, [this](const json& value, const std::string& path) { return node_ref(value, path); }, model_);
     read_springs();
     loads_.emplace(
         model_, [this](const json& value, const std::string& path) { return node_ref(value, path); },
@@ -83,8 +84,7 @@ class Reader {
     fix_free_rotations(model_);  // a moment on a hinge was refused with its load
     read_contacts();
     read_analysis(mesh.loaded_middles());
-    check_skew_rollers(doc_, [this](const json& value, const std::string& path) { return node_ref(value, path); }, model_,
-                       loads_->prescribed_nodes());
+    check_skew_rollers(model_, roller_paths, loads_->prescribed_nodes());
     check_kept_states(model_);
     // The whole run's memory, before the run spends it (and before the checks below, which take
     // time in proportion to contacts × candidate elements).

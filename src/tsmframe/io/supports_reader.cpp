@@ -1,7 +1,6 @@
 #include "tsmframe/io/supports_reader.hpp"
 
 #include <nlohmann/json.hpp>
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -13,13 +12,14 @@ namespace {
 using json = nlohmann::json;
 
 /// A "roller" direction: the node rolls along it. Along x or y it is a plain roller (uy or ux
-/// held, `fixed`); otherwise a skew roller.
-void read_roller(const json& value, const std::string& path, int node, std::set<int>& fixed, Model& model) {
+/// held, `fixed`); otherwise a skew roller (true).
+bool read_roller(const json& value, const std::string& path, int node, std::set<int>& fixed, Model& model) {
   const Eigen::Vector2d along = point(value, path);
-  if (along.norm() == 0.0 || !std::isfinite(along.norm())) fail(path, "the direction the node rolls along must not be [0, 0]");
+  if (!(along.norm() > 0.0)) fail(path, "the direction the node rolls along must not be [0, 0]");
   if (along.y() == 0.0) fixed.insert(uy);
   else if (along.x() == 0.0) fixed.insert(ux);
   else model.skew_rollers.push_back({node, along.normalized()});
+  return along.x() != 0.0 && along.y() != 0.0;
 }
 
 /// Whether a control's (or its until's) translation is at `node`.
@@ -30,7 +30,8 @@ bool controls_translation(const Control& c, int node) {
 
 }  // namespace
 
-void read_supports(const json& document, const NodeResolver& node_of, Model& model) {
+std::vector<std::string> read_supports(const json& document, const NodeResolver& node_of, Model& model) {
+  std::vector<std::string> roller_paths;
   for_each_entry(document, "supports", {"node", "fix", "type", "roller"}, [&](const json& s, const std::string& path) {
     if (!s.contains("node")) fail(child(path, "node"), "missing (required)");
     const int node = node_of(s["node"], child(path, "node"));
@@ -55,28 +56,22 @@ void read_supports(const json& document, const NodeResolver& node_of, Model& mod
     if (s.contains("roller")) {
       if (fixed.count(ux) || fixed.count(uy))
         fail(child(path, "roller"), "a roller holds the translation across its direction only: give \"fix\" no ux or uy, and no \"type\", with it");
-      read_roller(s["roller"], child(path, "roller"), node, fixed, model);
+      if (read_roller(s["roller"], child(path, "roller"), node, fixed, model)) roller_paths.push_back(child(path, "roller"));
     }
     for (int dof : fixed) model.constrained[dofs_per_node * node + dof] = true;
   });
   for (const SkewRoller& r : model.skew_rollers) model.constrained[dofs_per_node * r.node + uy] = true;  // n, in its frame
+  return roller_paths;
 }
 
-void check_skew_rollers(const json& document, const NodeResolver& node_of, const Model& model,
-                        const std::set<int>& prescribed_nodes) {
-  if (model.skew_rollers.empty()) return;
+void check_skew_rollers(const Model& model, const std::vector<std::string>& roller_paths, const std::set<int>& prescribed_nodes) {
   std::vector<int> skew(model.node_count(), 0);
   for (const SkewRoller& r : model.skew_rollers) ++skew[r.node];
-  const json& supports = document["supports"];
-  for (size_t k = 0; k < supports.size(); ++k) {
-    const std::string path = child(child("supports", k), "roller");
-    if (!supports[k].contains("roller")) continue;
-    const Eigen::Vector2d along = point(supports[k]["roller"], path);
-    if (along.x() == 0.0 || along.y() == 0.0) continue;  // a plain roller
-    const int node = node_of(supports[k]["node"], child(child("supports", k), "node"));
+  for (size_t k = 0; k < model.skew_rollers.size(); ++k) {
+    const int node = model.skew_rollers[k].node;
     const auto refuse = [&](const std::string& what) {
-      fail(path, "node " + std::to_string(model.nodes[node].id) + " " + what +
-                     ": a skew roller's node moves along its plane, solved for in the plane's frame");
+      fail(roller_paths[k], "node " + std::to_string(model.nodes[node].id) + " " + what +
+                                ": a skew roller's node moves along its plane, solved for in the plane's frame");
     };
     if (skew[node] > 1) refuse("has two skew rollers");
     if (model.constrained[dofs_per_node * node + ux]) refuse("has its translations held by another support too");

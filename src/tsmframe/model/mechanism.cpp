@@ -1,7 +1,5 @@
 #include "tsmframe/model/mechanism.hpp"
 
-#include "tsmframe/model/nodal_frames.hpp"
-
 #include "tsmframe/element/chord.hpp"
 #include "tsmframe/model/hinges.hpp"
 #include "tsmframe/model/nodal_frames.hpp"
@@ -92,7 +90,7 @@ void members_by_root(Parts& parts) {
 
 /// Whether the springs at node k hold each dof its supports leave free: the free translations'
 /// directions spanned by translation springs, a free rotation by a rotation spring.
-bool held_by_springs(const Model& model, int k) {
+bool held_by_springs(const Model& model, const NodalFrames& frames, int k) {
   Eigen::Matrix2d spanned = Eigen::Matrix2d::Zero();
   bool rotation = false, any = false;
   for (const NodalSpring& s : model.springs) {
@@ -102,7 +100,7 @@ bool held_by_springs(const Model& model, int k) {
     else spanned += s.direction * s.direction.transpose();
   }
   if (!any) return false;
-  const Eigen::Matrix3d T = NodalFrames(model).frame(k);  // a skew roller frees its t
+  const Eigen::Matrix3d T = frames.frame(k);  // a skew roller frees its t
   for (const int dof : {ux, uy})
     if (!model.constrained[dofs_per_node * k + dof] && !model.constrained[dofs_per_node * k + 1 - dof] &&
         std::abs(spanned.determinant()) < 1e-12)
@@ -128,7 +126,7 @@ std::optional<std::string> unheld_node(const Model& model, const std::vector<boo
     int free_translations = 0, free_dof = -1;
     for (const int dof : {ux, uy})
       if (!model.constrained[dofs_per_node * k + dof]) ++free_translations, free_dof = dof;
-    if (held_by_springs(model, k)) continue;
+    if (held_by_springs(model, frames, k)) continue;
     if (resting_contacts_hold && contact_node && free_translations == 1 && model.constrained[dofs_per_node * k + rz]) {
       const Eigen::Vector2d free_direction = frames.frame(k).col(free_dof).head<2>();  // x, y or a skew roller's t
       if (const auto r = resting_contact(model, *spec); r && std::abs(r->normal.dot(free_direction)) > 1e-6) continue;

@@ -140,12 +140,11 @@ struct NodalSpring {
 };
 
 /// A support on an inclined plane (a skew roller): the node rolls along `along` (unit) and is held
-/// normal to it. Its translations are solved for in the roller's frame (t, n) = (along, normal),
+/// normal to it. Its translations are solved for in the roller's frame (t, n), t = along,
 /// the n dof held (Model::constrained at its uy slot; model/nodal_frames.hpp).
 struct SkewRoller {
   int node = 0;  ///< node index
   Eigen::Vector2d along = Eigen::Vector2d::UnitX();
-  Eigen::Vector2d normal() const { return {-along.y(), along.x()}; }
 };
 
 struct OutputSelection {
