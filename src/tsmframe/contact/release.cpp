@@ -76,7 +76,7 @@ bool passed_through(const ContactGeometry& geometry, const ContactCandidates& co
     if (where.alpha < 0.0 || where.alpha > 1.0) continue;
     const Eigen::Vector2d n = geometry.chord_normal(f, D, rotations);
     const int expected = n.dot(released_normal) >= 0.0 ? state.step.released_side : -state.step.released_side;
-    if (expected * where.gap < -geometry.touch_tolerance()) return true;
+    if (expected * where.gap < contact.gap - geometry.touch_tolerance()) return true;  // inside its gap, as detect() has it
   }
   if (!state.step.released_pulled) return false;  // off a free end: it may go round it
   // The element of the beam nearest the node across its span: a node through the beam lies just
@@ -86,7 +86,7 @@ bool passed_through(const ContactGeometry& geometry, const ContactCandidates& co
   const auto [nearest, nearest_gap] = nearest_across(geometry, contact, D, rotations, loads);
   if (nearest < 0) return false;
   const int expected = state.reference.side[nearest];
-  return (expected == 1 || expected == -1) && expected * nearest_gap < -geometry.touch_tolerance();
+  return (expected == 1 || expected == -1) && expected * nearest_gap < contact.gap - geometry.touch_tolerance();
 }
 
 }  // namespace tsm::contact

@@ -19,8 +19,8 @@ void release(const ContactGeometry& geometry, const ContactCandidates& contact, 
              const std::vector<double>& rotations, ContactState& state, bool pulled);
 
 /// Whether the node of a contact released in this step has passed through a beam since: it lies
-/// within the span of an element that held it at the release, on the far side; or, released by
-/// a pull, on the far side of the element nearest across it. The far side of the shape the
+/// within the span of an element that held it at the release, closer than the contact's gap on
+/// its side or beyond; or, released by a pull, so near the element nearest across it. The far side of the shape the
 /// points on each element give it (`loads`: a converged iterate's).
 bool passed_through(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& displacements,
                     const std::vector<double>& rotations, const ContactState& state, const ElementLoads& loads);

@@ -63,6 +63,26 @@ TEST(ContactRelease, AfterLettingGoTheNodeMayNotPassThroughTheBeam) {
   EXPECT_FALSE(through(0.9, -0.01));  // beyond the free end: no beam to be through
 }
 
+TEST(ContactRelease, ANodeThatSinksWithinItsGapHasPassedThroughAsDetectionHasIt) {
+  // A contact 5 cm off the centre line, let go where it touched: the node may come back to the
+  // 5 cm line but no closer — closer, detection would have it in touch, so a converged iterate
+  // with it there has gone through the beam's offset surface (on the element it let go of, and
+  // on one beyond the elements that held it).
+  ContactFixture f(0.3, 0.05, {{"gap", 0.05}});
+  const ContactGeometry geometry(f.model);
+  ContactState state = pressing(geometry, f, 1);
+  tsm::contact::release(geometry, geometry.contact(0), f.D, f.rotations, state, true);
+  const auto through = [&](double dx, double dy) {
+    f.move_foot(dx, dy);
+    return tsm::contact::passed_through(geometry, geometry.contact(0), f.D, f.rotations, state, tsm::contact::ElementLoads({state}));
+  };
+  EXPECT_FALSE(through(0.0, 0.0));     // on the 5 cm line, where it let go
+  EXPECT_FALSE(through(0.0, 0.001));   // lifted off
+  EXPECT_TRUE(through(0.0, -0.001));   // 1 mm into the gap, still 4.9 cm above the centre line
+  EXPECT_TRUE(through(0.5, -0.02));    // 2 cm into it above element 3, beyond those that held it
+  EXPECT_FALSE(through(0.5, 0.001));
+}
+
 TEST(ContactRelease, OffAFreeEndTheNodeMayGoRoundIt) {
   ContactFixture f(0.95, 0.0);
   const ContactGeometry geometry(f.model);
