@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "tsmframe/contact/broad_phase.hpp"
 #include "tsmframe/contact/detection.hpp"
 #include "tsmframe/contact/release.hpp"
 #include "tsmframe/contact/sides.hpp"
@@ -26,10 +27,12 @@ std::vector<ContactState> ContactSet::initial_states() const {
   const std::vector<double> rotations(model.elements.size(), 0.0);
   std::vector<ContactState> states(contact_count());
   Occupancy occupancy(model.elements.size(), model.node_count());
+  const std::uint64_t stamp = displacement_stamp(D);
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
     states[k].reference.side.assign(contact.candidates.size(), 0);
     reset_sides(geometry_, contact, D, rotations, 0, states[k]);
+    list_near_candidates(geometry_, contact, D, stamp, states[k].reference);
     // Resting on an element as drawn (model/resting_contact): in contact from the start, so a
     // structure held only by its contacts has a tangent to start from (where the element may take
     // no other point, occupancy.hpp, a second one starts at the first update instead).
@@ -97,11 +100,12 @@ void ContactSet::record(const std::vector<ContactEvaluation>& evaluated, std::ve
 
 ContactChanges ContactSet::update(const Eigen::VectorXd& D, const std::vector<double>& rotations,
                                   const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states,
-                                  bool at_convergence) const {
+                                  bool at_convergence, const Eigen::VectorXd* step_start) const {
   record(evaluated, states);
   ContactChanges changes;
   Occupancy occupancy(geometry_, states);
   ChordFrames frames(geometry_, D);
+  const BroadPhase broad_phase(geometry_, D, step_start);
   // At a converged iterate a node is detected against the shape the points on an element give it.
   const std::optional<ElementLoads> loads = at_convergence ? std::optional<ElementLoads>(states) : std::nullopt;
   for (int k = 0; k < contact_count(); ++k) {
@@ -110,8 +114,9 @@ ContactChanges ContactSet::update(const Eigen::VectorXd& D, const std::vector<do
     const int before = state.active ? state.element : -1;
     if (state.active) {
       update_active(contact, D, rotations, at_convergence, state, occupancy, changes);
-    } else if (const std::optional<HandOver> touched = detect(geometry_, contact, D, rotations, frames, state, occupancy,
-                                                                         loads ? &*loads : nullptr)) {
+    } else if (const std::optional<HandOver> touched =
+                   detect(geometry_, contact, D, rotations, frames, state, occupancy, loads ? &*loads : nullptr,
+                          broad_phase.candidates(contact, state.reference))) {
       ++changes.activated;
       add(*touched, changes);
     }
@@ -178,19 +183,24 @@ int ContactSet::release_as_pulling(const std::vector<int>& which, const Eigen::V
 
 void ContactSet::restore(const Eigen::VectorXd& D, const std::vector<double>& rotations,
                          std::vector<ContactState>& states) const {
+  const std::uint64_t stamp = displacement_stamp(D);
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
     if (states[k].reference.side.size() == contact.candidates.size()) continue;
     states[k].reference.side.assign(contact.candidates.size(), 0);
     reset_sides(geometry_, contact, D, rotations, 0, states[k]);
+    list_near_candidates(geometry_, contact, D, stamp, states[k].reference);
   }
 }
 
 void ContactSet::accept(const Eigen::VectorXd& D, const std::vector<double>& rotations,
                         std::vector<ContactState>& states) const {
+  const std::uint64_t stamp = displacement_stamp(D);
   for (int k = 0; k < contact_count(); ++k) {
     states[k].step = StepMemory{};
-    if (!states[k].active) reset_sides(geometry_, geometry_.contact(k), D, rotations, 0, states[k]);
+    if (states[k].active) continue;
+    reset_sides(geometry_, geometry_.contact(k), D, rotations, 0, states[k]);
+    list_near_candidates(geometry_, geometry_.contact(k), D, stamp, states[k].reference);
   }
 }
 

@@ -4,6 +4,7 @@
 // element of a contact resting on a beam node (a vertex), where its node was at the last
 // converged state (what detection compares with), and what it remembers within the current step.
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -35,6 +36,14 @@ struct ContactReference {
   /// iterate's (detection.hpp).
   std::vector<double> along, across;
   double position[2] = {0.0, 0.0};  ///< the node's position (the start of its path in the step)
+  /// The broad phase (broad_phase.hpp): at a step's start (`stamp` its displacements'), the
+  /// candidates within reach of the node (indices into the candidates, ascending), and how far
+  /// the node and the beams may move with that list still holding. Not `listed`: detection looks
+  /// at every candidate (a reference taken at a release).
+  std::vector<int> near;
+  double allowance = 0.0;
+  std::uint64_t stamp = 0;
+  bool listed = false;
 };
 
 /// What a contact remembers within the current step only: cleared when a step is accepted.

@@ -10,6 +10,16 @@ constexpr double alpha_tolerance = 1e-12;  // a node on a beam node counts for b
 
 int sign(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
 
+/// Calls `visit(ci)` for the broad phase's candidates (`near`), or for every one (null).
+template <class Visit>
+void for_each_candidate(const ContactCandidates& contact, const std::vector<int>* near, Visit&& visit) {
+  if (near) {
+    for (const int ci : *near) visit(ci);
+    return;
+  }
+  for (size_t ci = 0; ci < contact.candidates.size(); ++ci) visit(static_cast<int>(ci));
+}
+
 
 }  // namespace
 
@@ -34,7 +44,7 @@ void ChordFrames::form() {
 }
 
 int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spec, const ContactState& state,
-                   const Eigen::VectorXd& D, const Occupancy& occupancy) {
+                   const Eigen::VectorXd& D, const Occupancy& occupancy, const std::vector<int>* near) {
   const Model& model = geometry.model();
   // In each element's own frame the node moved from (α0, g0) at the last converged state to
   // (α1, g1) now: where g reaches the contact's gap on the far side, α is interpolated between.
@@ -58,58 +68,58 @@ int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spe
   };
   int first = -1;
   double first_t = INFINITY;
-  for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
+  for_each_candidate(spec, near, [&](int ci) {
     const int f = spec.candidates[ci], side = state.reference.side[ci];
-    if (!occupancy.may_join(f, spec.frame) || (side != 1 && side != -1)) continue;
+    if (!occupancy.may_join(f, spec.frame) || (side != 1 && side != -1)) return;
     const double before = side * state.reference.across[ci];
-    if (!(before > spec.gap)) continue;
+    if (!(before > spec.gap)) return;
     const Element& e = model.elements[f];
     const Eigen::Vector2d a = position(e.start), b = position(e.end);
     if (const double alpha = element::alpha_on_chord(a, b, p1); alpha >= -alpha_tolerance && alpha <= 1.0 + alpha_tolerance)
-      continue;  // on_chord's α, without its square root
+      return;  // on_chord's α, without its square root
     {  // Still on its side beyond the gap, surely (on_chord's distance, squared, with room for rounding).
       const Eigen::Vector2d chord = b - a, r = p1 - a;
       const double across = chord.x() * r.y() - chord.y() * r.x(), length2 = chord.squaredNorm();
-      if (length2 > 0.0 && side * across > 0.0 && across * across > spec.gap * spec.gap * length2 * (1.0 + 1e-9)) continue;
+      if (length2 > 0.0 && side * across > 0.0 && across * across > spec.gap * spec.gap * length2 * (1.0 + 1e-9)) return;
     }
     const NodeOnElement now = geometry.on_chord(spec, f, D);
     const double after = side * now.gap;
-    if (after > spec.gap) continue;
+    if (after > spec.gap) return;
     const double t = (before - spec.gap) / (before - after);
     const double alpha = state.reference.along[ci] + t * (now.alpha - state.reference.along[ci]);
-    if (alpha < 0.0 || alpha > 1.0 || t >= first_t || !path_meets_chord(f)) continue;
+    if (alpha < 0.0 || alpha > 1.0 || t >= first_t || !path_meets_chord(f)) return;
     first = f;
     first_t = t;
-  }
+  });
   return first;
 }
 
 std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& D,
                                const std::vector<double>& rotations, ChordFrames& frames, ContactState& state,
-                               Occupancy& occupancy, const ElementLoads* loads) {
+                               Occupancy& occupancy, const ElementLoads* loads, const std::vector<int>* near) {
   state.step.blocked_element = -1;
   if (state.step.released) return std::nullopt;
   int best = -1, best_side = 0;
   double best_gap = INFINITY, best_alpha = 0.0;
   const Eigen::Vector2d node = geometry.position(contact.node, D);
-  for (size_t ci = 0; ci < contact.candidates.size(); ++ci) {
+  for_each_candidate(contact, near, [&](int ci) {
     const int f = contact.candidates[ci];
     if (const double alpha = frames(f).alpha(node); alpha < -alpha_tolerance || alpha > 1.0 + alpha_tolerance)
-      continue;  // the same α as locate's
+      return;  // the same α as locate's
     const NodeOnElement where = geometry.locate(contact, f, D, rotations, -INFINITY, INFINITY, loads);
     const int reference = state.reference.side[ci];
     int side = 0;
     if (reference == no_side) {
-      continue;
+      return;
     } else if (reference != 0) {
       if (reference * where.gap <= contact.gap) side = reference;
     } else if (std::abs(where.gap) > geometry.touch_tolerance()) {
       side = -sign(where.gap);  // it left the centre line: it pushes the way it moves
     }
-    if (side != 0 && pair_in_contact(geometry, contact, f, D, occupancy)) continue;
+    if (side != 0 && pair_in_contact(geometry, contact, f, D, occupancy)) return;
     if (side != 0 && !occupancy.may_join(f, contact.frame)) {  // points of the other frame hold it
       state.step.blocked_element = f;
-      continue;
+      return;
     }
     if (side != 0 && std::abs(where.gap) < best_gap) {
       best = f;
@@ -117,12 +127,12 @@ std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCan
       best_gap = std::abs(where.gap);
       best_alpha = where.alpha;
     }
-  }
+  });
   if (best < 0) {
     // Across an element's span and on beyond it within one iterate (a long step along a beam
     // the node was pressed onto): contact starts on that element, and is handed on along the
     // beam from there to where the node is — as far as the beam lets it (a column in the way).
-    best = swept_crossing(geometry, contact, state, D, occupancy);
+    best = swept_crossing(geometry, contact, state, D, occupancy, near);
     if (best < 0) return std::nullopt;
     best_side = state.reference.side[contact.candidate_index[best]];
     best_alpha = geometry.locate(contact, best, D, rotations).alpha;

@@ -38,8 +38,9 @@ class ChordFrames {
 
 /// The first candidate whose span the node has crossed, from its side, between the last
 /// converged state and now while ending beyond the span, first along the path (−1: none).
+/// `near`: the broad phase's candidates (broad_phase.hpp), null: every one.
 int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& contact, const ContactState& state,
-                   const Eigen::VectorXd& displacements, const Occupancy& occupancy);
+                   const Eigen::VectorXd& displacements, const Occupancy& occupancy, const std::vector<int>* near = nullptr);
 
 /// Whether the contact's node would start on element `f` against a node of f that already
 /// presses on an element at the contact's node (two beams' nodes resting on each other, as a
@@ -52,10 +53,10 @@ bool pair_in_contact(const ContactGeometry& geometry, const ContactCandidates& c
 /// along the beam to where the node is (sliding.hpp). None: it touches nothing (or only elements
 /// it may not join, occupancy.hpp: state.step.blocked_element says which). With `loads` (at a
 /// converged iterate), the gap is measured from the shape the points already on an element give
-/// it: a node they lift clear is clear.
+/// it: a node they lift clear is clear. `near`: the broad phase's candidates, null: every one.
 std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCandidates& contact,
                                const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                                ChordFrames& frames, ContactState& state, Occupancy& occupancy,
-                               const ElementLoads* loads = nullptr);
+                               const ElementLoads* loads = nullptr, const std::vector<int>* near = nullptr);
 
 }  // namespace tsm::contact

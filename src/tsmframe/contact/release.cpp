@@ -30,6 +30,7 @@ std::pair<int, double> nearest_across(const ContactGeometry& geometry, const Con
 void release(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& D,
              const std::vector<double>& rotations, ContactState& state, bool pulled) {
   const Model& model = geometry.model();
+  state.reference.listed = false;  // a reference taken now, not at the step's start: every candidate
   state.step.released_pulled = pulled;
   if (!pulled) state.step.slid_off_element = state.element;
   if (pulled) {

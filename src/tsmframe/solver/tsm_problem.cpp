@@ -69,7 +69,7 @@ bool TsmProblem::evaluate(State& state, bool contacts_only) {
     if (!contacts_) return false;
     if (pass == max_passes) break;
     const contact::ContactChanges changes =
-        contacts_->update(u, state.chord_rotations, eval_.contacts, state.contacts, false);
+        contacts_->update(u, state.chord_rotations, eval_.contacts, state.contacts, false, &step_start_);
     if (!changes.any()) break;
     changed = true;
     switches_ += changes.activated + changes.released;
@@ -136,6 +136,7 @@ Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms
 
 void TsmProblem::begin_step(const State& state) {
   switches_ = reversals_ = 0;
+  if (contacts_) step_start_ = physical(state);
   max_switches_ = 4 + 4 * static_cast<int>(state.contacts.size());
   // A contact point that keeps hopping back and forth between elements within one step is
   // wandering over iterates far from the path (it may land on another branch, a beam looped
@@ -251,7 +252,7 @@ bool TsmProblem::release_pulling_contacts(State& state) {
   bool overwrote_tangent = false;
   const std::vector<int> also = look_ahead_releases(state, overwrote_tangent);
   const contact::ContactChanges changes =
-      contacts_->update(physical(state), state.chord_rotations, eval_.contacts, state.contacts, true);
+      contacts_->update(physical(state), state.chord_rotations, eval_.contacts, state.contacts, true, &step_start_);
   if (!changes.any() && !overwrote_tangent) return false;
   switches_ += changes.activated + changes.released;
   if (!also.empty()) switches_ += contacts_->release_as_pulling(also, physical(state), state.chord_rotations, state.contacts);

@@ -1,0 +1,76 @@
+#include "tsmframe/contact/broad_phase.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "tsmframe/element/chord.hpp"
+
+namespace tsm::contact {
+namespace {
+
+/// The longest of the contact's candidate elements as drawn: a bound on how far an element's
+/// deflected centre line (what the gap is measured from) strays from its chord while its ends
+/// turn less than π against it (the cubic's largest offset is 4/27 l (|θ_i| + |θ_j|)).
+double longest_candidate(const ContactGeometry& geometry, const ContactCandidates& contact) {
+  double longest = 0.0;
+  for (const int f : contact.candidates) longest = std::max(longest, geometry.initial(f).length);
+  return longest;
+}
+
+/// How far the node and the candidates may move in a step with the list still holding: eight
+/// elements' lengths (a step along a beam of a few elements keeps its list).
+constexpr double allowance_in_elements = 8.0;
+
+}  // namespace
+
+std::uint64_t displacement_stamp(const Eigen::VectorXd& D) {
+  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a over the values' bits
+  for (Eigen::Index i = 0; i < D.size(); ++i) {
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &D[i], sizeof bits);
+    hash = (hash ^ bits) * 1099511628211ull;
+  }
+  return hash;
+}
+
+void list_near_candidates(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& D,
+                          std::uint64_t stamp, ContactReference& reference) {
+  const Model& model = geometry.model();
+  const double longest = longest_candidate(geometry, contact);
+  reference.allowance = allowance_in_elements * longest;
+  const double radius = contact.gap + longest + reference.allowance;
+  const Eigen::Vector2d node = geometry.position(contact.node, D);
+  reference.near.clear();
+  for (size_t ci = 0; ci < contact.candidates.size(); ++ci) {
+    const Element& e = model.elements[contact.candidates[ci]];
+    if (element::distance_to_segment(geometry.position(e.start, D), geometry.position(e.end, D), node) <= radius)
+      reference.near.push_back(static_cast<int>(ci));
+  }
+  reference.near.shrink_to_fit();
+  reference.stamp = stamp;
+  reference.listed = true;
+}
+
+BroadPhase::BroadPhase(const ContactGeometry& geometry, const Eigen::VectorXd& D, const Eigen::VectorXd* start)
+    : geometry_(geometry), displacements_(D) {
+  if (!start || start->size() != D.size()) return;
+  valid_ = true;
+  stamp_ = displacement_stamp(*start);
+  const Model& model = geometry.model();
+  double largest = 0.0;
+  for (const int f : geometry.candidate_elements())
+    for (const int node : {model.elements[f].start, model.elements[f].end})
+      largest = std::max(largest, (D.segment<2>(dofs_per_node * node) - start->segment<2>(dofs_per_node * node)).squaredNorm());
+  beam_motion_ = std::sqrt(largest);
+}
+
+const std::vector<int>* BroadPhase::candidates(const ContactCandidates& contact, const ContactReference& reference) const {
+  if (!valid_ || !reference.listed || reference.stamp != stamp_) return nullptr;
+  const Eigen::Vector2d start(reference.position[0], reference.position[1]);
+  const double node_motion = (geometry_.position(contact.node, displacements_) - start).norm();
+  if (!(node_motion + beam_motion_ < reference.allowance)) return nullptr;  // NaN: all
+  return &reference.near;
+}
+
+}  // namespace tsm::contact

@@ -1,0 +1,47 @@
+#pragma once
+// Detection's broad phase: which candidate elements a contact node can reach within a step.
+// At a converged state each inactive contact lists the candidates whose chord lies within a
+// radius R of its node (ContactReference::near); at an iterate, no other candidate can have come
+// within the contact's gap of the node, nor swept across it, while the node and the candidates'
+// nodes have moved less since then than R leaves beyond the gap and an element's bulge from its
+// chord (the distance from a node to a chord changes by no more than the node and the chord's
+// ends move). Detection then runs over the listed candidates only; beyond that bound (the first
+// iterate of a step that moves a beam a long way, a reference taken at a release) over all of
+// them, as before: the contacts found are the same either way.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "tsmframe/contact/contact_geometry.hpp"
+#include "tsmframe/contact/contact_state.hpp"
+
+namespace tsm::contact {
+
+/// A fingerprint of a displacement vector: a list of near candidates holds only while the
+/// displacements it was made at are the step's start.
+std::uint64_t displacement_stamp(const Eigen::VectorXd& displacements);
+
+/// Lists in `reference.near` the candidates whose chord at `displacements` (a converged state,
+/// the step's start) lies within the broad phase's radius of the node.
+void list_near_candidates(const ContactGeometry& geometry, const ContactCandidates& contact,
+                          const Eigen::VectorXd& displacements, std::uint64_t stamp, ContactReference& reference);
+
+/// How far the candidates of every contact have moved since the step's start, for one update.
+class BroadPhase {
+ public:
+  /// `start`: the displacements at the step's start (null: no broad phase, every candidate).
+  BroadPhase(const ContactGeometry& geometry, const Eigen::VectorXd& displacements, const Eigen::VectorXd* start);
+  /// The candidates (indices into contact.candidates, ascending) detection need look at for the
+  /// contact's node now; null: all of them.
+  const std::vector<int>* candidates(const ContactCandidates& contact, const ContactReference& reference) const;
+
+ private:
+  const ContactGeometry& geometry_;
+  const Eigen::VectorXd& displacements_;
+  std::uint64_t stamp_ = 0;
+  bool valid_ = false;
+  double beam_motion_ = 0.0;  ///< the largest move of a candidate element's node since the start
+};
+
+}  // namespace tsm::contact
