@@ -26,9 +26,11 @@ constexpr double per_step = 400.0, step_per_monitored = 24.0, step_per_moved = 8
 constexpr double contact_fixed = 600.0, contact_per_element = 4.0, contact_per_candidate = 46.0, contact_per_iterate = 48.0;
 // Once per model with contacts: each element's initial chord and the elements at each node.
 constexpr double contacts_per_element = 48.0;
-// The solver once contacts touch: beyond 32 of them a sparse LU of the whole tangent (Eigen's
-// SparseLU: ~5 KB per unknown, measured on beams pressed onto beams), up to 32 a dense column per
-// contact (Woodbury); from 4 on, the release look-ahead's G over the contacts in touch (at most 2,000).
+// The solver once contacts touch: beyond 32 of them the sliding terms are lagged, but a sparse LU
+// of the whole tangent stays the fallback where the symmetric part alone is singular and is
+// counted (Eigen's SparseLU: ~5 KB per unknown, measured on beams pressed onto beams); up to 32 a
+// dense column per contact (Woodbury); from 4 on, the release look-ahead's G over the contacts in
+// touch (at most 2,000).
 constexpr double sparse_lu_per_dof = 5000.0;
 constexpr double woodbury_most = 32.0, forecast_fewest = 4.0, forecast_most = 2000.0;
 

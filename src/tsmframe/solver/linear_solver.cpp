@@ -17,7 +17,6 @@ void LinearSolver::analyze(const assembly::DofMap& dofs, const BlockMatrix& matr
 }
 
 bool LinearSolver::factorize(BlockMatrix& matrix, const std::vector<RankOne>& rank_one, const Refill& refill) {
-  constexpr size_t most_rank_one = 32;  // beyond: one sparse LU is cheaper than that many extra solves
   woodbury_z_.resize(0, 0);
   general_ = rank_one.size() > most_rank_one;
   if (general_) return factorize_general(matrix, rank_one);

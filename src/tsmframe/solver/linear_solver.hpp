@@ -2,9 +2,10 @@
 // The linear solver of the Newton iteration: K_ff δD = R, K_ff = A + Σ u_k v_kᵀ with A the
 // symmetric node-block tangent (node-block LDLᵀ, block_ldlt) and u_k v_kᵀ the non-symmetric
 // sliding terms of active contact elements, applied exactly by the Sherman–Morrison–Woodbury
-// formula (one extra solve per contact). With many contacts, or if A alone cannot be factorised
-// (a structure held only through a contact's sliding term), the whole K_ff goes to Eigen's
-// SparseLU instead. Vectors are over the free equations.
+// formula (one extra solve per contact). With more terms than that (the caller lags them where
+// it can: tsm_problem), or if A alone cannot be factorised (a structure held only through a
+// contact's sliding term), the whole K_ff goes to Eigen's SparseLU instead. Vectors are over the
+// free equations.
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -26,6 +27,8 @@ using linalg::RankOne;
 
 class LinearSolver {
  public:
+  /// Beyond this many rank-one terms one sparse LU is cheaper than an extra solve for each.
+  static constexpr size_t most_rank_one = 32;
   /// Symbolic analysis of the tangent's block pattern (values ignored); done once.
   void analyze(const assembly::DofMap& dofs, const BlockMatrix& matrix);
   /// Refills `matrix` with the tangent as it was before a failed in-place factorisation (the

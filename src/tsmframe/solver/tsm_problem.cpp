@@ -124,7 +124,12 @@ Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms
     f.negative_pivots = follower ? -1 : solver_.negative_pivots();
     return f;
   };
-  if (with_optional_terms || contact.empty()) return attempt(sliding, rhs);
+  // More sliding terms than Woodbury takes are lagged: the symmetric part alone (the node-block
+  // LDLᵀ) costs a fraction of the general LU of the whole, and Newton needs a few more iterates
+  // without them (a 1,001-node press: 27 steps and 380 iterates against 30 and 352, in a third
+  // of the time; bench/README.md).
+  const bool lagged = contact.size() > LinearSolver::most_rank_one;
+  if ((with_optional_terms && !lagged) || contact.empty()) return attempt(sliding, rhs);
   // Without the sliding terms the symmetric part alone may be singular where the whole is not:
   // then once more with them.
   if (rhs) kept_rhs_ = *rhs;  // the solve runs along the factorisation
@@ -326,7 +331,12 @@ std::vector<int> TsmProblem::look_ahead_releases(State& state, bool& overwrote_t
   const std::vector<assembly::ContactDirection> directions =
       system_.contact_directions(physical(state), state.chord_rotations, along_chords);
   analyse_pattern();
-  if (!solver_.factorize(system_.tangent_for_factorisation(), system_.contact_rank_one())) return also;
+  // As Newton's solves: with more sliding terms than Woodbury takes, the forecast is made on the
+  // symmetric part alone.
+  const std::vector<RankOne>& sliding = system_.contact_rank_one();
+  if (!solver_.factorize(system_.tangent_for_factorisation(),
+                         sliding.size() > LinearSolver::most_rank_one ? std::vector<RankOne>{} : sliding))
+    return also;
   const int n = static_cast<int>(directions.size());
   Eigen::VectorXd stiffness(n), Y(n);
   for (int j = 0; j < n; ++j) {
