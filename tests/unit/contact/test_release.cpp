@@ -48,15 +48,25 @@ TEST(ContactRelease, ALetGoOffAFreeEndNamesTheElementItLeft) {
   EXPECT_FALSE(state.step.released_pulled);
 }
 
-TEST(ContactRelease, AfterLettingGoTheNodeMayNotPassThroughTheBeam) {
-  ContactFixture f(0.3, 0.0);
-  const ContactGeometry geometry(f.model);
+/// The fixture's contact, pressing element 1, let go by pulling; through(dx, dy): whether its
+/// node, moved by (dx, dy) from where it was drawn, has passed through the beam since.
+struct LetGo {
+  ContactFixture& f;
+  const ContactGeometry geometry{f.model};
   ContactState state = pressing(geometry, f, 1);
-  tsm::contact::release(geometry, geometry.contact(0), f.D, f.rotations, state, true);
-  const auto through = [&](double dx, double dy) {
+  explicit LetGo(ContactFixture& fixture) : f(fixture) {
+    tsm::contact::release(geometry, geometry.contact(0), f.D, f.rotations, state, true);
+  }
+  bool through(double dx, double dy) {
     f.move_foot(dx, dy);
     return tsm::contact::passed_through(geometry, geometry.contact(0), f.D, f.rotations, state, tsm::contact::ElementLoads({state}));
-  };
+  }
+};
+
+TEST(ContactRelease, AfterLettingGoTheNodeMayNotPassThroughTheBeam) {
+  ContactFixture f(0.3, 0.0);
+  LetGo let_go(f);
+  const auto through = [&](double dx, double dy) { return let_go.through(dx, dy); };
   EXPECT_FALSE(through(0.0, 0.01));   // above, where it let go
   EXPECT_TRUE(through(0.0, -0.01));   // below element 1
   EXPECT_TRUE(through(0.5, -0.01));   // below element 3: the side holds along the whole beam
@@ -69,13 +79,8 @@ TEST(ContactRelease, ANodeThatSinksWithinItsGapHasPassedThroughAsDetectionHasIt)
   // with it there has gone through the beam's offset surface (on the element it let go of, and
   // on one beyond the elements that held it).
   ContactFixture f(0.3, 0.05, {{"gap", 0.05}});
-  const ContactGeometry geometry(f.model);
-  ContactState state = pressing(geometry, f, 1);
-  tsm::contact::release(geometry, geometry.contact(0), f.D, f.rotations, state, true);
-  const auto through = [&](double dx, double dy) {
-    f.move_foot(dx, dy);
-    return tsm::contact::passed_through(geometry, geometry.contact(0), f.D, f.rotations, state, tsm::contact::ElementLoads({state}));
-  };
+  LetGo let_go(f);
+  const auto through = [&](double dx, double dy) { return let_go.through(dx, dy); };
   EXPECT_FALSE(through(0.0, 0.0));     // on the 5 cm line, where it let go
   EXPECT_FALSE(through(0.0, 0.001));   // lifted off
   EXPECT_TRUE(through(0.0, -0.001));   // 1 mm into the gap, still 4.9 cm above the centre line
