@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 #include "tsmframe/element/chord.hpp"
 
@@ -34,6 +35,11 @@ std::uint64_t displacement_stamp(const Eigen::VectorXd& D) {
   return hash;
 }
 
+StepStart step_start(Eigen::VectorXd D) {
+  const std::uint64_t stamp = displacement_stamp(D);
+  return {std::move(D), stamp};
+}
+
 void list_near_candidates(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& D,
                           std::uint64_t stamp, ContactReference& reference) {
   const Model& model = geometry.model();
@@ -52,16 +58,17 @@ void list_near_candidates(const ContactGeometry& geometry, const ContactCandidat
   reference.listed = true;
 }
 
-BroadPhase::BroadPhase(const ContactGeometry& geometry, const Eigen::VectorXd& D, const Eigen::VectorXd* start)
+BroadPhase::BroadPhase(const ContactGeometry& geometry, const Eigen::VectorXd& D, const StepStart* start)
     : geometry_(geometry), displacements_(D) {
-  if (!start || start->size() != D.size()) return;
+  if (!start || start->displacements.size() != D.size()) return;
   valid_ = true;
-  stamp_ = displacement_stamp(*start);
+  stamp_ = start->stamp;
+  const Eigen::VectorXd& from = start->displacements;
   const Model& model = geometry.model();
   double largest = 0.0;
   for (const int f : geometry.candidate_elements())
     for (const int node : {model.elements[f].start, model.elements[f].end})
-      largest = std::max(largest, (D.segment<2>(dofs_per_node * node) - start->segment<2>(dofs_per_node * node)).squaredNorm());
+      largest = std::max(largest, (D.segment<2>(dofs_per_node * node) - from.segment<2>(dofs_per_node * node)).squaredNorm());
   beam_motion_ = std::sqrt(largest);
 }
 

@@ -22,6 +22,14 @@ namespace tsm::contact {
 /// displacements it was made at are the step's start.
 std::uint64_t displacement_stamp(const Eigen::VectorXd& displacements);
 
+/// The displacements at a step's start, where the near lists were made, with their fingerprint
+/// (taken once per step).
+struct StepStart {
+  Eigen::VectorXd displacements;
+  std::uint64_t stamp = 0;
+};
+StepStart step_start(Eigen::VectorXd displacements);
+
 /// Lists in `reference.near` the candidates whose chord at `displacements` (a converged state,
 /// the step's start) lies within the broad phase's radius of the node.
 void list_near_candidates(const ContactGeometry& geometry, const ContactCandidates& contact,
@@ -30,8 +38,8 @@ void list_near_candidates(const ContactGeometry& geometry, const ContactCandidat
 /// How far the candidates of every contact have moved since the step's start, for one update.
 class BroadPhase {
  public:
-  /// `start`: the displacements at the step's start (null: no broad phase, every candidate).
-  BroadPhase(const ContactGeometry& geometry, const Eigen::VectorXd& displacements, const Eigen::VectorXd* start);
+  /// `start`: the step's start (null: no broad phase, every candidate).
+  BroadPhase(const ContactGeometry& geometry, const Eigen::VectorXd& displacements, const StepStart* start);
   /// The candidates (indices into contact.candidates, ascending) detection need look at for the
   /// contact's node now; null: all of them.
   const std::vector<int>* candidates(const ContactCandidates& contact, const ContactReference& reference) const;

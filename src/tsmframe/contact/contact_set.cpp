@@ -100,7 +100,7 @@ void ContactSet::record(const std::vector<ContactEvaluation>& evaluated, std::ve
 
 ContactChanges ContactSet::update(const Eigen::VectorXd& D, const std::vector<double>& rotations,
                                   const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states,
-                                  bool at_convergence, const Eigen::VectorXd* step_start) const {
+                                  bool at_convergence, const StepStart* step_start) const {
   record(evaluated, states);
   ContactChanges changes;
   Occupancy occupancy(geometry_, states);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tsmframe/contact/active_contact.hpp"
+#include "tsmframe/contact/broad_phase.hpp"
 #include "tsmframe/contact/contact_element.hpp"
 #include "tsmframe/contact/contact_geometry.hpp"
 #include "tsmframe/contact/contact_state.hpp"
@@ -61,11 +62,11 @@ class ContactSet {
   /// that evaluation). A pull releases a contact only `at_convergence` — Newton asks for it once
   /// the residual has converged: an unconverged iterate's Y is no evidence of pulling (a stiff
   /// contact's Y swings through zero while the beam catches up with the node).
-  /// `step_start`: the displacements at the step's start, where accept() listed each inactive
-  /// node's near candidates (broad_phase.hpp); null: detection looks at every candidate.
+  /// `step_start`: the step's start, where accept() listed each inactive node's near
+  /// candidates (broad_phase.hpp); null: detection looks at every candidate.
   ContactChanges update(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                         const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states,
-                        bool at_convergence, const Eigen::VectorXd* step_start = nullptr) const;
+                        bool at_convergence, const StepStart* step_start = nullptr) const;
   /// Whether a contact released during this step has let its node pass through a beam: the
   /// converged state is then not acceptable.
   bool passed_through(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,

@@ -17,6 +17,12 @@ namespace {
 constexpr double largest_end_rotation = std::numbers::pi / 2;  // |θ| an element end may turn against its chord
 constexpr int max_passes = 4;  // contact changes settled per iterate before Newton goes on
 
+/// Whether the sliding terms are left out of the factorisation: beyond what Woodbury takes the
+/// symmetric part alone (the node-block LDLᵀ) costs a fraction of the general LU of the whole,
+/// and Newton needs a few more iterates without them (a 1,001-node press: 27 steps and 380
+/// iterates against 30 and 352, in a third of the time; bench/README.md).
+bool lags(const std::vector<RankOne>& sliding) { return sliding.size() > LinearSolver::most_rank_one; }
+
 }  // namespace
 
 TsmProblem::TsmProblem(assembly::GlobalSystem& system, const contact::ContactSet* contacts)
@@ -124,11 +130,7 @@ Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms
     f.negative_pivots = follower ? -1 : solver_.negative_pivots();
     return f;
   };
-  // More sliding terms than Woodbury takes are lagged: the symmetric part alone (the node-block
-  // LDLᵀ) costs a fraction of the general LU of the whole, and Newton needs a few more iterates
-  // without them (a 1,001-node press: 27 steps and 380 iterates against 30 and 352, in a third
-  // of the time; bench/README.md).
-  const bool lagged = contact.size() > LinearSolver::most_rank_one;
+  const bool lagged = lags(contact);
   if ((with_optional_terms && !lagged) || contact.empty()) return attempt(sliding, rhs);
   // Without the sliding terms the symmetric part alone may be singular where the whole is not:
   // then once more with them.
@@ -141,7 +143,7 @@ Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms
 
 void TsmProblem::begin_step(const State& state) {
   switches_ = reversals_ = 0;
-  if (contacts_) step_start_ = physical(state);
+  if (contacts_) step_start_ = contact::step_start(physical(state));
   max_switches_ = 4 + 4 * static_cast<int>(state.contacts.size());
   // A contact point that keeps hopping back and forth between elements within one step is
   // wandering over iterates far from the path (it may land on another branch, a beam looped
@@ -335,7 +337,7 @@ std::vector<int> TsmProblem::look_ahead_releases(State& state, bool& overwrote_t
   // symmetric part alone.
   const std::vector<RankOne>& sliding = system_.contact_rank_one();
   if (!solver_.factorize(system_.tangent_for_factorisation(),
-                         sliding.size() > LinearSolver::most_rank_one ? std::vector<RankOne>{} : sliding))
+                         lags(sliding) ? std::vector<RankOne>{} : sliding))
     return also;
   const int n = static_cast<int>(directions.size());
   Eigen::VectorXd stiffness(n), Y(n);

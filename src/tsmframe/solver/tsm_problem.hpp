@@ -95,7 +95,7 @@ class TsmProblem final : public Problem {
   int reversals_ = 0;  ///< contact hand-overs back the way the point came, in the current step
   int max_switches_ = 0, max_reversals_ = 0;  ///< the current step's budget
   bool predictor_pending_ = false;  ///< the step's first evaluation (the predictor's iterate) is still to come
-  Eigen::VectorXd step_start_;  ///< the step's starting displacements (global): detection's broad phase
+  contact::StepStart step_start_;  ///< the step's starting displacements (global): detection's broad phase
   LinearSolver solver_;
   assembly::Evaluation eval_;
   Eigen::VectorXd kept_rhs_;  ///< a right-hand side kept for a second factorisation (with the sliding terms)

@@ -13,6 +13,7 @@ namespace {
 using tsm::contact::BroadPhase;
 using tsm::contact::ContactGeometry;
 using tsm::contact::ContactState;
+using tsm::contact::StepStart;
 using tsm::test::ContactFixture;
 
 /// The fixture's contact as at a step's start at the fixture's displacements: sides read and
@@ -41,8 +42,8 @@ TEST(BroadPhase, HoldsOnlyAtTheStepsStartAndWhileTheNodeAndTheBeamMoveLessThanTh
   ContactFixture f(0.5, 0.1, {{"gap", 0.005}}, 40);
   const ContactGeometry geometry(f.model);
   const ContactState state = at_step_start(geometry, f);
-  const Eigen::VectorXd start = f.D;
-  const auto listed = [&](const Eigen::VectorXd* from) {
+  const StepStart start = tsm::contact::step_start(f.D);
+  const auto listed = [&](const StepStart* from) {
     const BroadPhase broad_phase(geometry, f.D, from);
     return broad_phase.candidates(geometry.contact(0), state.reference) != nullptr;
   };
@@ -57,9 +58,10 @@ TEST(BroadPhase, HoldsOnlyAtTheStepsStartAndWhileTheNodeAndTheBeamMoveLessThanTh
   EXPECT_FALSE(listed(&start));
   f.bend_beam(0.09);
   EXPECT_TRUE(listed(&start));
-  Eigen::VectorXd elsewhere = start;
+  Eigen::VectorXd elsewhere = start.displacements;
   elsewhere[0] = 1e-300;  // another start than the one the list was made at
-  EXPECT_FALSE(listed(&elsewhere));
+  const StepStart other = tsm::contact::step_start(elsewhere);
+  EXPECT_FALSE(listed(&other));
 }
 
 /// Lifts every node of the fixture's beam by `dy` on top of what it has.
@@ -85,7 +87,7 @@ TEST(BroadPhase, DetectionOverTheListedCandidatesFindsWhatDetectionOverEveryOneF
     const double y = closing ? 0.275 + 0.05 * unit(random) : 0.3 * unit(random);
     ContactFixture f(x, y, {{"gap", closing ? 0.05 : 0.01}}, 40);
     const ContactGeometry geometry(f.model);
-    const Eigen::VectorXd start = f.D;
+    const StepStart start = tsm::contact::step_start(f.D);
     ContactState with = at_step_start(geometry, f), without = with;
     if (closing) {
       const double closure = 0.3 * fraction(random), lifted = fraction(random);
