@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "tsmframe/contact/multi_point_law.hpp"
+#include "tsmframe/model/candidate_groups.hpp"
 
 namespace tsm::contact {
 
@@ -26,31 +27,43 @@ ContactGeometry::ContactGeometry(const Model& model) : model_(model) {
     node_elements_[fill[model.elements[k].end]++] = k;
   }
   touch_tolerance_ = 1e-10 * model.size;
-  for (const ContactSpec& c : model.contacts) contacts_.push_back(candidates_of(c));
+  const CandidateGroups groups = candidate_groups(model.contacts);
+  for (const int first : groups.first) tables_.push_back(std::make_shared<const CandidateTable>(table_of(model.contacts[first])));
+  contacts_.reserve(model.contacts.size());
+  for (size_t k = 0; k < model.contacts.size(); ++k)
+    contacts_.push_back(candidates_of(model.contacts[k], *tables_[groups.of_contact[k]]));
   std::vector<char> candidate(n_elements, 0);
-  for (const ContactCandidates& contact : contacts_)
-    for (const int f : contact.candidates) candidate[f] = 1;
+  for (const auto& table : tables_)
+    for (const int f : table->elements) candidate[f] = 1;
   for (int k = 0; k < n_elements; ++k)
     if (candidate[k]) candidate_elements_.push_back(k);
 }
 
-ContactCandidates ContactGeometry::candidates_of(const ContactSpec& c) const {
+CandidateTable ContactGeometry::table_of(const ContactSpec& c) const {
   const int n_elements = static_cast<int>(model_.elements.size());
-  ContactCandidates s;
-  s.node = c.node;
-  s.candidate_index.assign(n_elements, -1);
+  CandidateTable t;
+  t.index.assign(n_elements, -1);
   std::vector<bool> in_set(model_.member_count, false);
   for (int m : c.members) in_set[m] = true;
   for (int k = 0; k < n_elements; ++k) {
     const Element& e = model_.elements[k];
     if (!in_set[e.member]) continue;
-    s.candidate_index[k] = static_cast<int>(s.candidates.size());
-    s.candidates.push_back(k);
+    t.index[k] = static_cast<int>(t.elements.size());
+    t.elements.push_back(k);
     double psi = e.section.shear_flexibility;  // the touched element's theory, unless the contact names one
     if (c.theory == BeamTheory::euler_bernoulli) psi = 0.0;
     if (c.theory == BeamTheory::timoshenko) psi = c.member_shear_flexibility[e.member];
-    s.shear_flexibility.push_back(psi);
+    t.shear_flexibility.push_back(psi);
   }
+  return t;
+}
+
+ContactCandidates ContactGeometry::candidates_of(const ContactSpec& c, const CandidateTable& table) const {
+  ContactCandidates s;
+  s.node = c.node;
+  s.candidates = table.elements;
+  s.candidate_index = table.index;
+  s.shear_flexibility = table.shear_flexibility;
   s.gap = c.gap;
   s.edge = c.edge;
   s.max_stiffness_ratio = c.max_stiffness_ratio;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <memory>
 #include <span>
 #include <tuple>
 #include <utility>
@@ -18,12 +19,20 @@
 
 namespace tsm::contact {
 
-/// A contact's node, its candidate elements and its law's settings (from ContactSpec).
+/// The elements some contacts may touch (model/candidate_groups: one table per group).
+struct CandidateTable {
+  std::vector<int> elements;                ///< element indices, ascending
+  std::vector<int> index;                   ///< per element of the model: its place in elements, −1 if not one
+  std::vector<double> shear_flexibility;    ///< per candidate: Ψ of the contact law
+};
+
+/// A contact's node, its candidate elements and its law's settings (from ContactSpec). The
+/// candidate tables are its group's, held by the ContactGeometry.
 struct ContactCandidates {
   int node = 0;
-  std::vector<int> candidates;        ///< element indices the node may touch, ascending
-  std::vector<int> candidate_index;   ///< per element: its place in candidates, −1 if not one
-  std::vector<double> shear_flexibility;  ///< per candidate: Ψ of the contact law
+  std::span<const int> candidates;         ///< element indices the node may touch, ascending
+  std::span<const int> candidate_index;    ///< per element: its place in candidates, −1 if not one
+  std::span<const double> shear_flexibility;  ///< per candidate: Ψ of the contact law
   double gap = 0.0;
   double edge = -1.0;                 ///< the compliance floor's edge δ; < 0: the default
   double max_stiffness_ratio = 0.0;   ///< the cap: see ContactGeometry::cap_compliance
@@ -92,10 +101,13 @@ class ContactGeometry {
   /// axis, 12EI/l0³ across it, mixed by the angle to the touched element's normal); 0 where no
   /// element holds the node (a rigid pusher: no cap).
   double cap_compliance(const ContactCandidates& contact, int element) const;
-  ContactCandidates candidates_of(const ContactSpec& spec) const;
+  CandidateTable table_of(const ContactSpec& spec) const;
+  ContactCandidates candidates_of(const ContactSpec& spec, const CandidateTable& table) const;
 
   const Model& model_;
   std::vector<ContactCandidates> contacts_;
+  /// One per candidate group; shared, so the contacts' spans stay valid in a copy.
+  std::vector<std::shared_ptr<const CandidateTable>> tables_;
   std::vector<element::InitialChord> initial_;
   std::vector<int> node_start_, node_elements_;  ///< elements at each node (CSR)
   std::vector<int> candidate_elements_;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "tsmframe/model/candidate_groups.hpp"
+
 namespace tsm {
 namespace {
 
@@ -19,11 +21,13 @@ constexpr double state_per_node = 48.0, state_per_element = 32.0;
 // headers), and what it shows in steps.csv: the monitored nodes' displacements, the reactions at
 // the moved dofs, every contact's point.
 constexpr double per_step = 400.0, step_per_monitored = 24.0, step_per_moved = 8.0, step_per_contact = 48.0;
-// A contact: its state, its geometry's settings and its step's points (~600 bytes); its
-// candidates' places (one int per element of the model: contact_geometry's candidate_index); per
-// candidate its index and Ψ (12 bytes) and the reference side, α and distance in the state and in
-// the step's start (2 × 17 bytes); its point at every Newton iterate of a step (48 bytes).
-constexpr double contact_fixed = 600.0, contact_per_element = 4.0, contact_per_candidate = 46.0, contact_per_iterate = 48.0;
+// A contact: its state, its geometry's settings and its step's points (~600 bytes); per
+// candidate the reference side, α and distance in the state and in the step's start (2 × 17
+// bytes); its point at every Newton iterate of a step (48 bytes). Per group of contacts that may
+// touch the same elements (model/candidate_groups) one table: the candidates' places (an int per
+// element of the model), and per candidate its index and Ψ (12 bytes).
+constexpr double contact_fixed = 600.0, contact_per_candidate = 34.0, contact_per_iterate = 48.0;
+constexpr double table_per_element = 4.0, table_per_candidate = 12.0;
 // Once per model with contacts: each element's initial chord and the elements at each node.
 constexpr double contacts_per_element = 48.0;
 // The solver once contacts touch: beyond 32 of them the sliding terms are lagged, but a sparse LU
@@ -78,8 +82,10 @@ MemoryEstimate estimate_memory(const ModelCounts& c) {
   e.elements = {count_text(c.elements) + " elements and " + count_text(c.nodes) + " nodes",
                 per_element * c.elements + per_node * c.nodes};
   e.contacts = {count_text(c.contacts) + " contacts with " + count_text(c.contact_candidates) + " candidate elements",
-                c.contacts * (contact_fixed + contact_per_element * c.elements + contact_per_iterate * (c.max_iterations + 1.0)) +
-                    contact_per_candidate * c.contact_candidates + c.contact_spec_bytes + contact_solver_bytes(c) +
+                c.contacts * (contact_fixed + contact_per_iterate * (c.max_iterations + 1.0)) +
+                    contact_per_candidate * c.contact_candidates +
+                    c.candidate_tables * table_per_element * c.elements + table_per_candidate * c.table_candidates +
+                    c.contact_spec_bytes + contact_solver_bytes(c) +
                     (c.contacts > 0.0 ? contacts_per_element * c.elements : 0.0)};
   e.kept_states = {"the state of " + count_text(c.kept_states) + (c.kept_states == 1.0 ? " step" : " steps"),
                    c.kept_states * (state_per_node * c.nodes + state_per_element * c.elements)};
@@ -132,6 +138,9 @@ ModelCounts model_counts(const Model& model, double input_bytes) {
     c.contact_candidates += candidate_count(spec, per_member);
     c.contact_spec_bytes += contact_spec_bytes(spec);
   }
+  const CandidateGroups groups = candidate_groups(model.contacts);
+  c.candidate_tables = static_cast<double>(groups.first.size());
+  for (const int first : groups.first) c.table_candidates += candidate_count(model.contacts[first], per_member);
   c.max_iterations = model.analysis.max_iterations;
   c.steps = planned_steps(model.analysis.control);
   c.kept_states = kept_state_count(model.analysis.output, c.steps);

@@ -26,6 +26,8 @@ struct ModelCounts {
   double free_dofs = 0.0;    ///< unknowns of the tangent
   double contacts = 0.0;
   double contact_candidates = 0.0;  ///< summed over the contacts: the elements each may touch
+  double candidate_tables = 0.0;    ///< groups of contacts sharing their candidates (model/candidate_groups)
+  double table_candidates = 0.0;    ///< summed over those groups: the elements each may touch
   double contact_spec_bytes = 0.0;  ///< the contacts' settings as read (members lists, Ψ per member)
   double max_iterations = 50.0;     ///< Newton iterates per step (each keeps every contact's point)
   double steps = 0.0;        ///< steps the control plans (arc-length: its max_steps)

@@ -1,6 +1,8 @@
 // What a contact may touch and how its law is set up (contact/contact_geometry.hpp).
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include "support/contact_fixture.hpp"
 
 namespace {
@@ -14,10 +16,29 @@ TEST(ContactGeometry, TheCandidatesAreTheNamedMembersElementsInOrder) {
   ASSERT_EQ(geometry.contact_count(), 1);
   const auto& contact = geometry.contact(0);
   EXPECT_EQ(contact.node, f.foot);
-  EXPECT_EQ(contact.candidates, (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(std::vector<int>(contact.candidates.begin(), contact.candidates.end()), (std::vector<int>{0, 1, 2, 3}));
   for (int e = 0; e < 4; ++e) EXPECT_EQ(contact.candidate_index[e], e);
   EXPECT_FALSE(contact.is_candidate(4));  // the post's own elements
   EXPECT_EQ(geometry.candidate_elements(), (std::vector<int>{0, 1, 2, 3}));
+}
+
+TEST(ContactGeometry, ContactsThatMayTouchTheSameMembersShareOneCandidateTableThatOutlivesTheGeometryInACopy) {
+  ContactFixture f(0.3, 0.1);
+  tsm::ContactSpec same = f.model.contacts[0], other = f.model.contacts[0];
+  same.node = other.node = f.model.node_index(11);
+  other.members = {0, 1};
+  f.model.contacts.push_back(same);
+  f.model.contacts.push_back(other);
+  auto geometry = std::make_unique<ContactGeometry>(f.model);
+  EXPECT_EQ(geometry->contact(1).candidates.data(), geometry->contact(0).candidates.data());
+  EXPECT_EQ(geometry->contact(1).candidate_index.data(), geometry->contact(0).candidate_index.data());
+  EXPECT_NE(geometry->contact(2).candidates.data(), geometry->contact(0).candidates.data());
+  EXPECT_EQ(geometry->contact(2).candidates.size(), 6u);  // the beam's four and the post's two
+  const ContactGeometry copy = *geometry;
+  geometry.reset();
+  EXPECT_EQ(std::vector<int>(copy.contact(1).candidates.begin(), copy.contact(1).candidates.end()),
+            (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(copy.contact(2).candidate_index[5], 5);
 }
 
 TEST(ContactGeometry, ANodeOverAStraightBeamStandsAtItsHeightAndItsPlaceAlongTheElement) {

@@ -34,31 +34,40 @@ TEST(MemoryEstimate, AChainWithoutContactsHandCounted) {
   EXPECT_EQ(e.steps.name, "10 steps' records");
 }
 
-TEST(MemoryEstimate, ContactsGrowWithTheirCandidatesAndTheModelsElements) {
+TEST(MemoryEstimate, ContactsGrowWithTheirCandidatesAndTheirGroupsTablesWithTheModelsElements) {
   ModelCounts c;
   c.nodes = 103;
   c.elements = 100;
   c.free_dofs = 306;
   c.contacts = 2;
   c.contact_candidates = 2 * 50;
+  c.candidate_tables = 1;  // both may touch the same 50 elements
+  c.table_candidates = 50;
   c.contact_spec_bytes = 300;
   c.max_iterations = 50;
-  // Per contact 600, an int per element of the model, a point per iterate (51); 46 per candidate;
-  // the settings as read; two dense columns of the tangent (Woodbury); the chords once.
-  EXPECT_DOUBLE_EQ(estimate_memory(c).contacts.bytes, 2 * (600 + 4 * 100 + 48 * 51) + 46 * 100 + 300 + 8 * 2 * 306 + 48 * 100);
+  // Per contact 600 and a point per iterate (51), 34 per candidate; the group's table: an int per
+  // element of the model and 12 per candidate; the settings as read; two dense columns of the
+  // tangent (Woodbury); the chords once.
+  EXPECT_DOUBLE_EQ(estimate_memory(c).contacts.bytes,
+                   2 * (600 + 48 * 51) + 34 * 100 + (4 * 100 + 12 * 50) + 300 + 8 * 2 * 306 + 48 * 100);
   EXPECT_EQ(estimate_memory(c).contacts.name, "2 contacts with 100 candidate elements");
   // Beyond 32 contacts a sparse LU of the tangent (5 kB per unknown), and the look-ahead's G.
   c.contacts = 40;
   c.contact_candidates = 40 * 100;
+  c.table_candidates = 100;
   c.contact_spec_bytes = 0;
-  EXPECT_DOUBLE_EQ(estimate_memory(c).contacts.bytes, 40 * (600 + 4 * 100 + 48 * 51) + 46 * 4000 + 5000 * 306 + 8 * 40 * 40 + 48 * 100);
-  // The look-ahead takes at most 2,000 contacts in touch.
+  EXPECT_DOUBLE_EQ(estimate_memory(c).contacts.bytes,
+                   40 * (600 + 48 * 51) + 34 * 4000 + (4 * 100 + 12 * 100) + 5000 * 306 + 8 * 40 * 40 + 48 * 100);
+  // The look-ahead takes at most 2,000 contacts in touch; a table per group.
   c.contacts = 20'001;
   c.contact_candidates = 20'001.0 * 20'000;
   c.elements = 20'000;
-  const double per_contact = 600 + 4 * 20'000 + 48 * 51;
-  EXPECT_DOUBLE_EQ(estimate_memory(c).contacts.bytes,
-                   20'001 * per_contact + 46 * 20'001.0 * 20'000 + 5000 * 306 + 8 * 2000.0 * 2000 + 48 * 20'000);
+  c.candidate_tables = 3;
+  c.table_candidates = 3 * 20'000;
+  const double per_contact = 600 + 48 * 51;
+  EXPECT_DOUBLE_EQ(estimate_memory(c).contacts.bytes, 20'001 * per_contact + 34 * 20'001.0 * 20'000 +
+                                                          3 * (4 * 20'000 + 12 * 20'000) + 5000 * 306 +
+                                                          8 * 2000.0 * 2000 + 48 * 20'000);
   EXPECT_EQ(estimate_memory(c).contacts.name, "20,001 contacts with 400,020,000 candidate elements");
 }
 
@@ -126,6 +135,8 @@ TEST(MemoryEstimate, AMeshedModelsCounts) {
   EXPECT_EQ(c.free_dofs, 3 * 12 - 3);
   EXPECT_EQ(c.contacts, 1);
   EXPECT_EQ(c.contact_candidates, 6);
+  EXPECT_EQ(c.candidate_tables, 1);
+  EXPECT_EQ(c.table_candidates, 6);
   EXPECT_EQ(c.contact_spec_bytes, sizeof(tsm::ContactSpec) + 4 * model.contacts[0].members.capacity());
   EXPECT_EQ(c.steps, 8);
   EXPECT_EQ(c.kept_states, 1);
