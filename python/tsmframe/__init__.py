@@ -28,6 +28,26 @@ from ._core import study_json as _study_json
 __all__ = ["Model", "Result", "run", "load", "__version__"]
 
 
+def _plain(value, path):
+    """`value` as plain JSON values: numpy scalars and arrays as Python numbers and lists (a node
+    id from np.arange is an id like any other). A number that is not finite (NaN, ±inf; JSON has
+    none) is bad input, named by its JSON path as the reader names every other."""
+    if isinstance(value, dict):
+        return {k: _plain(v, f"{path}.{k}" if path else str(k)) for k, v in value.items()}
+    if isinstance(value, (list, tuple, _np.ndarray)):
+        return [_plain(v, f"{path}[{i}]") for i, v in enumerate(value)]
+    if isinstance(value, _np.generic):
+        value = value.item()
+    if isinstance(value, float) and not _np.isfinite(value):
+        raise ValueError(f"{path or 'the document'}: {value} is not a finite number")
+    return value
+
+
+def _dumps(document, indent=None):
+    """The JSON text of a model or study document (_plain's rules)."""
+    return _json.dumps(_plain(document, ""), indent=indent, allow_nan=False)
+
+
 class Model:
     """A model built in code; mirrors docs/format.md key for key (see to_dict())."""
 
@@ -41,7 +61,7 @@ class Model:
     @classmethod
     def from_dict(cls, document):
         m = cls()
-        m._doc = _json.loads(_json.dumps(document))
+        m._doc = _json.loads(_dumps(document))
         return m
 
     def material(self, name, E, G=None, nu=None, density=None):
@@ -222,7 +242,7 @@ class Model:
         return {k: v for k, v in self._doc.items() if not (isinstance(v, (list, dict)) and not v and k not in ("materials", "sections", "nodes", "members"))}
 
     def to_json(self, indent=1):
-        return _json.dumps(self.to_dict(), indent=indent)
+        return _dumps(self.to_dict(), indent=indent)
 
     def save(self, path):
         with open(path, "w") as f:
@@ -253,7 +273,7 @@ def study(definition, jobs=0):
         path = _os.fspath(definition)
         text, directory = _read_text(path), _os.path.dirname(_os.path.abspath(path))
     else:
-        text, directory = _json.dumps(definition), _os.getcwd()
+        text, directory = _dumps(definition), _os.getcwd()
     return _json.loads(_study_json(text, directory, jobs))["cases"]  # study.json's rows, as the CLI writes them
 
 
@@ -372,7 +392,7 @@ def run(model, threads=0, start=None, step=None):
     if isinstance(model, Model):
         text = model.to_json()
     elif isinstance(model, dict):
-        text = _json.dumps(model)
+        text = _dumps(model)
     elif isinstance(model, str) and model.lstrip().startswith("{"):
         text = model
     else:

@@ -158,6 +158,46 @@ def test_bad_model_raises_value_error_with_the_path():
         tf.run("missing.json")
 
 
+def test_numpy_numbers_are_numbers_like_any_other():
+    # Ids, coordinates, divisions and loads from numpy (np.arange, np.linspace, np.float32) build
+    # the same model as Python numbers: the same results bit for bit, the tip's deflection PL³/3EI
+    # (to the geometric effect, 1e-5 here).
+    def cantilever(number):
+        m = tf.Model("cantilever").material("steel", E=number(2.05e11)).section("s", A=1e-2, I=number(1e-4))
+        m.node(number(1), number(0.0), 0).node(2, np.linspace(0.0, 4.0, 3)[2], 0)
+        return m.member(1, 2, "steel", "s", divisions=np.int64(8)).support(number(1), "fixed").load(2, fy=np.float64(-1e3))
+    plain, numpy = tf.run(cantilever(lambda v: v)), tf.run(cantilever(lambda v: np.array([v])[0]))
+    assert numpy.results_json == plain.results_json
+    assert numpy.displacement(2)[1] == pytest.approx(-1e3 * 4.0 ** 3 / (3 * 2.05e11 * 1e-4), rel=1e-5)
+    nodes = np.arange(10, 13)  # a contact entry's nodes as an array of int64
+    m = cantilever(lambda v: v)
+    for k, node in enumerate(nodes):
+        m.node(node, 1.0 + k, 0.5).support(node, "fixed")
+    assert tf.run(m.contact(members="all", nodes=nodes)).status == "converged"
+
+
+def test_a_number_json_cannot_hold_is_named_by_its_path():
+    # NaN and infinities have no JSON: named where they are, as the reader names any bad value,
+    # not "invalid JSON at line 47".
+    def cantilever():
+        m = tf.Model("t").material("m", E=2e11).section("s", A=1e-2, I=1e-4).node(1, 0, 0).node(2, 4, 0)
+        return m.member(1, 2, "m", "s").support(1, "fixed")
+    m = cantilever().load(2, fy=float("nan"))
+    with pytest.raises(ValueError, match=r"^loads\[0\]\.fy: nan is not a finite number$"):
+        tf.run(m)
+    with pytest.raises(ValueError, match=r"^loads\[0\]\.fy: nan is not a finite number$"):
+        m.to_json()
+    m = cantilever().load(2, fy=-1.0)
+    document = json.loads(m.to_json())
+    document["loads"] = [{"node": 2, "fy": np.float64("-inf")}]
+    with pytest.raises(ValueError, match=r"^loads\[0\]\.fy: -inf is not a finite number$"):
+        tf.run(document)
+    study = {"format": "tsmframe-study/1", "model": json.loads(m.to_json()),
+             "sweep": [{"name": "E", "path": "/materials/m/E", "values": [2e11, float("inf")]}]}
+    with pytest.raises(ValueError, match=r"^sweep\[0\]\.values\[1\]: inf is not a finite number$"):
+        tf.study(study)
+
+
 def test_non_convergence_is_a_status_not_an_exception():
     # PL²/EI = 1 in one step, without cutback, in one Newton iteration: not reached.
     m = tf.Model("too few iterations").material("m", E=1.0).section("s", A=1e4, I=1.0)
