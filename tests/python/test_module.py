@@ -124,7 +124,7 @@ def test_a_study_runs_its_cases_and_returns_their_rows():
                   "record": [{"name": "tip_uy", "quantity": "displacement", "node": [4.0, 0.0], "dof": "uy"}]}
     rows = tf.study(definition, jobs=2)
     assert [(r["case"], r["divisions"], r["allowed_iterations"]) for r in rows] == [
-        (1, "2", "50"), (2, "2", "1"), (3, "16", "50"), (4, "16", "1")]
+        (1, 2, 50), (2, 2, 1), (3, 16, 50), (4, 16, 1)]  # numbers, as the study gave them
     exact = -1e3 * 4.0 ** 3 / (3 * 2.05e11 * 1e-4)
     for r in (rows[0], rows[2]):
         assert r["converged"] and r["tip_uy"] == pytest.approx(exact, rel=1e-5)

@@ -74,6 +74,12 @@ JsonWriter& JsonWriter::value(int x) {
   return *this;
 }
 
+JsonWriter& JsonWriter::value(const nlohmann::json& v) {
+  separate();
+  out_ << v.dump();
+  return *this;
+}
+
 JsonWriter& JsonWriter::value(bool x) {
   separate();
   out_ << (x ? "true" : "false");

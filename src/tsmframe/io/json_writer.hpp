@@ -3,6 +3,7 @@
 // in memory. Numbers use the shortest text that reads back to the same double; a non-finite
 // number (never part of a converged state) is written as null.
 
+#include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -23,6 +24,8 @@ class JsonWriter {
   JsonWriter& value(bool x);
   JsonWriter& value(const std::string& text);
   JsonWriter& value(const char* text) { return value(std::string(text)); }
+  /// A value as it was read (a study parameter's: a number, a string, an array …).
+  JsonWriter& value(const nlohmann::json& v);
   /// A line break before the next item, to keep large files readable.
   JsonWriter& newline();
 

@@ -37,8 +37,11 @@ inline constexpr size_t max_cases = 1'000'000;
 
 struct Parameter {
   std::string name;
-  std::vector<std::string> labels;               ///< one per value, as written in the rows
+  std::vector<std::string> labels;               ///< one per value, as written in study.csv's rows
   std::vector<std::vector<Assignment>> assignments;  ///< per value: what it sets, in order
+  /// Per value, as study.json's rows show it: the value as given (a number as a number), a
+  /// variant's label.
+  std::vector<nlohmann::json> values;
 };
 
 /// A response quantity each case reports: at its last converged step, or the largest or

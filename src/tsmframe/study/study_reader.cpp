@@ -56,6 +56,7 @@ void read_variants(const json& variants, const std::string& path, Parameter& out
     if (!v.is_object()) fail(vpath, "expected {\"label\": …, \"set\": {pointer: value, …}}");
     check_keys(v, vpath, {"label", "set"});
     out.labels.push_back(required_string(v, "label", vpath, "missing (required, a string)"));
+    out.values.push_back(out.labels.back());
     if (!v.contains("set") || !v["set"].is_object()) fail(child(vpath, "set"), "missing (required, an object of pointer: value)");
     std::vector<Assignment> sets;
     for (const auto& item : v["set"].items()) {
@@ -112,6 +113,7 @@ Parameter read_parameter(const json& p, const std::string& path) {
   }
   for (const json& v : values) {
     out.labels.push_back(label_of(v));
+    out.values.push_back(v);
     std::vector<Assignment> sets;
     for (const auto& [ptr, where] : pointers) sets.push_back({ptr, v, where});
     out.assignments.push_back(std::move(sets));

@@ -42,7 +42,10 @@ const FixedColumn message_column = {"message", [](const CaseResult& r) -> Cell {
 bool has_contacts(const Study& study) { return !study.model.value("contacts", nlohmann::json::array()).empty(); }
 
 Column parameter_column(const Study& study, size_t p) {
-  return {study.parameters[p].name, [&study, p](const CaseResult& r) -> Cell { return study.parameters[p].labels[r.choice[p]]; }};
+  const Parameter& parameter = study.parameters[p];
+  return {parameter.name, [&parameter, p](const CaseResult& r) -> Cell {
+            return ParameterValue{&parameter.labels[r.choice[p]], &parameter.values[r.choice[p]]};
+          }};
 }
 
 Column record_column(const Study& study, size_t k) {
@@ -61,6 +64,7 @@ struct CsvText {
   std::string operator()(bool b) const { return b ? "true" : "false"; }
   std::string operator()(int k) const { return std::to_string(k); }
   std::string operator()(double x) const { return std::isfinite(x) ? io::format_number(x) : std::string(); }
+  std::string operator()(const ParameterValue& v) const { return csv_field(*v.label); }
 };
 
 void write_csv_line(std::ostream& out, const std::vector<std::string>& fields) {
@@ -68,11 +72,17 @@ void write_csv_line(std::ostream& out, const std::vector<std::string>& fields) {
   out << '\n';
 }
 
+template <class T>
+void write_cell(io::JsonWriter& w, const T& value) {
+  w.value(value);
+}
+void write_cell(io::JsonWriter& w, const ParameterValue& v) { w.value(*v.value); }
+
 void write_parameters(io::JsonWriter& w, const Study& study) {
   w.key("parameters").begin_array();
   for (const Parameter& p : study.parameters) {
     w.newline().begin_object().key("name").value(p.name).key("values").begin_array();
-    for (const std::string& l : p.labels) w.value(l);
+    for (const nlohmann::json& v : p.values) w.value(v);
     w.end_array().end_object();
   }
   w.end_array();
@@ -123,7 +133,7 @@ void write_study_json(std::ostream& out, const Study& study, const std::vector<C
     w.newline().begin_object();
     for (const Column& c : columns) {
       w.key(c.name);
-      std::visit([&w](const auto& value) { w.value(value); }, c.cell(r));
+      std::visit([&w](const auto& value) { write_cell(w, value); }, c.cell(r));
     }
     w.end_object();
   }

@@ -14,9 +14,15 @@
 
 namespace tsm::study {
 
+/// A parameter's value in a row: its label in study.csv, the value itself in study.json.
+struct ParameterValue {
+  const std::string* label = nullptr;
+  const nlohmann::json* value = nullptr;
+};
+
 /// One field of a row. A number that is not finite (a record the case has none of) is an
 /// empty field in study.csv and null in study.json.
-using Cell = std::variant<std::string, bool, int, double>;
+using Cell = std::variant<std::string, bool, int, double, ParameterValue>;
 
 /// A column of study.csv and study.json: its name and its field in each row.
 struct Column {

@@ -25,7 +25,9 @@ Study two_parameter_study(bool contacts) {
   Study s;
   s.title = "writer";
   s.model = {{"contacts", contacts ? json::array({json::object()}) : json::array()}};
-  s.parameters = {{"divisions", {"2", "16"}, {{}, {}}}, {"set-up", {"a, b", "say \"c\""}, {{}, {}}}};
+  // "divisions" as read from "values": [2, 16]; "set-up" as read from two variants.
+  s.parameters = {{"divisions", {"2", "16"}, {{}, {}}, {2, 16}},
+                  {"set-up", {"a, b", "say \"c\""}, {{}, {}}, {"a, b", "say \"c\""}}};
   s.records.resize(2);
   s.records[0].name = "tip_uy";
   s.records[1].name = "peak";
@@ -138,7 +140,8 @@ TEST(StudyWriter, ARowsFieldsAreItsValuesAndARecordItHasNoneOfIsEmptyOrNull) {
   const Written w = write_both(two_parameter_study(true), two_rows());
   const ordered_json& converged = w.json_document["cases"][0];
   EXPECT_EQ(converged["case"], 1);
-  EXPECT_EQ(converged["divisions"], "2");
+  EXPECT_EQ(converged["divisions"], 2);  // a number in study.json, its label in study.csv
+  EXPECT_EQ(w.csv[1][1], "2");
   EXPECT_EQ(converged["set-up"], "say \"c\"");
   EXPECT_EQ(converged["iterations"], 17);
   EXPECT_EQ(converged["load_factor"], 0.1);
@@ -158,7 +161,7 @@ TEST(StudyWriter, TheJsonListsEachParametersValuesInOrder) {
   EXPECT_EQ(w.json_document["format"], "tsmframe-study-results/1");
   EXPECT_EQ(w.json_document["title"], "writer");
   EXPECT_EQ(w.json_document["parameters"],
-            ordered_json::parse(R"([{"name": "divisions", "values": ["2", "16"]}, {"name": "set-up", "values": ["a, b", "say \"c\""]}])"));
+            ordered_json::parse(R"([{"name": "divisions", "values": [2, 16]}, {"name": "set-up", "values": ["a, b", "say \"c\""]}])"));
 }
 
 TEST(StudyWriter, NoParameterOrRecordMayTakeTheNameOfAFixedColumn) {
