@@ -566,7 +566,7 @@ def test_ctrl_c_ends_a_run_at_its_next_step_with_keyboard_interrupt():
 
 def test_a_run_the_machine_has_no_memory_for_is_a_memory_error_before_it_is_spent():
     # 80,001 contact nodes over a beam of 80,000 elements: every contact may touch every element,
-    # 6.4·10⁹ candidates at ~34 bytes each (~220 GB), more than any machine this runs on. Refused
+    # 6.4·10⁹ candidates at ~19 bytes each (~120 GB), more than any machine this runs on. Refused
     # with the estimate, as the command line's exit 3, before the memory is spent.
     m = tf.Model("too many candidates").material("m", E=2e11).section("s", A=1e-2, I=1e-4)
     m.node(1, 0, 0).node(2, 10, 0).member(1, 2, "m", "s", divisions=80_000).support(1, "fixed")

@@ -60,6 +60,7 @@ inline contact::ContactState reference_state(const contact::ContactGeometry& geo
   contact::ContactState state;
   state.reference.side.assign(geometry.contact(0).candidates.size(), 0);
   contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);
+  contact::keep_place(geometry, geometry.contact(0), f.D, state.reference);  // no step start at hand: its own place
   return state;
 }
 

@@ -116,7 +116,7 @@ ContactChanges ContactSet::update(const Eigen::VectorXd& D, const std::vector<do
       update_active(contact, D, rotations, at_convergence, state, occupancy, changes);
     } else if (const std::optional<HandOver> touched =
                    detect(geometry_, contact, D, rotations, frames, state, occupancy, loads ? &*loads : nullptr,
-                          broad_phase.candidates(contact, state.reference))) {
+                          broad_phase.candidates(contact, state.reference), step_start)) {
       ++changes.activated;
       add(*touched, changes);
     }

@@ -33,7 +33,9 @@ struct ContactReference {
   /// The node in the frame of the element's straight chord then: α along it, the signed
   /// distance across it. An iterate that takes the node across an element's span without ending
   /// within it (a long step along a beam) is caught by interpolating between these and the
-  /// iterate's (detection.hpp).
+  /// iterate's (detection.hpp). Kept only for a reference taken at a release (keep_place); one
+  /// taken at the step's start has them from the step start's displacements (StepStart), so a
+  /// state holds one byte per candidate, not seventeen.
   std::vector<double> along, across;
   double position[2] = {0.0, 0.0};  ///< the node's position (the start of its path in the step)
   /// The broad phase (broad_phase.hpp): at a step's start (`stamp` its displacements'), the

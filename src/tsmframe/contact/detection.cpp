@@ -44,7 +44,8 @@ void ChordFrames::form() {
 }
 
 int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spec, const ContactState& state,
-                   const Eigen::VectorXd& D, const Occupancy& occupancy, const std::vector<int>* near) {
+                   const Eigen::VectorXd& D, const Occupancy& occupancy, const std::vector<int>* near,
+                   const StepStart* start) {
   const Model& model = geometry.model();
   // In each element's own frame the node moved from (α0, g0) at the last converged state to
   // (α1, g1) now: where g reaches the contact's gap on the far side, α is interpolated between.
@@ -53,7 +54,12 @@ int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spe
   // only where the node itself moved across the element as it lies now (its straight path
   // meets the current chord): an element that turned a long way in the step sweeps its frame
   // past nodes that never met it (a strip rolled onto a die in one step).
-  if (state.reference.along.size() != spec.candidates.size()) return -1;
+  const bool own_place = state.reference.along.size() == spec.candidates.size();
+  if (!own_place && !(start && start->stamp == state.reference.stamp && start->displacements.size() == D.size())) return -1;
+  const auto place_then = [&](int ci) {  // the node in the chord's frame at the reference
+    return own_place ? NodeOnElement{state.reference.along[ci], state.reference.across[ci]}
+                     : geometry.on_chord(spec, spec.candidates[ci], start->displacements);
+  };
   const auto position = [&](int n) { return geometry.position(n, D); };
   const Eigen::Vector2d p0(state.reference.position[0], state.reference.position[1]), p1 = position(spec.node);
   const Eigen::Vector2d path = p1 - p0;
@@ -71,7 +77,8 @@ int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spe
   for_each_candidate(spec, near, [&](int ci) {
     const int f = spec.candidates[ci], side = state.reference.side[ci];
     if (!occupancy.may_join(f, spec.frame) || (side != 1 && side != -1)) return;
-    const double before = side * state.reference.across[ci];
+    const NodeOnElement then = place_then(ci);
+    const double before = side * then.gap;
     if (!(before > spec.gap)) return;
     const Element& e = model.elements[f];
     const Eigen::Vector2d a = position(e.start), b = position(e.end);
@@ -86,7 +93,7 @@ int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spe
     const double after = side * now.gap;
     if (after > spec.gap) return;
     const double t = (before - spec.gap) / (before - after);
-    const double alpha = state.reference.along[ci] + t * (now.alpha - state.reference.along[ci]);
+    const double alpha = then.alpha + t * (now.alpha - then.alpha);
     if (alpha < 0.0 || alpha > 1.0 || t >= first_t || !path_meets_chord(f)) return;
     first = f;
     first_t = t;
@@ -96,7 +103,8 @@ int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spe
 
 std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& D,
                                const std::vector<double>& rotations, ChordFrames& frames, ContactState& state,
-                               Occupancy& occupancy, const ElementLoads* loads, const std::vector<int>* near) {
+                               Occupancy& occupancy, const ElementLoads* loads, const std::vector<int>* near,
+                               const StepStart* start) {
   state.step.blocked_element = -1;
   if (state.step.released) return std::nullopt;
   int best = -1, best_side = 0;
@@ -132,7 +140,7 @@ std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCan
     // Across an element's span and on beyond it within one iterate (a long step along a beam
     // the node was pressed onto): contact starts on that element, and is handed on along the
     // beam from there to where the node is — as far as the beam lets it (a column in the way).
-    best = swept_crossing(geometry, contact, state, D, occupancy, near);
+    best = swept_crossing(geometry, contact, state, D, occupancy, near, start);
     if (best < 0) return std::nullopt;
     best_side = state.reference.side[contact.candidate_index[best]];
     best_alpha = geometry.locate(contact, best, D, rotations).alpha;

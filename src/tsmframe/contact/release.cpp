@@ -42,6 +42,7 @@ void release(const ContactGeometry& geometry, const ContactCandidates& contact, 
     carry_sides(geometry, contact, D, std::vector<signed char>(contact.candidates.size(), 0), state.reference.side);
   } else {
     reset_sides(geometry, contact, D, rotations, state.side, state);
+    keep_place(geometry, contact, D, state.reference);
   }
   const Eigen::Vector2d n = geometry.chord_normal(state.element, D, rotations);
   state.step.released_side = state.side;

@@ -132,12 +132,18 @@ void reset_sides(const ContactGeometry& geometry, const ContactCandidates& spec,
   const Eigen::Vector2d node = geometry.position(spec.node, D);
   state.reference.position[0] = node.x();
   state.reference.position[1] = node.y();
-  state.reference.along.resize(spec.candidates.size());
-  state.reference.across.resize(spec.candidates.size());
+  std::vector<double>().swap(state.reference.along);  // freed: a release's place is kept by keep_place
+  std::vector<double>().swap(state.reference.across);
+}
+
+void keep_place(const ContactGeometry& geometry, const ContactCandidates& spec, const Eigen::VectorXd& D,
+                ContactReference& reference) {
+  reference.along.resize(spec.candidates.size());
+  reference.across.resize(spec.candidates.size());
   for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
     const NodeOnElement there = geometry.on_chord(spec, spec.candidates[ci], D);
-    state.reference.along[ci] = there.alpha;
-    state.reference.across[ci] = there.gap;
+    reference.along[ci] = there.alpha;
+    reference.across[ci] = there.gap;
   }
 }
 

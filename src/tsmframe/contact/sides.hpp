@@ -29,9 +29,14 @@ void carry_sides(const ContactGeometry& geometry, const ContactCandidates& conta
                  const std::vector<signed char>& past, std::vector<signed char>& side);
 
 /// The node's reference at `displacements` (a converged state, or a release): its side of every
-/// candidate, its place in each chord's frame and its position. Where it lies on a centre line,
-/// `fallback` (±1: the side it pressed from on state.element, 0: none) gives the side.
+/// candidate and its position; the place it kept at a release let go. Where it lies on a centre
+/// line, `fallback` (±1: the side it pressed from on state.element, 0: none) gives the side.
 void reset_sides(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& displacements,
                  const std::vector<double>& rotations, int fallback, ContactState& state);
+
+/// Keeps in the reference the node's place in each candidate chord's frame at `displacements`
+/// (a release, away from the step's start): α along the chord, the signed distance across it.
+void keep_place(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& displacements,
+                ContactReference& reference);
 
 }  // namespace tsm::contact

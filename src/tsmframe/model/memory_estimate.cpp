@@ -22,11 +22,12 @@ constexpr double state_per_node = 48.0, state_per_element = 32.0;
 // the moved dofs, every contact's point.
 constexpr double per_step = 400.0, step_per_monitored = 24.0, step_per_moved = 8.0, step_per_contact = 48.0;
 // A contact: its state, its geometry's settings and its step's points (~600 bytes); per
-// candidate the reference side, α and distance in the state and in the step's start (2 × 17
-// bytes); its point at every Newton iterate of a step (48 bytes). Per group of contacts that may
+// candidate the reference side in the state and in the step's start (2 bytes) and, should it be
+// released in the step, its place in the chord's frame and whether within the span (17 bytes);
+// its point at every Newton iterate of a step (48 bytes). Per group of contacts that may
 // touch the same elements (model/candidate_groups) one table: the candidates' places (an int per
 // element of the model), and per candidate its index and Ψ (12 bytes).
-constexpr double contact_fixed = 600.0, contact_per_candidate = 34.0, contact_per_iterate = 48.0;
+constexpr double contact_fixed = 600.0, contact_per_candidate = 19.0, contact_per_iterate = 48.0;
 constexpr double table_per_element = 4.0, table_per_candidate = 12.0;
 // Once per model with contacts: each element's initial chord and the elements at each node.
 constexpr double contacts_per_element = 48.0;

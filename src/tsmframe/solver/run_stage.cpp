@@ -41,7 +41,7 @@ RunResult run_stage(const Model& model, State& state, const StepObserver& observ
     state.chord_rotations = std::move(zero_rotations);
     state.contacts = contacts.initial_states();
   }
-  contacts.restore(problem.physical(state), state.chord_rotations, state.contacts);  // a restart's
+  problem.take_contact_references(state);  // a restart's
   newton.reset(state);
   RunResult result = control.type == ControlType::arc_length
                          ? run_arc_length_stepping(model, dofs, newton, problem, state, observer, stop)

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "tsmframe/contact/broad_phase.hpp"
 #include "tsmframe/contact/contact_state.hpp"
 
 namespace tsm::solver {
@@ -23,6 +24,10 @@ struct State {
   double load_factor = 0.0;            ///< λ
   std::vector<double> chord_rotations; ///< β per element
   std::vector<contact::ContactState> contacts;  ///< one per contact of the model
+  /// The displacements the contacts' references were taken at (the last converged state, the
+  /// first, a restart's), with their fingerprint: where detection's broad phase and the swept
+  /// crossings start from in the step that follows. Empty without contacts.
+  contact::StepStart contact_references;
   /// How far along its control's path (load and displacement control: λ's path parameter t, the
   /// legs of `path` counted whole; load_stepping.cpp): where a restarted run goes on from.
   double path_parameter = 0.0;

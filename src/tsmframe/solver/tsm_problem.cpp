@@ -75,7 +75,7 @@ bool TsmProblem::evaluate(State& state, bool contacts_only) {
     if (!contacts_) return false;
     if (pass == max_passes) break;
     const contact::ContactChanges changes =
-        contacts_->update(u, state.chord_rotations, eval_.contacts, state.contacts, false, &step_start_);
+        contacts_->update(u, state.chord_rotations, eval_.contacts, state.contacts, false, &state.contact_references);
     if (!changes.any()) break;
     changed = true;
     switches_ += changes.activated + changes.released;
@@ -143,7 +143,6 @@ Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms
 
 void TsmProblem::begin_step(const State& state) {
   switches_ = reversals_ = 0;
-  if (contacts_) step_start_ = contact::step_start(physical(state));
   max_switches_ = 4 + 4 * static_cast<int>(state.contacts.size());
   // A contact point that keeps hopping back and forth between elements within one step is
   // wandering over iterates far from the path (it may land on another branch, a beam looped
@@ -223,8 +222,17 @@ std::vector<std::pair<int, int>> TsmProblem::accept(State& state) {
   for (size_t k = 0; k < state.contacts.size(); ++k)
     if (!state.contacts[k].active && state.contacts[k].step.slid_off_element >= 0)
       slid_off.emplace_back(static_cast<int>(k), state.contacts[k].step.slid_off_element);
-  if (contacts_) contacts_->accept(physical(state), state.chord_rotations, state.contacts);
+  if (contacts_) {
+    contacts_->accept(physical(state), state.chord_rotations, state.contacts);
+    state.contact_references = contact::step_start(physical(state));
+  }
   return slid_off;
+}
+
+void TsmProblem::take_contact_references(State& state) const {
+  if (!contacts_) return;
+  contacts_->restore(physical(state), state.chord_rotations, state.contacts);
+  state.contact_references = contact::step_start(physical(state));
 }
 
 void TsmProblem::explain(const State& state, StepFailure& failure) const {
@@ -259,7 +267,7 @@ bool TsmProblem::release_pulling_contacts(State& state) {
   bool overwrote_tangent = false;
   const std::vector<int> also = look_ahead_releases(state, overwrote_tangent);
   const contact::ContactChanges changes =
-      contacts_->update(physical(state), state.chord_rotations, eval_.contacts, state.contacts, true, &step_start_);
+      contacts_->update(physical(state), state.chord_rotations, eval_.contacts, state.contacts, true, &state.contact_references);
   if (!changes.any() && !overwrote_tangent) return false;
   switches_ += changes.activated + changes.released;
   if (!also.empty()) switches_ += contacts_->release_as_pulling(also, physical(state), state.chord_rotations, state.contacts);

@@ -41,6 +41,9 @@ class TsmProblem final : public Problem {
   std::optional<StepFailure> after_iterate(const State& state) const override;
   Settlement at_convergence(State& state) override;
   std::vector<std::pair<int, int>> accept(State& state) override;
+  /// Takes the references of the contacts that have none at `state` (a run's first state, a
+  /// restart's, contacts a stage brings back; contact_set's restore), and where they were taken.
+  void take_contact_references(State& state) const;
   void explain(const State& state, StepFailure& failure) const override;
   std::vector<ContactPoint> contact_points(const State& state) const override;
 
@@ -95,7 +98,6 @@ class TsmProblem final : public Problem {
   int reversals_ = 0;  ///< contact hand-overs back the way the point came, in the current step
   int max_switches_ = 0, max_reversals_ = 0;  ///< the current step's budget
   bool predictor_pending_ = false;  ///< the step's first evaluation (the predictor's iterate) is still to come
-  contact::StepStart step_start_;  ///< the step's starting displacements (global): detection's broad phase
   LinearSolver solver_;
   assembly::Evaluation eval_;
   Eigen::VectorXd kept_rhs_;  ///< a right-hand side kept for a second factorisation (with the sliding terms)

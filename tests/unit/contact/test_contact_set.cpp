@@ -98,8 +98,9 @@ TEST(ContactDetection, AlongTheNodesPathOnlyWhereTheNodeItselfCrossedTheElement)
   {
     std::vector<tsm::contact::ContactState> states = tracker.initial_states();
     Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
+    const tsm::contact::StepStart start = tsm::contact::step_start(D);  // where initial_states took the references
     D.segment<2>(3 * pusher) = Eigen::Vector2d(1.5 - 0.125, -0.04);
-    const tsm::contact::ContactChanges changes = tracker.update(D, straight, {}, states, false);
+    const tsm::contact::ContactChanges changes = tracker.update(D, straight, {}, states, false, &start);
     EXPECT_EQ(changes.activated, 1);
     ASSERT_TRUE(states[0].active) << "the node's path crossed the beam";
     EXPECT_EQ(states[0].side, 1);  // from above
@@ -111,13 +112,14 @@ TEST(ContactDetection, AlongTheNodesPathOnlyWhereTheNodeItselfCrossedTheElement)
     tsm::contact::ContactSet outside_tracker(outside);
     std::vector<tsm::contact::ContactState> states = outside_tracker.initial_states();
     Eigen::VectorXd D = Eigen::VectorXd::Zero(outside.dof_count());
+    const tsm::contact::StepStart start = tsm::contact::step_start(D);
     for (int k = 0; k < outside.node_count(); ++k) {
       if (k == outside.node_index(100)) continue;
       const Eigen::Vector2d x = outside.nodes[k].position, turned = Eigen::Vector2d(1.0 - x.x(), -x.y());
       D.segment<3>(3 * k) << turned - x, std::numbers::pi;
     }
     const std::vector<double> half_turn(outside.elements.size(), std::numbers::pi);
-    EXPECT_FALSE(outside_tracker.update(D, half_turn, {}, states, false).any());
+    EXPECT_FALSE(outside_tracker.update(D, half_turn, {}, states, false, &start).any());
     EXPECT_FALSE(states[0].active);
   }
 }

@@ -48,6 +48,23 @@ TEST(ContactRelease, ALetGoOffAFreeEndNamesTheElementItLeft) {
   EXPECT_FALSE(state.step.released_pulled);
 }
 
+TEST(ContactRelease, ANodeLetGoOffAnEndKeepsItsPlaceThenAndAConvergedStateFreesIt) {
+  // A reference taken at a step's start reads the node's place in each chord's frame from the
+  // step start's displacements (detection.hpp, swept_crossing): one byte per candidate, its side.
+  // One taken at a release, away from the step's start, keeps the place it was taken at.
+  ContactFixture f(1.05, 0.0);
+  const ContactGeometry geometry(f.model);
+  ContactState state = pressing(geometry, f, 3);
+  tsm::contact::release(geometry, geometry.contact(0), f.D, f.rotations, state, false);
+  ASSERT_EQ(state.reference.along.size(), 4u);
+  EXPECT_NEAR(state.reference.along[3], (1.05 - 0.75) / 0.25, 1e-12);
+  EXPECT_NEAR(state.reference.across[3], 0.0, 1e-15);
+  tsm::contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);  // as at a converged state
+  EXPECT_EQ(state.reference.side.size(), 4u);
+  EXPECT_EQ(state.reference.along.capacity(), 0u);
+  EXPECT_EQ(state.reference.across.capacity(), 0u);
+}
+
 /// The fixture's contact, pressing element 1, let go by pulling; through(dx, dy): whether its
 /// node, moved by (dx, dy) from where it was drawn, has passed through the beam since.
 struct LetGo {

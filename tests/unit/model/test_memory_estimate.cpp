@@ -45,11 +45,11 @@ TEST(MemoryEstimate, ContactsGrowWithTheirCandidatesAndTheirGroupsTablesWithTheM
   c.table_candidates = 50;
   c.contact_spec_bytes = 300;
   c.max_iterations = 50;
-  // Per contact 600 and a point per iterate (51), 34 per candidate; the group's table: an int per
+  // Per contact 600 and a point per iterate (51), 19 per candidate; the group's table: an int per
   // element of the model and 12 per candidate; the settings as read; two dense columns of the
   // tangent (Woodbury); the chords once.
   EXPECT_DOUBLE_EQ(estimate_memory(c).contacts.bytes,
-                   2 * (600 + 48 * 51) + 34 * 100 + (4 * 100 + 12 * 50) + 300 + 8 * 2 * 306 + 48 * 100);
+                   2 * (600 + 48 * 51) + 19 * 100 + (4 * 100 + 12 * 50) + 300 + 8 * 2 * 306 + 48 * 100);
   EXPECT_EQ(estimate_memory(c).contacts.name, "2 contacts with 100 candidate elements");
   // Beyond 32 contacts a sparse LU of the tangent (5 kB per unknown), and the look-ahead's G.
   c.contacts = 40;
@@ -57,7 +57,7 @@ TEST(MemoryEstimate, ContactsGrowWithTheirCandidatesAndTheirGroupsTablesWithTheM
   c.table_candidates = 100;
   c.contact_spec_bytes = 0;
   EXPECT_DOUBLE_EQ(estimate_memory(c).contacts.bytes,
-                   40 * (600 + 48 * 51) + 34 * 4000 + (4 * 100 + 12 * 100) + 5000 * 306 + 8 * 40 * 40 + 48 * 100);
+                   40 * (600 + 48 * 51) + 19 * 4000 + (4 * 100 + 12 * 100) + 5000 * 306 + 8 * 40 * 40 + 48 * 100);
   // The look-ahead takes at most 2,000 contacts in touch; a table per group.
   c.contacts = 20'001;
   c.contact_candidates = 20'001.0 * 20'000;
@@ -65,7 +65,7 @@ TEST(MemoryEstimate, ContactsGrowWithTheirCandidatesAndTheirGroupsTablesWithTheM
   c.candidate_tables = 3;
   c.table_candidates = 3 * 20'000;
   const double per_contact = 600 + 48 * 51;
-  EXPECT_DOUBLE_EQ(estimate_memory(c).contacts.bytes, 20'001 * per_contact + 34 * 20'001.0 * 20'000 +
+  EXPECT_DOUBLE_EQ(estimate_memory(c).contacts.bytes, 20'001 * per_contact + 19 * 20'001.0 * 20'000 +
                                                           3 * (4 * 20'000 + 12 * 20'000) + 5000 * 306 +
                                                           8 * 2000.0 * 2000 + 48 * 20'000);
   EXPECT_EQ(estimate_memory(c).contacts.name, "20,001 contacts with 400,020,000 candidate elements");
