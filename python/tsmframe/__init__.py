@@ -266,8 +266,9 @@ def study(definition, jobs=0):
     """Run a parameter study (a tsmframe-study/1 document: a dict, or a path to one; README
     "Parameter studies") with its cases in parallel on `jobs` threads (0: all cores). Returns one
     dict per case in case order, with study.csv's columns: the parameters' values, status,
-    converged, steps, iterations, last_iterations, load_factor, seconds, the first contact's
-    story where the model has contacts, each `record` (None where the case has no value), message.
+    converged, steps, iterations, last_iterations, load_factor, negative_eigenvalues (None where
+    unknown), seconds, the first contact's story where the model has contacts, each `record`
+    (None where the case has no value), notes, message.
     A bad study file raises ValueError (JSON path: reason); a failing case is a row."""
     if isinstance(definition, (str, _os.PathLike)):
         path = _os.fspath(definition)

@@ -153,7 +153,7 @@ TEST_F(Study, RecordedQuantitiesAreColumnsOfEveryCase) {
   std::ifstream csv(dir_ / "out" / "study.csv");
   std::string header;
   std::getline(csv, header);
-  EXPECT_NE(header.find(",tip_uy_max,tip_uy,clamp_Ry_min,peak,message"), std::string::npos) << header;
+  EXPECT_NE(header.find(",tip_uy_max,tip_uy,clamp_Ry_min,peak,notes,message"), std::string::npos) << header;
 }
 
 TEST_F(Study, ARecordThatACaseCannotGiveIsABadInputRow) {

@@ -138,6 +138,21 @@ def test_a_study_runs_its_cases_and_returns_their_rows():
         tf.study(broken)
 
 
+def test_a_studys_rows_say_whether_each_end_state_is_stable_and_what_the_run_noted():
+    # A pinned-pinned Euler column (L = 4 m, EI = 2·10⁵ N m², 20 elements) under 0.95 and 1.05 of
+    # π²EI/L² in one step: a perfect column stays straight, stable below the buckling load, and
+    # with one negative eigenvalue above it — which a plain "converged" row did not tell.
+    P = math.pi ** 2 * 2e11 * 1e-6 / 4.0 ** 2
+    m = tf.Model("column").material("steel", E=2e11).section("s", A=1e-2, I=1e-6)
+    m.node(1, 0, 0).node(2, 4, 0).member(1, 2, "steel", "s", divisions=20)
+    m.support(1, "pinned").support(2, "roller-x").load(2, fx=-P)
+    rows = tf.study({"format": "tsmframe-study/1", "model": m.to_dict(),
+                     "sweep": [{"name": "axial_force", "path": "/loads/0/fx", "values": [-0.95 * P, -1.05 * P]}]})
+    assert [(r["converged"], r["negative_eigenvalues"]) for r in rows] == [(True, 0), (True, 1)]
+    assert rows[0]["notes"] == ""
+    assert "unstable equilibrium" in rows[1]["notes"] and "bifurcation" in rows[1]["notes"]
+
+
 def test_a_study_file_that_is_no_json_says_so_as_the_command_line_does(tmp_path):
     path = tmp_path / "broken.json"
     path.write_text('{\n  "sweep": [\n    {"name": "n",, "values": [1]}\n  ]\n}\n')

@@ -149,12 +149,14 @@ void summarise_run(const Model& model, const solver::RunResult& result, CaseResu
   row.status = solver::status_name(result.status);
   row.converged = result.status == solver::Status::converged;
   row.message = result.message;
+  for (const std::string& note : result.notes) row.notes += (row.notes.empty() ? "" : " ") + note;
   for (const solver::StepRecord& s : result.steps) {
     row.iterations += s.iterations;
     row.last_iterations = s.iterations;
     if (!s.converged) continue;
     ++row.steps;
     row.load_factor = s.load_factor;
+    row.negative_eigenvalues = s.negative_eigenvalues;
     if (s.contacts.empty() || s.contacts[0].element < 0) continue;
     const int element = model.elements[s.contacts[0].element].id;
     if (row.contact_first_element == 0) row.contact_first_element = element;

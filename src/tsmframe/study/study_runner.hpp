@@ -25,6 +25,10 @@ struct CaseResult {
   int iterations = 0;               ///< all Newton iterations, failed attempts included
   int last_iterations = 0;          ///< iterations of the last attempt
   double load_factor = 0.0;         ///< λ at the last converged step
+  /// The tangent's negative eigenvalues at the last converged step: 0 a stable end state, n > 0
+  /// an unstable one; −1 unknown (a contact active, a follower load, no converged step).
+  int negative_eigenvalues = -1;
+  std::string notes;                ///< the run's remarks on its path (RunResult::notes), one after another
   double seconds = 0.0;
   std::string message;
   // The first contact's story (when the model has contacts):

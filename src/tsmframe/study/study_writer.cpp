@@ -25,6 +25,8 @@ const FixedColumn run_columns[] = {
     {"iterations", [](const CaseResult& r) -> Cell { return r.iterations; }},
     {"last_iterations", [](const CaseResult& r) -> Cell { return r.last_iterations; }},
     {"load_factor", [](const CaseResult& r) -> Cell { return r.load_factor; }},
+    {"negative_eigenvalues",  // unknown: empty, null
+     [](const CaseResult& r) -> Cell { return r.negative_eigenvalues >= 0 ? Cell(r.negative_eigenvalues) : Cell(NAN); }},
     {"seconds", [](const CaseResult& r) -> Cell { return r.seconds; }},
 };
 
@@ -37,6 +39,7 @@ const FixedColumn contact_columns[] = {
 };
 
 const FixedColumn case_column = {"case", [](const CaseResult& r) -> Cell { return static_cast<int>(r.index + 1); }};
+const FixedColumn notes_column = {"notes", [](const CaseResult& r) -> Cell { return r.notes; }};
 const FixedColumn message_column = {"message", [](const CaseResult& r) -> Cell { return r.message; }};
 
 bool has_contacts(const Study& study) { return !study.model.value("contacts", nlohmann::json::array()).empty(); }
@@ -98,12 +101,13 @@ std::vector<Column> study_columns(const Study& study) {
   if (has_contacts(study))
     for (const FixedColumn& c : contact_columns) columns.push_back(fixed(c));
   for (size_t k = 0; k < study.records.size(); ++k) columns.push_back(record_column(study, k));
+  columns.push_back(fixed(notes_column));
   columns.push_back(fixed(message_column));
   return columns;
 }
 
 std::vector<std::string> fixed_column_names() {
-  std::vector<std::string> names = {case_column.name, message_column.name};
+  std::vector<std::string> names = {case_column.name, notes_column.name, message_column.name};
   for (const FixedColumn& c : run_columns) names.push_back(c.name);
   for (const FixedColumn& c : contact_columns) names.push_back(c.name);
   return names;

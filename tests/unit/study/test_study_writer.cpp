@@ -45,6 +45,8 @@ std::vector<CaseResult> two_rows() {
   converged.iterations = 17;
   converged.last_iterations = 3;
   converged.load_factor = 0.1;
+  converged.negative_eigenvalues = 1;
+  converged.notes = "Past a limit point.";
   converged.seconds = 0.25;
   converged.contact_first_element = 3;
   converged.contact_max_alpha_first = 0.75;
@@ -126,9 +128,9 @@ TEST(StudyWriter, TheColumnsAreTheCaseTheParametersTheRunsTheContactsTheRecordsA
   std::vector<std::string> names;
   for (const Column& c : study_columns(two_parameter_study(true))) names.push_back(c.name);
   const std::vector<std::string> expected = {
-      "case", "divisions", "set-up", "status", "converged", "steps", "iterations", "last_iterations", "load_factor", "seconds",
-      "contact_first_element", "contact_max_alpha_first", "contact_last_element", "contact_elements_passed", "tip_uy", "peak",
-      "message"};
+      "case", "divisions", "set-up", "status", "converged", "steps", "iterations", "last_iterations", "load_factor",
+      "negative_eigenvalues", "seconds", "contact_first_element", "contact_max_alpha_first", "contact_last_element",
+      "contact_elements_passed", "tip_uy", "peak", "notes", "message"};
   EXPECT_EQ(names, expected);
   names.clear();
   for (const Column& c : study_columns(two_parameter_study(false))) names.push_back(c.name);
@@ -150,8 +152,14 @@ TEST(StudyWriter, ARowsFieldsAreItsValuesAndARecordItHasNoneOfIsEmptyOrNull) {
   EXPECT_EQ(bad["case"], 4);
   EXPECT_TRUE(bad["tip_uy"].is_null());
   EXPECT_TRUE(bad["peak"].is_null());
-  EXPECT_EQ(w.csv[2][14], "");
   EXPECT_EQ(w.csv[2][15], "");
+  EXPECT_EQ(w.csv[2][16], "");
+  EXPECT_EQ(converged["negative_eigenvalues"], 1);  // an unstable end state
+  EXPECT_EQ(w.csv[1][9], "1");
+  EXPECT_TRUE(bad["negative_eigenvalues"].is_null());  // unknown: no converged step
+  EXPECT_EQ(w.csv[2][9], "");
+  EXPECT_EQ(converged["notes"], "Past a limit point.");
+  EXPECT_EQ(bad["notes"], "");
   EXPECT_EQ(w.csv[1][2], "\"say \"\"c\"\"\"");  // a quote doubled, the field quoted
   EXPECT_EQ(w.csv[2][2], "\"say \"\"c\"\"\"");
 }
@@ -173,7 +181,7 @@ TEST(StudyWriter, NoParameterOrRecordMayTakeTheNameOfAFixedColumn) {
     as_record["record"] = {{{"name", name}, {"quantity", "load_factor"}}};
     EXPECT_THROW(read_study(as_record, "."), tsm::io::InputError) << name;
   }
-  EXPECT_EQ(fixed_column_names().size(), 13u);  // case, message, the 7 run columns and the 4 contact columns
+  EXPECT_EQ(fixed_column_names().size(), 15u);  // case, notes, message, the 8 run columns and the 4 contact columns
 }
 
 }  // namespace
