@@ -181,26 +181,26 @@ int ContactSet::release_as_pulling(const std::vector<int>& which, const Eigen::V
   return released;
 }
 
-void ContactSet::restore(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+void ContactSet::restore(const StepStart& start, const std::vector<double>& rotations,
                          std::vector<ContactState>& states) const {
-  const std::uint64_t stamp = displacement_stamp(D);
+  const Eigen::VectorXd& D = start.displacements;
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
     if (states[k].reference.side.size() == contact.candidates.size()) continue;
     states[k].reference.side.assign(contact.candidates.size(), 0);
     reset_sides(geometry_, contact, D, rotations, 0, states[k]);
-    list_near_candidates(geometry_, contact, D, stamp, states[k].reference);
+    list_near_candidates(geometry_, contact, D, start.stamp, states[k].reference);
   }
 }
 
-void ContactSet::accept(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+void ContactSet::accept(const StepStart& start, const std::vector<double>& rotations,
                         std::vector<ContactState>& states) const {
-  const std::uint64_t stamp = displacement_stamp(D);
+  const Eigen::VectorXd& D = start.displacements;
   for (int k = 0; k < contact_count(); ++k) {
     states[k].step = StepMemory{};
     if (states[k].active) continue;
     reset_sides(geometry_, geometry_.contact(k), D, rotations, 0, states[k]);
-    list_near_candidates(geometry_, geometry_.contact(k), D, stamp, states[k].reference);
+    list_near_candidates(geometry_, geometry_.contact(k), D, start.stamp, states[k].reference);
   }
 }
 

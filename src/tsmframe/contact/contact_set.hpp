@@ -86,12 +86,12 @@ class ContactSet {
   int release_as_pulling(const std::vector<int>& which, const Eigen::VectorXd& displacements,
                          const std::vector<double>& rotations, std::vector<ContactState>& states) const;
   /// At a converged state: the step's memory is cleared, and inactive contacts take their
-  /// current sides as reference.
-  void accept(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+  /// current sides as reference (`start`: this state's displacements, the next step's start).
+  void accept(const StepStart& start, const std::vector<double>& rotations,
               std::vector<ContactState>& states) const;
   /// States read back without their references (a restart, solver/restart.hpp): each takes its
   /// sides at this converged state as reference, as accept() gives an inactive contact.
-  void restore(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+  void restore(const StepStart& start, const std::vector<double>& rotations,
                std::vector<ContactState>& states) const;
 
  private:

@@ -223,16 +223,16 @@ std::vector<std::pair<int, int>> TsmProblem::accept(State& state) {
     if (!state.contacts[k].active && state.contacts[k].step.slid_off_element >= 0)
       slid_off.emplace_back(static_cast<int>(k), state.contacts[k].step.slid_off_element);
   if (contacts_) {
-    contacts_->accept(physical(state), state.chord_rotations, state.contacts);
     state.contact_references = contact::step_start(physical(state));
+    contacts_->accept(state.contact_references, state.chord_rotations, state.contacts);
   }
   return slid_off;
 }
 
 void TsmProblem::take_contact_references(State& state) const {
   if (!contacts_) return;
-  contacts_->restore(physical(state), state.chord_rotations, state.contacts);
   state.contact_references = contact::step_start(physical(state));
+  contacts_->restore(state.contact_references, state.chord_rotations, state.contacts);
 }
 
 void TsmProblem::explain(const State& state, StepFailure& failure) const {
