@@ -22,8 +22,9 @@ py::array_t<T> array(std::vector<py::ssize_t> shape, const std::vector<T>& data)
 
 py::ssize_t count(size_t n) { return static_cast<py::ssize_t>(n); }
 
-/// status, message, notes, and the bifurcations found under load control: {step, load_factor, bracket}.
-void add_outcome(py::dict& out, const solver::RunResult& result) {
+/// status, message, notes, the bifurcations found under load control ({step, load_factor, bracket})
+/// and the steps in neutral equilibrium ({step, node, part_nodes, motion, about or direction}).
+void add_outcome(py::dict& out, const Model& model, const solver::RunResult& result) {
   out["status"] = solver::status_name(result.status);
   out["message"] = result.message;
   out["notes"] = result.notes;
@@ -36,6 +37,22 @@ void add_outcome(py::dict& out, const solver::RunResult& result) {
     critical.append(point);
   }
   out["critical_points"] = critical;
+  py::list neutral;  // steps in neutral equilibrium: the motion the supports leave free there
+  for (const solver::NeutralStep& n : result.neutral_steps) {
+    py::dict step;
+    step["step"] = n.step;
+    step["node"] = model.nodes[n.motion.node].id;
+    step["part_nodes"] = n.motion.part_nodes;
+    if (n.motion.kind == FreeMotion::Kind::rotation) {
+      step["motion"] = "rotation";
+      step["about"] = py::make_tuple(n.motion.pole.x(), n.motion.pole.y());
+    } else {
+      step["motion"] = "translation";
+      step["direction"] = py::make_tuple(n.motion.direction.x(), n.motion.direction.y());
+    }
+    neutral.append(step);
+  }
+  out["neutral_equilibria"] = neutral;
   py::list stages;  // a staged run's stages that ran: where each ended
   for (const solver::StageEnd& end : result.stages) {
     py::dict stage;
@@ -157,7 +174,7 @@ void add_texts(py::dict& out, const Model& model, const solver::RunResult& resul
 py::dict results_dict(const std::shared_ptr<Model>& model, const solver::RunResult& result) {
   py::dict out;
   out["model"] = model;
-  add_outcome(out, result);
+  add_outcome(out, *model, result);
   add_model(out, *model);
   add_steps(out, result);
   add_states(out, *model, result);

@@ -294,6 +294,9 @@ class Result:
     status, message            how the run ended ("converged", "diverged", …)
     notes                      remarks on the path (list of sentences; e.g. a jump across a snap-back)
     critical_points            bifurcations found under load control: dicts of step, load_factor, bracket
+    neutral_equilibria         steps whose supports let a part move as a rigid body, its loads doing no
+                               work (a singular tangent; no eigenvalue count): dicts of step, node, part_nodes,
+                               motion ("rotation" about (x, y), or "translation" along direction)
     node_ids (n,), node_xy (n, 2), element_ids (m,), element_nodes (m, 2) node ids
     step (S,), load_factor (S,), iterations (S,), converged (S,), residual_norms: S arrays, criterion: S strings
     stage (S,)                 the stage (1, 2, …) each step belongs to (1 without stages); stages: where

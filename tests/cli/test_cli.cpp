@@ -216,7 +216,7 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
          m["supports"].push_back({{"node", 5}, {"fix", {"ux"}}});
          m["contacts"] = json::array({{{"node", 5}, {"members", {0}}}, {{"node", 6}, {"members", {0}}}});
        },
-       "supports: structure is a mechanism: the part holding node 5 and the 1 nodes joined to it is free to move along y "
+       "supports: structure is a mechanism: the part holding node 5 and the 1 node joined to it is free to move along y "
        "(no support fixes uy); a contact holds it from the start only if its node is drawn at the contact's \"gap\" from "
        "the beam's centre line, on the side it supports, and the node or the beam is held (by supports, or by a part that "
        "is) (contact node 5 is drawn 0.02 from the beam's centre line, its gap is 0: a part that only contacts would hold "

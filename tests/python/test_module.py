@@ -153,6 +153,27 @@ def test_a_studys_rows_say_whether_each_end_state_is_stable_and_what_the_run_not
     assert "unstable equilibrium" in rows[1]["notes"] and "bifurcation" in rows[1]["notes"]
 
 
+def test_a_ring_closed_on_its_pin_is_neutral_and_says_how_it_may_move():
+    # A beam (L = 10 m) on a pin and a roller bent by end moments M = 2πEI/L into a full circle
+    # (exact for any mesh): its ends meet on the pin, where every support reaction acts, so the
+    # ring may turn about it; the moments do no work on that turn. Neutral: no eigenvalue count.
+    EI = 2e11 * 8e-6
+    M = 2 * math.pi * EI / 10.0
+    m = tf.Model("ring").material("steel", E=2e11).section("s", A=1e-2, I=8e-6)
+    m.node(1, 0, 0).node(2, 10, 0).member(1, 2, "steel", "s", divisions=12)
+    m.support(1, "pinned").support(2, "roller-x").load(1, mz=-M).load(2, mz=M).analysis(steps=2)
+    r = tf.run(m)
+    assert r.ok, r.message
+    assert list(r.negative_eigenvalues) == [0, -1]  # a half circle is stable
+    [neutral] = r.neutral_equilibria
+    assert (neutral["step"], neutral["node"], neutral["part_nodes"], neutral["motion"]) == (2, 1, 13, "rotation")
+    assert neutral["about"] == pytest.approx((0.0, 0.0), abs=1e-6 * 10.0)
+    assert any("neutral equilibrium" in note for note in r.notes), r.notes
+    rows = tf.study({"format": "tsmframe-study/1", "model": m.to_dict(),
+                     "sweep": [{"name": "divisions", "path": "/members/0/divisions", "values": [12]}]})
+    assert rows[0]["negative_eigenvalues"] is None and "neutral equilibrium" in rows[0]["notes"]
+
+
 def test_a_study_file_that_is_no_json_says_so_as_the_command_line_does(tmp_path):
     path = tmp_path / "broken.json"
     path.write_text('{\n  "sweep": [\n    {"name": "n",, "values": [1]}\n  ]\n}\n')

@@ -155,7 +155,7 @@ TEST(Hinges, TheReaderChecksWhatAHingeCannotDo) {
   m["members"] = json::array({{{"from", 1}, {"to", 2}, {"material", "s"}, {"section", "x"}, {"release", "both"}}});
   m["supports"] = json::array({{{"node", 1}, {"type", "pinned"}}});
   m["nodes"].erase(2);
-  EXPECT_NE(refusal(m).find("structure is a mechanism: the part holding node 1 and the 1 nodes joined to it is free to rotate"),
+  EXPECT_NE(refusal(m).find("structure is a mechanism: the part holding node 1 and the 1 node joined to it is free to rotate"),
             std::string::npos)
       << refusal(m);
 

@@ -3,7 +3,7 @@
 // under load control stays straight and converges past its buckling loads, where the exact
 // critical loads (2n − 1)² π² EI / 4L² say how many modes have gone unstable; an imperfect
 // column below its Euler load stays stable; Williams' toggle (test_arc_length) is unstable
-// exactly between its two limit points.
+// exactly between its two limit points; a pin-roller beam closed into a ring is neutral.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -74,6 +74,55 @@ TEST_P(PerfectColumn, PastItsBucklingLoadsUnderLoadControlItIsToldUnstable) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BothTheories, PerfectColumn, ::testing::Values("euler-bernoulli", "timoshenko"));
+
+class PinRollerRing : public ::testing::TestWithParam<const char*> {};
+
+// A beam on a pin and a roller bent by equal and opposite end moments M into a circular arc of
+// angle θ = ML/EI (exact for any mesh: the paper's Fig. 3). Short of a full circle the supports
+// hold it and it is stable. At θ = 2π its ends meet: the pin's reactions and the roller's all act
+// through that point, so the ring may turn about it as a rigid body, and the end moments do no
+// work on the turn — a neutral equilibrium, its tangent singular. Its eigenvalue count was the
+// sign of round-off (told "unstable … past a bifurcation point" in 220 rows of the Fig. 3 study).
+TEST_P(PinRollerRing, ClosedIntoACircleItMayTurnAboutThePinAndIsToldNeutral) {
+  const double L = 10.0, E = 2e11, I = 8e-6;
+  json m = beam_model({.L = L, .E = E, .G = 8e10, .A = 1e-2, .I = I, .shear_area = 8e-3, .divisions = 12, .element = GetParam()});
+  const double M = 2.0 * pi * E * I / L;
+  m["supports"] = json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}}});
+  m["loads"] = json::array({{{"node", 1}, {"mz", -M}}, {{"node", 2}, {"mz", M}}});
+  m["analysis"]["control"] = {{"type", "load"}, {"steps", 4}};
+  tsm::Model model;
+  const auto r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  ASSERT_EQ(r.steps.size(), 4u);
+  for (int k = 0; k < 3; ++k) {  // a quarter, a half and three quarters of the circle
+    EXPECT_EQ(r.steps[k].negative_eigenvalues, 0) << "step " << k + 1;
+    EXPECT_FALSE(r.steps[k].neutral) << "step " << k + 1;
+  }
+  EXPECT_NEAR(r.steps[3].displacements[3], -L, 1e-6 * L);  // the roller's end on the pin
+  EXPECT_TRUE(r.steps[3].neutral);
+  EXPECT_EQ(r.steps[3].negative_eigenvalues, -1);
+  ASSERT_EQ(r.neutral_steps.size(), 1u);
+  const tsm::FreeMotion& motion = r.neutral_steps[0].motion;
+  EXPECT_EQ(r.neutral_steps[0].step, 4);
+  EXPECT_EQ(motion.kind, tsm::FreeMotion::Kind::rotation);
+  EXPECT_LE(motion.pole.norm(), 1e-6 * L) << motion.pole.transpose();  // about the pin
+  EXPECT_EQ(motion.part_nodes, 13);
+  ASSERT_EQ(r.notes.size(), 1u);
+  EXPECT_EQ(r.notes[0].rfind("step 4 ends in neutral equilibrium: there the supports let the part holding node 1 and the 12 "
+                             "nodes joined to it rotate about (",
+                             0),
+            0u)
+      << r.notes[0];
+  std::ostringstream json_text;
+  tsm::io::write_results_json(json_text, model, r);
+  const json written = json::parse(json_text.str());
+  EXPECT_FALSE(written["steps"][3].contains("negative_eigenvalues"));
+  ASSERT_EQ(written["neutral_equilibria"].size(), 1u);
+  EXPECT_EQ(written["neutral_equilibria"][0]["motion"], "rotation");
+  EXPECT_EQ(written["neutral_equilibria"][0]["node"], 1);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothTheories, PinRollerRing, ::testing::Values("euler-bernoulli", "timoshenko"));
 
 // An imperfect pinned column driven to a mid-span deflection of L/50 under displacement control
 // rises towards its Euler load and stays on a stable path (the load still rising at every step).

@@ -204,6 +204,18 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
     w.end_object();
   }
   w.end_array();
+  // Steps in neutral equilibrium: the rigid-body motion their supports leave free there.
+  w.newline().key("neutral_equilibria").begin_array();
+  for (const solver::NeutralStep& n : result.neutral_steps) {
+    w.newline().begin_object();
+    w.key("step").value(n.step).key("node").value(model.nodes[n.motion.node].id).key("part_nodes").value(n.motion.part_nodes);
+    if (n.motion.kind == FreeMotion::Kind::rotation)
+      w.key("motion").value("rotation").key("about").begin_array().value(n.motion.pole.x()).value(n.motion.pole.y()).end_array();
+    else
+      w.key("motion").value("translation").key("direction").begin_array().value(n.motion.direction.x()).value(n.motion.direction.y()).end_array();
+    w.end_object();
+  }
+  w.end_array();
   if (!model.stages.empty()) {  // where each stage that ran ended
     w.newline().key("stages").begin_array();
     for (const solver::StageEnd& end : result.stages) {

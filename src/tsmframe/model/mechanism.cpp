@@ -15,16 +15,14 @@
 namespace tsm {
 namespace {
 
+// Along a free motion the loads do no work to second order where it is below this fraction of
+// their scale: round-off and Newton's tolerance leave ~1e-10 of it in a converged state, a load
+// that holds or tips a pendulum its whole size.
+constexpr double neutral_work = 1e-6;
+
 int find_root(std::vector<int>& parent, int k) {
   while (parent[k] != k) k = parent[k] = parent[parent[k]];
   return k;
-}
-
-std::string part_name(const Model& model, const std::vector<int>& members) {
-  std::ostringstream os;
-  os << "node " << model.nodes[members.front()].id;
-  if (members.size() > 1) os << " and the " << members.size() - 1 << " nodes joined to it";
-  return os.str();
 }
 
 /// Why a contact from `node`'s side does not rest as drawn, where the reason is plain: its node
@@ -184,12 +182,19 @@ struct Modes {
   bool stable() const { return eig.eigenvalues()[0] > 1e-10 * std::max(1.0, eig.eigenvalues()[2]); }
 };
 
-Modes modes_of(const Model& model, const std::vector<char>& hinge, const std::vector<int>& part, const Resting& resting) {
+/// Where node k stands: as drawn, or displaced by `displacements` (global, every dof).
+Eigen::Vector2d position(const Model& model, const Eigen::VectorXd* displacements, int k) {
+  const Eigen::Vector2d& drawn = model.nodes[k].position;
+  return displacements ? Eigen::Vector2d(drawn + displacements->segment<2>(dofs_per_node * k)) : drawn;
+}
+
+Modes modes_of(const Model& model, const NodalFrames& frames, const std::vector<char>& hinge, const std::vector<int>& part,
+               const Resting& resting, const Eigen::VectorXd* displacements = nullptr) {
   Modes m;
   m.centre = Eigen::Vector2d::Zero();
-  Eigen::Vector2d lo = model.nodes[part.front()].position, hi = lo;
+  Eigen::Vector2d lo = position(model, displacements, part.front()), hi = lo;
   for (int k : part) {
-    const Eigen::Vector2d& p = model.nodes[k].position;
+    const Eigen::Vector2d p = position(model, displacements, k);
     m.centre += p;
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
@@ -197,9 +202,8 @@ Modes modes_of(const Model& model, const std::vector<char>& hinge, const std::ve
   m.centre /= static_cast<double>(part.size());
   m.extent = std::max((hi - lo).norm(), 1e-300);
   Eigen::Matrix3d gram = Eigen::Matrix3d::Zero();
-  const NodalFrames frames(model);
   for (int k : part) {
-    const Eigen::Vector2d p = (model.nodes[k].position - m.centre) / m.extent;
+    const Eigen::Vector2d p = (position(model, displacements, k) - m.centre) / m.extent;
     // A held translation holds along its frame's axis: x or y, or a skew roller's normal.
     const Eigen::Matrix3d T = frames.frame(k);
     const auto held = [&](int d) { return Eigen::Vector3d(T(0, d), T(1, d), -T(0, d) * p.y() + T(1, d) * p.x()); };
@@ -251,7 +255,8 @@ bool pass_touches(const std::vector<Touch>& touches, std::vector<char>& used, Ho
 /// its node's part where the part it rests on is held. Bilaterally, for this check: a contact
 /// lets go only if it would pull, which a solve finds out. Parts held so hold others in turn,
 /// until nothing changes.
-Holding hold_parts(const Model& model, const std::vector<char>& hinge, Parts& parts, const std::vector<Touch>& touches) {
+Holding hold_parts(const Model& model, const NodalFrames& frames, const std::vector<char>& hinge, Parts& parts,
+                   const std::vector<Touch>& touches) {
   const int n = model.node_count();
   Holding holding{std::vector<Resting>(n), std::vector<char>(n, 0)};
   for (const NodalSpring& s : model.springs)  // a spring holds its node's part as a support would
@@ -264,7 +269,7 @@ Holding hold_parts(const Model& model, const std::vector<char>& hinge, Parts& pa
     for (const std::vector<int>& part : parts.members) {
       if (part.empty()) continue;
       const int root = parts.root(part.front());
-      if (!holding.held[root] && modes_of(model, hinge, part, holding.resting[root]).stable())
+      if (!holding.held[root] && modes_of(model, frames, hinge, part, holding.resting[root]).stable())
         holding.held[root] = 1, changed = true;
     }
   }
@@ -273,20 +278,24 @@ Holding hold_parts(const Model& model, const std::vector<char>& hinge, Parts& pa
 
 /// The free motion of the part's weakest mode (a, b, ω·extent): a translation's direction, or a
 /// rotation about its pole.
-void describe_motion(std::ostream& os, const Modes& m) {
+FreeMotion motion_of(const Modes& m, const std::vector<int>& part) {
   const Eigen::Vector3d mode = m.eig.eigenvectors().col(0);
-  const double extent = m.extent;
-  const Eigen::Vector2d centre = m.centre;
+  FreeMotion motion;
+  motion.node = part.front();
+  motion.part_nodes = static_cast<int>(part.size());
   if (std::abs(mode[2]) < 1e-6) {
-    const double angle = std::atan2(mode[1], mode[0]);
-    if (std::abs(mode[1]) < 1e-9) os << "move along x (no support fixes ux)";
-    else if (std::abs(mode[0]) < 1e-9) os << "move along y (no support fixes uy)";
-    else os << "move in the direction " << angle << " rad from x";
+    motion.kind = FreeMotion::Kind::translation;
+    motion.direction = mode.head<2>().normalized();
   } else {
-    const double omega = mode[2] / extent;
-    const Eigen::Vector2d pole = centre + Eigen::Vector2d(-mode[1] / omega, mode[0] / omega);
-    os << "rotate about (" << pole.x() << ", " << pole.y() << ") (add a support that stops it)";
+    const double omega = mode[2] / m.extent;
+    motion.kind = FreeMotion::Kind::rotation;
+    motion.pole = m.centre + Eigen::Vector2d(-mode[1] / omega, mode[0] / omega);
+    // To a millionth of the part's extent, on a decimal grid: finer digits are round-off (a
+    // converged state's pole on its pin reads (0, 0), not (1e-10, -2e-16)).
+    const double grid = std::pow(10.0, std::floor(std::log10(m.extent)) - 6.0);
+    motion.pole = (motion.pole / grid).array().round().matrix() * grid + Eigen::Vector2d::Zero();
   }
+  return motion;
 }
 
 /// Whether a contact acts on the part: onto the elements of its members, or from its nodes.
@@ -320,9 +329,12 @@ std::string first_not_resting(const Model& model, Parts& parts, int root) {
 /// when a contact holds it. Contacts on this part, or from its nodes, count only where they rest
 /// as drawn.
 std::string free_part(const Model& model, Parts& parts, const std::vector<int>& part, int root, const Modes& m) {
+  const FreeMotion motion = motion_of(m, part);
   std::ostringstream os;
-  os << "structure is a mechanism: the part holding " << part_name(model, part) << " is free to ";
-  describe_motion(os, m);
+  os << "structure is a mechanism: " << part_text(model, motion) << " is free to " << motion_text(motion);
+  if (motion.kind == FreeMotion::Kind::rotation) os << " (add a support that stops it)";
+  else if (std::abs(motion.direction.y()) < 1e-9) os << " (no support fixes ux)";
+  else if (std::abs(motion.direction.x()) < 1e-9) os << " (no support fixes uy)";
   if (contacts_touch_part(model, parts, root)) {
     os << "; a contact holds it from the start only if its node is drawn at the contact's \"gap\" from the "
           "beam's centre line, on the side it supports, and the node or the beam is held (by supports, or by a "
@@ -340,12 +352,71 @@ std::optional<std::string> find_mechanism(const Model& model, bool resting_conta
   if (auto message = unheld_node(model, parts.held, resting_contacts_hold)) return message;
   members_by_root(parts);
   const std::vector<Touch> touches = resting_touches(model, parts, resting_contacts_hold);
-  const Holding holding = hold_parts(model, hinge, parts, touches);
+  const NodalFrames frames(model);
+  const Holding holding = hold_parts(model, frames, hinge, parts, touches);
   for (const std::vector<int>& part : parts.members) {
     if (part.empty()) continue;
     const int root = parts.root(part.front());
     if (holding.held[root]) continue;
-    return free_part(model, parts, part, root, modes_of(model, hinge, part, holding.resting[root]));
+    return free_part(model, parts, part, root, modes_of(model, frames, hinge, part, holding.resting[root]));
+  }
+  return std::nullopt;
+}
+
+std::string part_text(const Model& model, const FreeMotion& motion) {
+  std::ostringstream os;
+  os << "the part holding node " << model.nodes[motion.node].id;
+  if (motion.part_nodes > 1)
+    os << " and the " << motion.part_nodes - 1 << (motion.part_nodes == 2 ? " node" : " nodes") << " joined to it";
+  return os.str();
+}
+
+std::string motion_text(const FreeMotion& motion) {
+  std::ostringstream os;
+  if (motion.kind == FreeMotion::Kind::rotation) os << "rotate about (" << motion.pole.x() << ", " << motion.pole.y() << ")";
+  else if (std::abs(motion.direction.y()) < 1e-9) os << "move along x";
+  else if (std::abs(motion.direction.x()) < 1e-9) os << "move along y";
+  else os << "move in the direction " << std::atan2(motion.direction.y(), motion.direction.x()) << " rad from x";
+  return os.str();
+}
+
+SupportedParts::SupportedParts(const Model& model) : model_(model), frames_(model), hinge_(hinge_nodes(model)) {
+  Parts parts = join_by_elements(model);
+  members_by_root(parts);
+  std::vector<int> index_of(model.node_count(), -1);  // a root's part
+  for (std::vector<int>& part : parts.members) {
+    if (part.empty()) continue;
+    index_of[parts.root(part.front())] = static_cast<int>(parts_.size());
+    parts_.push_back(std::move(part));
+  }
+  springs_.resize(parts_.size());
+  for (size_t s = 0; s < model.springs.size(); ++s)
+    if (const int node = model.springs[s].node; parts.held[node])
+      springs_[index_of[parts.root(node)]].push_back(static_cast<int>(s));
+}
+
+std::optional<FreeMotion> SupportedParts::neutral_motion(const Eigen::VectorXd& displacements,
+                                                         const Eigen::VectorXd& internal_forces) const {
+  for (size_t p = 0; p < parts_.size(); ++p) {
+    Resting resting;  // a spring holds its node's part as a support would, where its node stands
+    for (const int s : springs_[p])
+      if (const NodalSpring& spring = model_.springs[s]; !(spring.kind == NodalSpring::Kind::rotation && hinge_[spring.node]))
+        resting.push_back({position(model_, &displacements, spring.node), spring.direction,
+                           spring.kind == NodalSpring::Kind::rotation});
+    const Modes modes = modes_of(model_, frames_, hinge_, parts_[p], resting, &displacements);
+    if (modes.stable()) continue;
+    const FreeMotion motion = motion_of(modes, parts_[p]);
+    if (motion.kind == FreeMotion::Kind::translation) return motion;  // a translation changes no internal force
+    // Turned by φ about the pole, the part's internal forces f_i turn with it: the tangent's
+    // second-order work along the motion is Σ r_i · f_i (r_i from the pole), against the
+    // moments and forces' own scale Σ (extent |f_i| + |m_i|).
+    double work = 0.0, scale = 0.0;
+    for (const int k : parts_[p]) {
+      const Eigen::Vector2d f = internal_forces.segment<2>(dofs_per_node * k);
+      work += (position(model_, &displacements, k) - motion.pole).dot(f);
+      scale += modes.extent * f.norm() + std::abs(internal_forces[dofs_per_node * k + rz]);
+    }
+    if (std::abs(work) <= neutral_work * scale) return motion;
   }
   return std::nullopt;
 }

@@ -211,6 +211,31 @@ std::vector<std::string> strain_notes(const Model& model, const std::vector<Step
   return {os.str()};
 }
 
+/// Converged steps in neutral equilibrium (Recorder: the supports let a part move as a rigid
+/// body there, its loads doing no work along the motion): one note per run of consecutive such
+/// steps, naming the first one's motion. Their tangent is singular, so that no eigenvalue count
+/// is given for them.
+std::vector<std::string> neutral_notes(const Model& model, const std::vector<NeutralStep>& neutral) {
+  std::vector<std::string> notes;
+  for (size_t k = 0; k < neutral.size();) {
+    size_t last = k;
+    while (last + 1 < neutral.size() && neutral[last + 1].step == neutral[last].step + 1) ++last;
+    const FreeMotion& motion = neutral[k].motion;
+    std::ostringstream os;
+    if (last == k) os << "step " << neutral[k].step << " ends";
+    else os << "steps " << neutral[k].step << "–" << neutral[last].step << " end";
+    os << " in neutral equilibrium: there the supports let " << part_text(model, motion) << " "
+       << motion_text(motion) << " as a rigid body"
+       << (motion.kind == FreeMotion::Kind::rotation ? " (their lines of action pass through that point)"
+                                                     : " (none acts along it)")
+       << " and its loads do no work along that motion, so the tangent stiffness is singular and its eigenvalues tell "
+          "nothing of the stability";
+    notes.push_back(os.str());
+    k = last + 1;
+  }
+  return notes;
+}
+
 }  // namespace
 
 /// Limit points: converged steps whose λ is a strict local extremum of the path.
@@ -239,6 +264,7 @@ void close_path(const Model& model, RunResult& result, ControlType control) {
     for (std::string& note : snap_notes(result.steps)) result.notes.push_back(std::move(note));
   for (std::string& note : stability_notes(result.steps, result.limit_points, result.critical_points))
     result.notes.push_back(std::move(note));
+  for (std::string& note : neutral_notes(model, result.neutral_steps)) result.notes.push_back(std::move(note));
   for (std::string& note : slid_off_notes(model, result.steps)) result.notes.push_back(std::move(note));
   for (std::string& note : strain_notes(model, result.steps)) result.notes.push_back(std::move(note));
 }

@@ -1,5 +1,7 @@
 #include "tsmframe/solver/recorder.hpp"
 
+#include "tsmframe/solver/stability.hpp"
+
 #include <cmath>
 
 namespace tsm::solver {
@@ -69,7 +71,7 @@ void Recorder::start_from(const State& state) {
 Recorder::Recorder(const Model& model, const TsmProblem& problem, const StepObserver& observer, RunResult& result,
                    bool defer_forces)
     : model_(model), problem_(problem), observer_(observer), result_(result), defer_forces_(defer_forces && !observer),
-      moved_dofs_(model.moved_dofs()) {}
+      moved_dofs_(model.moved_dofs()), supported_(model) {}
 
 StepRecord Recorder::start(const NewtonOutcome& outcome, int cutbacks) const {
   StepRecord record;
@@ -117,6 +119,7 @@ void Recorder::converged(StepRecord record, const NewtonOutcome& outcome, const 
     take_axial_strain(model_, record);
   }
   record.reactions = problem_.reactions(state.load_factor);
+  take_neutral(record, state);
   record.moved_reactions.resize(static_cast<Eigen::Index>(moved_dofs_.size()));
   for (size_t k = 0; k < moved_dofs_.size(); ++k) record.moved_reactions[k] = record.reactions[moved_dofs_[k]];
   record.contacts = problem_.contact_points(state);
@@ -125,10 +128,21 @@ void Recorder::converged(StepRecord record, const NewtonOutcome& outcome, const 
   if (observer_) observer_(result_.steps.back());
 }
 
+void Recorder::take_neutral(StepRecord& record, const State& state) {
+  std::erase_if(result_.neutral_steps, [&](const NeutralStep& n) { return n.step == record.step; });  // replace_last's
+  // Where the tangent's inertia would tell the stability (stability.hpp), and its evaluation is
+  // this state's (reactions, above).
+  if (!inertia_tells_stability(state.contacts) || !problem_.loads_conservative()) return;
+  if (const auto motion = supported_.neutral_motion(record.displacements, problem_.global_internal_force())) {
+    record.neutral = true;
+    result_.neutral_steps.push_back({record.step, *motion});
+  }
+}
+
 void Recorder::started_from_newest(const NewtonOutcome& outcome, bool tells) {
   if (last_with_state_ < 0 || !tells || outcome.start_negative_pivots < 0) return;
-  int& negatives = result_.steps[last_with_state_].negative_eigenvalues;
-  if (negatives < 0) negatives = outcome.start_negative_pivots;
+  StepRecord& newest = result_.steps[last_with_state_];
+  if (newest.negative_eigenvalues < 0 && !newest.neutral) newest.negative_eigenvalues = outcome.start_negative_pivots;
 }
 
 void Recorder::replace_last(StepRecord record, const NewtonOutcome& outcome, const State& state) {

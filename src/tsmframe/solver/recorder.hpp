@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/model/model.hpp"
 #include "tsmframe/solver/newton.hpp"
 #include "tsmframe/solver/tsm_problem.hpp"
@@ -46,6 +47,10 @@ class Recorder {
   void failed(StepRecord record, const std::string& message);
 
  private:
+  /// Whether `record`'s state (`state`, just evaluated) is a neutral equilibrium the supports
+  /// allow (model/mechanism's SupportedParts): marks it and keeps its free motion.
+  void take_neutral(StepRecord& record, const State& state);
+
   const Model& model_;
   const TsmProblem& problem_;
   const StepObserver& observer_;
@@ -53,6 +58,7 @@ class Recorder {
   int last_with_state_ = -1;
   bool defer_forces_ = false;
   std::vector<int> moved_dofs_;
+  SupportedParts supported_;  ///< for the neutral equilibria the supports allow at a converged state
   Eigen::VectorXd start_;  ///< start_from's displacements (empty: nil)
   bool forces_pending_ = false;  ///< the newest converged step still lacks its element forces
 };

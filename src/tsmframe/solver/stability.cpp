@@ -50,7 +50,7 @@ void locate_bifurcation(const StepRecord& newest, const StepRecord& previous, co
 void close_stability(RunResult& result, State& state, bool evaluated, bool load_control, NewtonSolver& newton,
                      TsmProblem& problem) {
   const auto [newest, previous] = newest_converged_two(result.steps);
-  if (newest && newest->negative_eigenvalues < 0 && inertia_tells_stability(state.contacts))
+  if (newest && newest->negative_eigenvalues < 0 && !newest->neutral && inertia_tells_stability(state.contacts))
     newest->negative_eigenvalues = problem.negative_eigenvalues(state, evaluated);
   if (load_control && turned_unstable(newest, previous, result))  // the last step's, as the others'
     locate_bifurcation(*newest, *previous, state, newton, problem, result);

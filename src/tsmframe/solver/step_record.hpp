@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tsmframe/contact/contact_state.hpp"
+#include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/solver/criterion.hpp"
 #include "tsmframe/solver/failure.hpp"
 #include "tsmframe/solver/state.hpp"
@@ -48,6 +49,9 @@ struct StepRecord {
   /// (a contact is active, or a follower load is not conservative: the tangent is then not
   /// symmetric).
   int negative_eigenvalues = -1;
+  /// The supports let a part move here as a rigid body, its loads doing no work along the motion
+  /// (RunResult::neutral_steps says how): the tangent is singular, negative_eigenvalues unknown.
+  bool neutral = false;
   double increment = 0.0;              ///< Δλ (load and arc-length control) or the controlled dof's increment
   double arc_length = 0.0;             ///< Δs of the step (arc-length control; 0 otherwise)
   std::string message;                 ///< why a failed step failed
@@ -95,6 +99,12 @@ struct CriticalPoint {
   double stable = 0.0, unstable = 0.0;  ///< the bracket: equilibria solved there, stable and not
 };
 
+/// A converged step in neutral equilibrium: the motion its supports leave free (StepRecord::neutral).
+struct NeutralStep {
+  int step = 0;
+  FreeMotion motion;
+};
+
 /// Where one stage of a staged run ended (Model::stages, in order; the stages run).
 struct StageEnd {
   int stage = 0;              ///< its index (Model::stages)
@@ -110,6 +120,7 @@ struct RunResult {
   std::vector<StepRecord> steps;
   std::vector<LimitPoint> limit_points;  ///< in path order
   std::vector<CriticalPoint> critical_points;  ///< bifurcations found under load control, in path order
+  std::vector<NeutralStep> neutral_steps;      ///< in path order
   /// Remarks on the path, converged or not: a sentence each (e.g. a jump across a snap-back
   /// under displacement control).
   std::vector<std::string> notes;

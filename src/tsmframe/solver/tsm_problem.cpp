@@ -410,6 +410,12 @@ Eigen::VectorXd TsmProblem::reactions(double load_factor) const {
   return reactions;
 }
 
+Eigen::VectorXd TsmProblem::global_internal_force() const {
+  Eigen::VectorXd forces = eval_.internal_force;
+  system_.frames().to_global(forces);
+  return forces;
+}
+
 const Eigen::VectorXd& TsmProblem::physical(const State& state) const {
   if (system_.frames().empty()) return state.displacements;
   physical_ = state.displacements;

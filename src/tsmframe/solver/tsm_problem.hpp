@@ -60,6 +60,11 @@ class TsmProblem final : public Problem {
   /// Support reactions of the last evaluation: F − λ F_ref on constrained dofs, 0 elsewhere,
   /// global (a skew roller's in x and y).
   Eigen::VectorXd reactions(double load_factor) const;
+  /// The internal force at every dof of the last evaluation, global: at an equilibrium the loads,
+  /// and at constrained dofs the reactions with them.
+  Eigen::VectorXd global_internal_force() const;
+  /// Whether the last evaluation's loads are conservative (no follower load's non-symmetric term).
+  bool loads_conservative() const { return system_.follower_rank_one().empty(); }
   /// The state's displacements, global: the state holds a skew roller's node's translations in
   /// its frame (model/nodal_frames.hpp); elsewhere they are the state's own.
   const Eigen::VectorXd& physical(const State& state) const;

@@ -59,7 +59,7 @@ Eigen::Vector2d pole_in(const std::string& message) {
   return pole;
 }
 
-const std::string free_part_one = "structure is a mechanism: the part holding node 1 and the 1 nodes joined to it is free to ";
+const std::string free_part_one = "structure is a mechanism: the part holding node 1 and the 1 node joined to it is free to ";
 
 TEST(MechanismCheck, AFixedCantileverIsNoMechanism) {
   Model model = frame({{0, 0}, {2, 0}}, {{0, 1}});
@@ -151,7 +151,7 @@ TEST(MechanismCheck, ABeamLyingOnAHeldBeamIsHeldByItAndSlidesWithoutAnAxialSuppo
   // Without it the upper beam slides along x (frictionless contacts); its contacts rest as
   // drawn, so the message says when a contact holds and names none that plainly does not.
   EXPECT_EQ(tsm::find_mechanism(sliding).value_or(""),
-            "structure is a mechanism: the part holding node 3 and the 1 nodes joined to it is free to move along x "
+            "structure is a mechanism: the part holding node 3 and the 1 node joined to it is free to move along x "
             "(no support fixes ux); a contact holds it from the start only if its node is drawn at the contact's "
             "\"gap\" from the beam's centre line, on the side it supports, and the node or the beam is held (by "
             "supports, or by a part that is)");
@@ -174,6 +174,80 @@ TEST(MechanismCheck, APartHeldOnlyThroughAnotherHeldPartIsHeld) {
   EXPECT_EQ(message.rfind(free_part_one + "rotate about (", 0), 0u) << message;
   EXPECT_NEAR(pole_in(message).x(), 1.0, 1e-9) << message;
   EXPECT_NEAR(pole_in(message).y(), 0.0, 1e-9) << message;
+}
+
+// SupportedParts at a displaced state, against motions and second-order work worked out by hand.
+// A bent beam (0, 0)–(1, 1)–(2, 0) on a pin at node 1 and a roller along x at node 3.
+Model pin_and_roller() {
+  Model model = frame({{0, 0}, {1, 1}, {2, 0}}, {{0, 1}, {1, 2}});
+  fix(model, 0, {tsm::ux, tsm::uy});
+  fix(model, 2, {tsm::uy});
+  return model;
+}
+
+/// Displacements of every dof moving node `node` by (dx, dy).
+Eigen::VectorXd moved(const Model& model, int node, double dx, double dy) {
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(model.dof_count());
+  d[tsm::dofs_per_node * node + tsm::ux] = dx;
+  d[tsm::dofs_per_node * node + tsm::uy] = dy;
+  return d;
+}
+
+TEST(SupportedParts, ARollerBroughtOntoThePinLetsThePartTurnAboutIt) {
+  const Model model = pin_and_roller();
+  const tsm::SupportedParts parts(model);
+  const Eigen::VectorXd none = Eigen::VectorXd::Zero(model.dof_count());
+  EXPECT_FALSE(parts.neutral_motion(none, none));  // as drawn the roller stops the turn
+  EXPECT_FALSE(parts.neutral_motion(moved(model, 2, -1.9, 0.0), none));  // 0.1 off the pin: still
+  const Eigen::VectorXd closed = moved(model, 2, -2.0, 0.0);
+  Eigen::VectorXd moments = none;  // end moments alone (the ring's loads): no work on the turn
+  moments[tsm::rz] = -5.0;
+  moments[2 * tsm::dofs_per_node + tsm::rz] = 5.0;
+  const auto motion = parts.neutral_motion(closed, moments);
+  ASSERT_TRUE(motion);
+  EXPECT_EQ(motion->kind, tsm::FreeMotion::Kind::rotation);
+  EXPECT_NEAR(motion->pole.x(), 0.0, 1e-9);
+  EXPECT_NEAR(motion->pole.y(), 0.0, 1e-9);
+  EXPECT_EQ(motion->node, 0);
+  EXPECT_EQ(motion->part_nodes, 3);
+  EXPECT_EQ(tsm::part_text(model, *motion), "the part holding node 1 and the 2 nodes joined to it");
+  EXPECT_EQ(tsm::motion_text(*motion), "rotate about (0, 0)");
+}
+
+TEST(SupportedParts, APendulumsLoadHoldsItsTurnSoItIsNotNeutral) {
+  // A bar hanging from a pin at (0, 0) to (0, −2): the pin leaves the turn about it free, and the
+  // weight W at the lower end does the work W·2·φ²/2 on it (Σ r·f = (0, −2)·(0, −W) = 2W): the
+  // tangent is not singular along it. Without the weight the turn is neutral.
+  Model model = frame({{0, 0}, {0, -2}}, {{0, 1}});
+  fix(model, 0, {tsm::ux, tsm::uy});
+  const tsm::SupportedParts parts(model);
+  const Eigen::VectorXd none = Eigen::VectorXd::Zero(model.dof_count());
+  Eigen::VectorXd weight = none;
+  weight[tsm::dofs_per_node + tsm::uy] = -3.0;  // the internal force at the lower end: the load
+  weight[tsm::uy] = 3.0;                         // and the pin's reaction (no work: r = 0)
+  EXPECT_FALSE(parts.neutral_motion(none, weight));
+  const auto unloaded = parts.neutral_motion(none, none);
+  ASSERT_TRUE(unloaded);
+  EXPECT_EQ(unloaded->kind, tsm::FreeMotion::Kind::rotation);
+  // Round-off in a converged state's forces leaves it neutral: 1e-9 of the weight.
+  weight *= 1e-9 / 3.0;
+  weight[tsm::rz] = 1.0;  // a moment sets the forces' scale
+  EXPECT_TRUE(parts.neutral_motion(none, weight));
+}
+
+TEST(SupportedParts, AFreeTranslationIsAlwaysNeutralAndASpringHoldsIt) {
+  Model model = frame({{0, 0}, {2, 0}}, {{0, 1}});
+  fix(model, 0, {tsm::uy});
+  fix(model, 1, {tsm::uy});
+  const Eigen::VectorXd none = Eigen::VectorXd::Zero(model.dof_count());
+  Eigen::VectorXd pushed = none;  // a force along the free direction does no work on a translation
+  pushed[tsm::ux] = 4.0;
+  const auto motion = tsm::SupportedParts(model).neutral_motion(none, pushed);
+  ASSERT_TRUE(motion);
+  EXPECT_EQ(motion->kind, tsm::FreeMotion::Kind::translation);
+  EXPECT_EQ(tsm::motion_text(*motion), "move along x");
+  model.springs.push_back({1, tsm::NodalSpring::Kind::translation, Eigen::Vector2d::UnitX(), 100.0});
+  EXPECT_FALSE(tsm::SupportedParts(model).neutral_motion(none, pushed));
 }
 
 }  // namespace
