@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tsmframe/io/results_writer.hpp"
+#include "tsmframe/io/section_diagrams.hpp"
 #include "src/bindings.hpp"
 
 namespace tsm::python {
@@ -118,7 +119,7 @@ void add_steps(py::dict& out, const solver::RunResult& result) {
   out["criterion"] = criteria;
 }
 
-/// The steps with state: their numbers, displacements, element forces and reactions.
+/// The steps with state: their numbers, displacements, element forces, N/V/M stations and reactions.
 void add_states(py::dict& out, const Model& model, const solver::RunResult& result) {
   const py::ssize_t n = model.node_count(), m = count(model.elements.size());
   std::vector<int> state_steps;
@@ -131,6 +132,17 @@ void add_states(py::dict& out, const Model& model, const solver::RunResult& resu
     reactions.insert(reactions.end(), s.reactions.data(), s.reactions.data() + 3 * n);
   }
   const py::ssize_t K = count(state_steps.size());
+  py::list sections;  // per state: the N, V, M stations (io/section_diagrams), rows (element id, x, N, V, M)
+  for (const solver::StepRecord& s : result.steps) {
+    if (!s.has_state) continue;
+    std::vector<double> rows;
+    const auto diagrams = io::section_diagrams(model, s);
+    for (size_t e = 0; e < diagrams.size(); ++e)
+      for (const element::SectionStation& station : diagrams[e])
+        rows.insert(rows.end(), {static_cast<double>(model.elements[e].id), station.x, station.N, station.V, station.M});
+    sections.append(array<double>({count(rows.size() / 5), 5}, rows));
+  }
+  out["section_forces"] = sections;
   out["state_steps"] = array<int>({K}, state_steps);
   out["displacements"] = array<double>({K, n, 3}, displacements);
   out["element_forces"] = array<double>({K, m, 3}, forces);

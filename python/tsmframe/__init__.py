@@ -306,6 +306,10 @@ class Result:
     state_steps (K,)           step numbers that carry full state (analysis.output)
     displacements (K, n, 3)    ux, uy, rz per node; rz is the true total rotation
     element_forces (K, m, 3)   N, M_i, M_j (chord frame)
+    section_forces             per state, an array (q, 5) of the N, V, M diagrams' stations: rows of element
+                               id, x from its start node along its chord, N (tension +), V = dM/dx, M (+ where
+                               the element bends towards its left: sagging for one drawn left to right); each
+                               element's ends, and both sides of a contact point on it (diagram(), plot_diagram())
     reactions (K, n, 3)        Rx, Ry, Mz (0 where the node is free)
     contact_nodes (c,), contact_element (C, c) element id or 0, contact_alpha (C, c), contact_force (C, c),
     contact_also (C, c)        at a vertex (a point resting on a beam node, both elements in contact):
@@ -366,10 +370,25 @@ class Result:
             self._model = _read_model(self._model_text)
         return _element_curves(self._model, self.displacements[step], self.element_forces[step], segments)
 
+    def diagram(self, quantity, step=-1):
+        """One quantity's diagram ("N", "V" or "M") at a state (index into state_steps; -1 = last):
+        per element, in element order, an array (p, 2) of (x along the element from its start
+        node, value) — its ends and, where a contact point acts on it, both sides of the point."""
+        column = {"N": 2, "V": 3, "M": 4}.get(quantity)
+        if column is None:
+            raise ValueError(f'unknown quantity "{quantity}" (expected "N", "V" or "M")')
+        rows = self.section_forces[step]
+        cuts = _np.flatnonzero(_np.diff(rows[:, 0])) + 1
+        return [part[:, [1, column]] for part in _np.split(rows, cuts)]
+
     # plots (matplotlib, imported on use)
     def plot_shape(self, steps=(-1,), ax=None, **kw):
         from .plots import plot_shape
         return plot_shape(self, steps, ax, **kw)
+
+    def plot_diagram(self, quantity="M", step=-1, ax=None, scale=None, **kw):
+        from .plots import plot_diagram
+        return plot_diagram(self, quantity, step, ax, scale, **kw)
 
     def plot_load_displacement(self, node_id, dof="uy", ax=None, **kw):
         from .plots import plot_load_displacement

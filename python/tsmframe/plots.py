@@ -31,6 +31,43 @@ def plot_shape(result, steps=(-1,), ax=None, undeformed=True, **kw):
     return ax
 
 
+def plot_diagram(result, quantity="M", step=-1, ax=None, scale=None, **kw):
+    """The N, V or M diagram at a state (index into result.state_steps) drawn on the deformed
+    frame, off each element's chord: M on its tension side (the engineer's convention), N and V
+    on the chord's left for positive values. `scale`: drawing length per unit of the quantity
+    (None: the largest value drawn at a tenth of the frame's size). The largest value is labelled."""
+    ax = _axes(ax)
+    parts = result.diagram(quantity, step)
+    position = {int(i): result.node_xy[k] + result.displacements[step][k, :2] for k, i in enumerate(result.node_ids)}
+    largest = max((float(np.abs(p[:, 1]).max()) for p in parts if len(p)), default=0.0)
+    size = float(np.ptp(np.array(list(position.values())), axis=0).max()) or 1.0
+    if scale is None:
+        scale = 0.1 * size / largest if largest > 0 else 1.0
+    sign = -1.0 if quantity == "M" else 1.0  # M drawn on the side it stretches (−n where positive)
+    colour = kw.pop("color", {"N": "tab:green", "V": "tab:orange", "M": "tab:blue"}.get(quantity, "tab:blue"))
+    peak = None
+    for (a, b), part in zip(result.element_nodes, parts):
+        start, end = position[int(a)], position[int(b)]
+        chord = end - start
+        length = np.hypot(*chord)
+        e = chord / length if length > 0 else np.array([1.0, 0.0])
+        n = np.array([-e[1], e[0]])
+        on_chord = start + np.outer(part[:, 0], e)
+        drawn = on_chord + sign * scale * np.outer(part[:, 1], n)
+        outline = np.vstack([on_chord[:1], drawn, on_chord[-1:]])
+        ax.fill(outline[:, 0], outline[:, 1], color=colour, alpha=0.25, lw=0)
+        ax.plot(drawn[:, 0], drawn[:, 1], color=colour, lw=1, **kw)
+        ax.plot([start[0], end[0]], [start[1], end[1]], color="0.3", lw=1)
+        k = int(np.argmax(np.abs(part[:, 1])))
+        if peak is None or abs(part[k, 1]) > abs(peak[0]):
+            peak = (part[k, 1], drawn[k])
+    if peak is not None and peak[0] != 0:
+        ax.annotate(f"{quantity} = {peak[0]:.4g}", peak[1], fontsize=8, color=colour)
+    ax.set_aspect("equal")
+    ax.set_title(f"{quantity} at step {result.state_steps[step]}")
+    return ax
+
+
 def plot_load_displacement(result, node_id, dof="uy", ax=None, **kw):
     """λ against one dof over the steps with state; a staged run's stages each from where the one
     before ended (its λ starts again at 0), solid, dashed, …."""

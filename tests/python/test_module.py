@@ -521,6 +521,49 @@ def test_a_colour_given_to_plot_shape_draws_every_step_in_it():
     plt.close(fig)
 
 
+def test_the_diagrams_of_a_portal_frame_follow_its_statics_and_are_drawn_on_it(tmp_path):
+    # A fixed-base portal (columns 3 m, beam 4 m) with a small sway load H at the beam's left end:
+    # at every section the moment is what the loads and the left base's reactions give about it
+    # (statics, nearly the drawn geometry: H is small), V is the slope of M, and results.json
+    # holds the same stations the Result does. The diagram is drawn on the frame.
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    H = 1e3
+    m = tf.Model("portal").material("steel", E=2.1e11).section("s", A=5e-3, I=8e-5)
+    m.node(1, 0, 0).node(2, 0, 3).node(3, 4, 3).node(4, 4, 0)
+    m.member(1, 2, "steel", "s", divisions=3).member(2, 3, "steel", "s", divisions=4).member(3, 4, "steel", "s", divisions=3)
+    m.support(1, "fixed").support(4, "fixed").load(2, fx=H)
+    r = tf.run(m)
+    assert r.ok, r.message
+    M = r.diagram("M")
+    V = r.diagram("V")
+    assert len(M) == len(r.element_ids) == 10
+    for part, shear in zip(M, V):
+        assert part.shape == (2, 2) and part[0, 0] == 0.0
+        assert shear[0, 1] == pytest.approx((part[1, 1] - part[0, 1]) / part[1, 0], rel=1e-9, abs=1e-9 * H)
+    # Up the left column (e = +y, n = −x; 1-m elements) from its base, whose reaction (Rx, Ry, Mz)
+    # acts on the first element's start: M(0) = −M_i = −Mz, V = R·n = −Rx, N = −R·e = −Ry, and
+    # at a height z, M = −Mz − Rx z (to the sway's share of the levers: 1e-4 here).
+    Rx, Ry, Mz = r.reactions[-1][0]
+    scale = max(abs(v) for part in M for v in part[:, 1])
+    for k in range(3):
+        for x, value in M[k]:
+            assert value == pytest.approx(-Mz - Rx * (k + x), abs=1e-4 * scale), (k, x)
+        assert V[k][0, 1] == pytest.approx(-Rx, rel=1e-4)
+        assert r.diagram("N")[k][0, 1] == pytest.approx(-Ry, rel=1e-4)
+    assert 0.3 * H < -Rx < 0.7 * H  # the two columns share the sway load
+    json_rows = json.loads(r.results_json)["steps"][-1]["section_forces"]
+    for element, part in zip(r.element_ids, M):
+        assert [row[3] for row in json_rows[str(element)]] == list(part[:, 1])
+    with pytest.raises(ValueError, match='unknown quantity "X"'):
+        r.diagram("X")
+    fig, ax = plt.subplots()
+    r.plot_diagram("M", ax=ax)
+    assert len(ax.patches) == 10 and any("M = " in t.get_text() for t in ax.texts)
+    plt.close(fig)
+
+
 def test_a_pickled_result_still_draws_its_curves():
     import pickle
     r = tf.run(os.path.join(SOURCE, "examples", "semi-rigid-portal.json"))

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "tsmframe/io/element_curves.hpp"
+#include "tsmframe/io/section_diagrams.hpp"
 #include "tsmframe/io/json_writer.hpp"
 #include "tsmframe/io/output_file.hpp"
 #include "tsmframe/model/hinges.hpp"
@@ -31,6 +32,20 @@ void write_curves(JsonWriter& w, const Model& model, const solver::StepRecord& s
     element_curve(model, model.elements[e], step.displacements, step.element_forces.segment<3>(3 * e), points);
     w.newline().key(std::to_string(model.elements[e].id)).begin_array();
     for (const Eigen::Vector2d& p : points) w.value(p.x()).value(p.y());
+    w.end_array();
+  }
+  w.end_object();
+}
+
+/// "section_forces": element id → its N, V, M diagram's stations (io/section_diagrams), each
+/// [x, N, V, M] with x from the element's start node along its chord.
+void write_section_forces(JsonWriter& w, const Model& model, const solver::StepRecord& step) {
+  const std::vector<std::vector<element::SectionStation>> diagrams = section_diagrams(model, step);
+  w.key("section_forces").begin_object();
+  for (size_t e = 0; e < model.elements.size(); ++e) {
+    w.newline().key(std::to_string(model.elements[e].id)).begin_array();
+    for (const element::SectionStation& s : diagrams[e])
+      w.begin_array().value(s.x).value(s.N).value(s.V).value(s.M).end_array();
     w.end_array();
   }
   w.end_object();
@@ -115,6 +130,7 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
       w.end_array();
     }
     w.end_object();
+    write_section_forces(w, model, step);
     w.key("reactions");
     write_triples(w, model, step.reactions, &supported);
     if (options.curves) write_curves(w, model, step);
