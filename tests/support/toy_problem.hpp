@@ -58,7 +58,7 @@ class ToyProblem final : public solver::Problem {
   std::optional<solver::StepFailure> after_iterate(const solver::State&) const override { return std::nullopt; }
   solver::Settlement at_convergence(solver::State&) override { return {}; }
   std::vector<std::pair<int, int>> accept(solver::State&) override { return {}; }
-  void explain(const solver::State&, solver::StepFailure&) const override {}
+  void explain(const solver::State&, solver::StepFailure&) override {}
   std::vector<solver::ContactPoint> contact_points(const solver::State&) const override { return {}; }
 
   /// The unloaded state.

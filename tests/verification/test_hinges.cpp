@@ -395,3 +395,70 @@ TEST(ContactOnHinged, AHingeAtAPinnedEndChangesNothingAtLargeDeflection) {
 }
 
 }  // namespace
+
+namespace {
+
+/// A portal (columns 3 m, beam 4 m, 2 elements each) on two pins with its beam released at both
+/// ends: four hinges, a sway mechanism. `control`: the analysis' control.
+json four_hinged_portal(const json& control) {
+  return {{"materials", {{"steel", {{"E", 2.1e11}}}}},
+          {"sections", {{"s", {{"A", 5e-3}, {"I", 8e-5}}}}},
+          {"nodes", json::array({{{"id", 1}, {"x", 0}, {"y", 0}}, {{"id", 2}, {"x", 0}, {"y", 3}},
+                                 {{"id", 3}, {"x", 4}, {"y", 3}}, {{"id", 4}, {"x", 4}, {"y", 0}}})},
+          {"members", json::array({{{"from", 1}, {"to", 2}, {"material", "steel"}, {"section", "s"}, {"divisions", 2}},
+                                   {{"from", 2}, {"to", 3}, {"material", "steel"}, {"section", "s"}, {"divisions", 2},
+                                    {"release", "both"}},
+                                   {{"from", 3}, {"to", 4}, {"material", "steel"}, {"section", "s"}, {"divisions", 2}}})},
+          {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 4}, {"type", "pinned"}}})},
+          {"loads", json::array({{{"node", 2}, {"fx", 1000.0}}})},
+          {"analysis", {{"control", control}}}};
+}
+
+}  // namespace
+
+// A mechanism among hinges, which the supports' check (connected parts as rigid bodies) cannot
+// see: the unloaded tangent is singular along the motion no element resists. It is named — the
+// nodes that move most and which way — and no step is cut back for it (a smaller step meets it
+// too); under displacement control alike (it "converged" at λ = 1e-27 once).
+TEST(Hinges, AFourHingedPortalIsNamedAsTheMechanismItIs) {
+  for (const json& control : {json{{"type", "load"}, {"steps", 2}},
+                              json{{"type", "displacement"}, {"node", 2}, {"dof", "ux"}, {"target", 0.1}, {"steps", 2}}}) {
+    tsm::Model model;
+    const RunResult r = run(four_hinged_portal(control), model);
+    ASSERT_EQ(r.status, tsm::solver::Status::singular) << r.message;
+    const tsm::solver::StepFailure& f = r.failure.step_failure;
+    ASSERT_EQ(f.reason, tsm::solver::StepFailure::Reason::mechanism) << r.message;
+    EXPECT_EQ(r.failure.cutbacks, 0);
+    // The sway: the beam (nodes 2, 3 and its middle node) moves along x as a rigid body; the
+    // columns turn about their pins, their middle nodes moving half as much.
+    EXPECT_EQ(f.moving_count, 3);
+    EXPECT_NEAR(std::abs(f.moving_direction.x()), 1.0, 1e-9);
+    EXPECT_NEAR(f.moving_direction.y(), 0.0, 1e-6);
+    EXPECT_NE(r.message.find("the structure is a mechanism: unloaded, it can move with no element deforming — nodes 2, 3 "
+                             "and "),
+              std::string::npos)
+        << r.message;
+    EXPECT_NE(r.message.find("moving along x"), std::string::npos) << r.message;
+    EXPECT_TRUE(r.steps.empty() || !r.steps.back().converged);
+  }
+}
+
+TEST(Hinges, ThreeHingesInALineLetTheMiddleOneDrop) {
+  // Two bars pinned at their outer ends and hinged together at the middle, in a straight line:
+  // the middle hinge may move across the line (to first order) with nothing deforming.
+  json m = four_hinged_portal({{"type", "load"}, {"steps", 1}});
+  m["nodes"] = json::array({{{"id", 1}, {"x", 0}, {"y", 0}}, {{"id", 2}, {"x", 2}, {"y", 0}}, {{"id", 3}, {"x", 4}, {"y", 0}}});
+  m["members"] = json::array({{{"from", 1}, {"to", 2}, {"material", "steel"}, {"section", "s"}, {"divisions", 3}, {"release", "end"}},
+                              {{"from", 2}, {"to", 3}, {"material", "steel"}, {"section", "s"}, {"divisions", 3}}});
+  m["supports"] = json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 3}, {"type", "pinned"}}});
+  m["loads"] = json::array({{{"node", 2}, {"fy", -1000.0}}});
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  const tsm::solver::StepFailure& f = r.failure.step_failure;
+  ASSERT_EQ(f.reason, tsm::solver::StepFailure::Reason::mechanism) << r.message;
+  EXPECT_EQ(f.moving_count, 1);
+  ASSERT_EQ(f.moving_nodes.size(), 1u);
+  EXPECT_EQ(model.nodes[f.moving_nodes[0]].id, 2);
+  EXPECT_NEAR(std::abs(f.moving_direction.y()), 1.0, 1e-9);
+  EXPECT_NE(r.message.find("node 2 moving along y"), std::string::npos) << r.message;
+}

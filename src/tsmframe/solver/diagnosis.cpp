@@ -121,6 +121,30 @@ std::string max_iterations_text(const StepFailure& f) {
   return os.str();
 }
 
+/// A mechanism's free motion (free_mode.hpp): the nodes that move most and which way.
+std::string mechanism_text(const StepFailure& f, const Model& model) {
+  std::ostringstream os;
+  os << "the structure is a mechanism: unloaded, it can move with no element deforming — ";
+  if (f.turning_only) {
+    os << "node " << model.nodes[f.moving_nodes.front()].id << " turning freely";
+  } else {
+    os << (f.moving_count > 1 ? "nodes " : "node ");
+    for (size_t k = 0; k < f.moving_nodes.size(); ++k)
+      os << (k == 0 ? "" : k + 1 == f.moving_nodes.size() && f.moving_count == static_cast<int>(f.moving_nodes.size()) ? " and " : ", ")
+         << model.nodes[f.moving_nodes[k]].id;
+    if (f.moving_count > static_cast<int>(f.moving_nodes.size()))
+      os << " and " << f.moving_count - static_cast<int>(f.moving_nodes.size()) << " more";
+    const Eigen::Vector2d& d = f.moving_direction;
+    if (d.isZero()) os << " moving most";
+    else if (std::abs(d.y()) < 1e-3) os << " moving along x";
+    else if (std::abs(d.x()) < 1e-3) os << " moving along y";
+    else os << " moving along (" << d.x() << ", " << d.y() << ")";
+  }
+  os << " — add a support or a joint that stops it"
+     << (f.hinged ? " (member releases leave such motions: three hinges in a line, a frame with four)" : "");
+  return os.str();
+}
+
 /// What went wrong at the iterate, without where ("… at iteration n" is added by the caller).
 std::string iterate_failure_text(const StepFailure& f, const Model& model) {
   using Reason = StepFailure::Reason;
@@ -161,6 +185,7 @@ std::string iterate_failure_text(const StepFailure& f, const Model& model) {
          << (f.holding_contact >= 0 ? contact_node_id(model, f.holding_contact) : -1)
          << " is on in the other frame (points on one element share its frame: give both contacts the same \"frame\")";
       return os.str();
+    case Reason::mechanism: return mechanism_text(f, model);
     case Reason::blew_up: return "the unbalanced force blew up";
     case Reason::none:
     case Reason::max_iterations: break;

@@ -7,6 +7,7 @@ Status step_status(const StepFailure& failure) {
   switch (failure.reason) {
     case Reason::none: return Status::converged;
     case Reason::singular_tangent:
+    case Reason::mechanism:
     case Reason::arc_length_undefined:
     case Reason::controlled_dof_immobile: return Status::singular;
     case Reason::contacts_switching:
@@ -34,7 +35,9 @@ RunFailure interruption(int step, double load_factor) {
 
 bool independent_of_step_size(const StepFailure& failure) {
   // The tangent at the step's start: a smaller step meets it too.
-  return failure.reason == StepFailure::Reason::controlled_dof_immobile && failure.iteration == 1;
+  // A mechanism is the unloaded structure's: no step size changes it.
+  return (failure.reason == StepFailure::Reason::controlled_dof_immobile && failure.iteration == 1) ||
+         failure.reason == StepFailure::Reason::mechanism;
 }
 
 }  // namespace tsm::solver

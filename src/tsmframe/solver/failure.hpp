@@ -2,7 +2,9 @@
 // Why a run did not reach its end, as facts: diagnosis.hpp builds every sentence from them, so
 // the command line, Python and a study's rows say the same.
 
+#include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "tsmframe/assembly/global_system.hpp"
 #include "tsmframe/solver/status.hpp"
@@ -26,6 +28,7 @@ struct StepFailure {
     contact_passed_through,   ///< a contact node passed through a beam after its contact was released
     end_turned_too_far,       ///< an element end turned past a right angle against its chord
     contact_blocked,          ///< a contact node reached an element a contact of the other frame is on
+    mechanism,                ///< the unloaded tangent is singular: a motion no element resists (free_mode.hpp)
     blew_up,                  ///< the unbalanced force or the displacements ran away
     max_iterations,
   } reason = Reason::none;
@@ -45,6 +48,13 @@ struct StepFailure {
   /// off the beam's end: said first, as the cause of what Newton then met. −1: not so.
   int lost_resting_contact = -1;
   bool resting_contact_slid_off = false;
+  /// mechanism: the nodes that move most in the free motion (indices, by id, at most 3), how
+  /// many move that much, and their common direction (zero: none); `turning_only`: nothing
+  /// translates, the one node listed turns.
+  std::vector<int> moving_nodes;
+  int moving_count = 0;
+  Eigen::Vector2d moving_direction = Eigen::Vector2d::Zero();
+  bool turning_only = false;
 };
 
 /// The status a failed step reports.

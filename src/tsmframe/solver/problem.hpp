@@ -100,8 +100,8 @@ class Problem {
   /// left a beam's free end, and stayed so: (contact index, the element whose end it left).
   virtual std::vector<std::pair<int, int>> accept(State& state) = 0;
   /// A failed step's facts that only the structure knows (member releases, contacts, what held
-  /// it), added to `failure`.
-  virtual void explain(const State& state, StepFailure& failure) const = 0;
+  /// it, the motion a mechanism leaves free), added to `failure`. May use up the tangent.
+  virtual void explain(const State& state, StepFailure& failure) = 0;
   /// The contacts of `state` as reported (element, α, force).
   virtual std::vector<ContactPoint> contact_points(const State& state) const = 0;
 };

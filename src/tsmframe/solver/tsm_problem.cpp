@@ -8,6 +8,7 @@
 #include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/model/resting_contact.hpp"
 #include "tsmframe/solver/convergence.hpp"
+#include "tsmframe/solver/free_mode.hpp"
 #include "tsmframe/contact/release_forecast.hpp"
 #include "tsmframe/util/first_touch.hpp"
 
@@ -235,10 +236,26 @@ void TsmProblem::take_contact_references(State& state) const {
   contacts_->restore(state.contact_references, state.chord_rotations, state.contacts);
 }
 
-void TsmProblem::explain(const State& state, StepFailure& failure) const {
+void TsmProblem::explain(const State& state, StepFailure& failure) {
   failure.hinged = hinged_;
   failure.contacts = contacts_ != nullptr;
   const Model& model = system_.model();
+  // Singular at the unloaded state (no displacement, no load held from an earlier stage): the
+  // elements' own stiffness leaves a motion free — a mechanism; named by its null vector.
+  if (failure.reason == StepFailure::Reason::singular_tangent && failure.iteration == 1 && physical(state).isZero() &&
+      (dead_load().size() == 0 || dead_load().isZero())) {
+    State scratch = state;  // evaluated again: the failed factorisation overwrote the tangent
+    evaluate(scratch, false);
+    analyse_pattern();
+    Eigen::VectorXd mode = null_vector(system_.tangent_for_factorisation(), solver_, equations_.free_count());
+    if (mode.size() > 0) {
+      Eigen::VectorXd all = Eigen::VectorXd::Zero(model.dof_count());
+      for (int eq = 0; eq < equations_.free_count(); ++eq) all[equations_.free_dofs[eq]] = mode[eq];
+      system_.frames().to_global(all);
+      name_free_motion(model, all, failure);
+    }
+    return;
+  }
   // A free end: the node ends one element only. A point within contact_at_free_end of one is as
   // good as off it when the step fails: along the bent beam's normal Newton's iterates there
   // pass to and fro across the end, the last one on either side of it.

@@ -44,7 +44,7 @@ class TsmProblem final : public Problem {
   /// Takes the references of the contacts that have none at `state` (a run's first state, a
   /// restart's, contacts a stage brings back; contact_set's restore), and where they were taken.
   void take_contact_references(State& state) const;
-  void explain(const State& state, StepFailure& failure) const override;
+  void explain(const State& state, StepFailure& failure) override;
   std::vector<ContactPoint> contact_points(const State& state) const override;
 
   const Model& model() const { return system_.model(); }
