@@ -106,6 +106,11 @@ int report_run(const RunOptions& options, const tsm::solver::RunResult& result) 
     iterations += step.iterations;
   }
   for (const std::string& note : result.notes) std::cerr << options.model << ": note: " << note << '\n';
+  if (!options.quiet && !result.buckling.modes.empty()) {  // analysis.buckling
+    std::cerr << "buckling: critical load factors";
+    for (const auto& mode : result.buckling.modes) std::cerr << ' ' << mode.load_factor;
+    std::cerr << " (linearised, at the unloaded state)\n";
+  }
   const std::string written = "; " + std::to_string(converged_steps) + " converged steps written to " + options.out + "/results.json";
   if (result.status == tsm::solver::Status::interrupted) {
     const char* signal = tsm::app::stop_signal_name();

@@ -54,6 +54,13 @@ void add_outcome(py::dict& out, const Model& model, const solver::RunResult& res
     neutral.append(step);
   }
   out["neutral_equilibria"] = neutral;
+  std::vector<double> factors, shapes;  // linearised buckling at the unloaded state (analysis.buckling)
+  for (const solver::BucklingMode& mode : result.buckling.modes) {
+    factors.push_back(mode.load_factor);
+    shapes.insert(shapes.end(), mode.shape.data(), mode.shape.data() + mode.shape.size());
+  }
+  out["buckling_load_factors"] = array<double>({count(factors.size())}, factors);
+  out["buckling_modes"] = array<double>({count(factors.size()), model.node_count(), 3}, shapes);
   py::list stages;  // a staged run's stages that ran: where each ended
   for (const solver::StageEnd& end : result.stages) {
     py::dict stage;

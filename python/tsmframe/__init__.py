@@ -227,7 +227,7 @@ class Model:
     def analysis(self, control=None, steps=None, **settings):
         """control: {"type": "load", "steps": N} | {"type": "displacement", …} | {"type": "arc-length", …},
         or steps=N alone for load control in N equal steps;
-        settings: tolerance, max_iterations, cutback, max_cutbacks, output, monitor."""
+        settings: tolerance, max_iterations, cutback, max_cutbacks, output, monitor, buckling ({"modes": k})."""
         if control is not None and steps is not None:
             raise ValueError("analysis: give control or steps, not both")
         if steps is not None:
@@ -294,6 +294,9 @@ class Result:
     status, message            how the run ended ("converged", "diverged", …)
     notes                      remarks on the path (list of sentences; e.g. a jump across a snap-back)
     critical_points            bifurcations found under load control: dicts of step, load_factor, bracket
+    buckling_load_factors (b,), buckling_modes (b, n, 3)
+                               with analysis.buckling: the linearised critical load factors at the unloaded state,
+                               ascending, and their mode shapes (ux, uy, rz per node, largest translation 1)
     neutral_equilibria         steps whose supports let a part move as a rigid body, its loads doing no
                                work (a singular tangent; no eigenvalue count): dicts of step, node, part_nodes,
                                motion ("rotation" about (x, y), or "translation" along direction)

@@ -564,6 +564,27 @@ def test_the_diagrams_of_a_portal_frame_follow_its_statics_and_are_drawn_on_it(t
     plt.close(fig)
 
 
+def test_buckling_modes_of_a_column_come_back_as_arrays():
+    # A pinned column (L = 4 m, EI = 2·10⁵ N m², 20 elements) under P = 1 kN: λ_cr = π²EI/(L²P)
+    # with the mesh's excess (kh)²/12 (docs/format.md), the second mode four times higher; the
+    # first mode's shape is sin(πx/L), largest translation 1.
+    P, EI, L = 1e3, 2e11 * 1e-6, 4.0
+    m = tf.Model("column").material("steel", E=2e11).section("s", A=1e-2, I=1e-6)
+    m.node(1, 0, 0).node(2, L, 0).member(1, 2, "steel", "s", divisions=20)
+    m.support(1, "pinned").support(2, "roller-x").load(2, fx=-P).analysis(steps=1, buckling={"modes": 2})
+    r = tf.run(m)
+    kh = math.pi / 20
+    assert r.buckling_load_factors[0] == pytest.approx(math.pi ** 2 * EI / (L ** 2 * P) * (1 + kh ** 2 / 12), rel=1e-4)
+    assert r.buckling_load_factors[1] == pytest.approx(4 * r.buckling_load_factors[0], rel=2e-2)
+    shape = r.buckling_modes[0]
+    x = r.node_xy[:, 0]
+    assert shape.shape == (len(r.node_ids), 3)
+    assert np.abs(shape[:, 1]).max() == pytest.approx(1.0)
+    assert shape[:, 1] == pytest.approx(np.sin(math.pi * x / L), abs=1e-3)
+    written = json.loads(r.results_json)["buckling"]
+    assert [mode["load_factor"] for mode in written] == list(r.buckling_load_factors)
+
+
 def test_a_pickled_result_still_draws_its_curves():
     import pickle
     r = tf.run(os.path.join(SOURCE, "examples", "semi-rigid-portal.json"))

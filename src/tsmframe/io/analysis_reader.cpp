@@ -125,7 +125,7 @@ void read_output(const json& o, const std::string& path, OutputSelection& out) {
 void read_analysis_settings(const json& an, Model& model, const NodeResolver& node) {
   AnalysisSettings& a = model.analysis;
   expect_object(an, "analysis");
-  check_keys(an, "analysis", {"control", "tolerance", "max_iterations", "cutback", "max_cutbacks", "output", "monitor"});
+  check_keys(an, "analysis", {"control", "tolerance", "max_iterations", "cutback", "max_cutbacks", "output", "monitor", "buckling"});
   if (an.contains("control")) read_control(an["control"], "analysis.control", {model, model.constrained, node}, a.control);
   if (auto tol = optional_number(an, "tolerance", "analysis")) {
     if (!(*tol > 0.0 && *tol < 1.0)) fail("analysis.tolerance", "must lie between 0 and 1");
@@ -137,6 +137,12 @@ void read_analysis_settings(const json& an, Model& model, const NodeResolver& no
   if (an.contains("max_cutbacks"))
     a.max_cutbacks = static_cast<int>(bounded_integer(an["max_cutbacks"], "analysis.max_cutbacks", 0, 60));
   if (an.contains("output")) read_output(an["output"], "analysis.output", a.output);
+  if (an.contains("buckling")) {
+    const json& b = an["buckling"];
+    expect_object(b, "analysis.buckling");
+    check_keys(b, "analysis.buckling", {"modes"});
+    a.buckling_modes = b.contains("modes") ? static_cast<int>(bounded_integer(b["modes"], "analysis.buckling.modes", 1, 50)) : 3;
+  }
   if (an.contains("monitor")) {
     expect_array(an["monitor"], "analysis.monitor");
     for (size_t k = 0; k < an["monitor"].size(); ++k) a.monitor.push_back(node(an["monitor"][k], child("analysis.monitor", k)));

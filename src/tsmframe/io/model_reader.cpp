@@ -490,6 +490,21 @@ class Reader {
     model_.contacts.push_back(std::move(spec));
   }
 
+  /// Linearised buckling (solver/buckling) takes the reference load on the drawn structure:
+  /// nothing whose stiffness or load the linear solution leaves out.
+  void check_buckling() const {
+    const auto refuse = [](const std::string& what) {
+      fail("analysis.buckling", "linearised buckling is not available with " + what + " (it takes the reference load on the "
+                                "drawn structure; run the path instead, whose steps report their stability)");
+    };
+    if (!model_.contacts.empty()) refuse("contacts");
+    if (!model_.stages.empty()) refuse("stages");
+    if (!model_.follower_forces.empty() ||
+        std::any_of(model_.member_extras.begin(), model_.member_extras.end(), [](const MemberExtras& x) { return x.pressure != 0.0; }))
+      refuse("follower loads");
+    if (model_.reference_prescribed.size() > 0 && !model_.reference_prescribed.isZero()) refuse("prescribed displacements");
+  }
+
   /// The analysis settings, then the stages (whose output defaults to the analysis's), then the
   /// monitored nodes (by default those the loads and stages name).
   void read_analysis(const std::vector<int>& loaded_middles) {
@@ -497,6 +512,7 @@ class Reader {
       read_analysis_settings(doc_["analysis"], model_, [this](const json& value, const std::string& path) { return node_ref(value, path); });
     contact_entries_.push_back(static_cast<int>(model_.contacts.size()));  // the count, after the last entry's first
     if (doc_.contains("stages")) model_.stages = loads_->read_stages(doc_["stages"], model_.analysis.output, contact_entries_);
+    if (model_.analysis.buckling_modes > 0) check_buckling();
     std::set<int> named = loads_->loaded_nodes();
     if (!model_.stages.empty()) named.insert(loads_->prescribed_nodes().begin(), loads_->prescribed_nodes().end());
     if (!doc_.contains("analysis") || !doc_["analysis"].contains("monitor"))

@@ -220,6 +220,16 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
     w.end_object();
   }
   w.end_array();
+  // Linearised buckling at the unloaded state (analysis.buckling): each mode's λ and shape.
+  if (model.analysis.buckling_modes > 0) {
+    w.newline().key("buckling").begin_array();
+    for (const solver::BucklingMode& mode : result.buckling.modes) {
+      w.newline().begin_object().key("load_factor").value(mode.load_factor).key("shape");
+      write_triples(w, model, mode.shape, nullptr);
+      w.end_object();
+    }
+    w.end_array();
+  }
   // Steps in neutral equilibrium: the rigid-body motion their supports leave free there.
   w.newline().key("neutral_equilibria").begin_array();
   for (const solver::NeutralStep& n : result.neutral_steps) {

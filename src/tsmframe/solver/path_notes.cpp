@@ -254,6 +254,15 @@ std::vector<LimitPoint> limit_points(const std::vector<StepRecord>& steps) {
   return points;
 }
 
+std::string unresolved_buckling_note(int asked, size_t found) {
+  std::ostringstream os;
+  os << "linearised buckling resolved " << found << " of the " << asked << " modes asked for: the next lies below the "
+     << "round-off of the stiffness's factorisation (its stiffness under 1e-16 of the stiffest element's — members "
+     << "very much longer than deep in short elements), so that no double-precision solve gives it; fewer, longer "
+     << "elements give it, or the path's own stability (negative_eigenvalues) under that load";
+  return os.str();
+}
+
 /// What the result says about its path besides the steps: the limit points, and the notes.
 void close_path(const Model& model, RunResult& result, ControlType control) {
   result.limit_points = limit_points(result.steps);

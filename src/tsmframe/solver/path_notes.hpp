@@ -4,6 +4,7 @@
 // equilibria, contacts that slid off a free end, strains past the small-strain law's reach,
 // steps accepted on round-off because nothing was carried).
 
+#include <string>
 #include <vector>
 
 #include "tsmframe/model/model.hpp"
@@ -13,6 +14,10 @@ namespace tsm::solver {
 
 /// Limit points: converged steps whose λ is a strict local extremum of the path.
 std::vector<LimitPoint> limit_points(const std::vector<StepRecord>& steps);
+
+/// The note for linearised buckling that resolved `found` of the `asked` modes, the next lost in
+/// round-off (solver/buckling).
+std::string unresolved_buckling_note(int asked, size_t found);
 
 /// Sets result.limit_points and result.notes from its steps (and its critical points).
 void close_path(const Model& model, RunResult& result, ControlType control);

@@ -9,6 +9,7 @@
 
 #include "tsmframe/contact/contact_state.hpp"
 #include "tsmframe/model/mechanism.hpp"
+#include "tsmframe/solver/buckling.hpp"
 #include "tsmframe/solver/criterion.hpp"
 #include "tsmframe/solver/failure.hpp"
 #include "tsmframe/solver/state.hpp"
@@ -121,6 +122,7 @@ struct RunResult {
   std::vector<LimitPoint> limit_points;  ///< in path order
   std::vector<CriticalPoint> critical_points;  ///< bifurcations found under load control, in path order
   std::vector<NeutralStep> neutral_steps;      ///< in path order
+  Buckling buckling;                           ///< linearised buckling at the unloaded state, if asked for
   /// Remarks on the path, converged or not: a sentence each (e.g. a jump across a snap-back
   /// under displacement control).
   std::vector<std::string> notes;
