@@ -393,6 +393,10 @@ class Result:
         from .plots import plot_diagram
         return plot_diagram(self, quantity, step, ax, scale, **kw)
 
+    def plot_buckling(self, mode=0, ax=None, scale=None, **kw):
+        from .plots import plot_buckling
+        return plot_buckling(self, mode, ax, scale, **kw)
+
     def plot_load_displacement(self, node_id, dof="uy", ax=None, **kw):
         from .plots import plot_load_displacement
         return plot_load_displacement(self, node_id, dof, ax, **kw)

@@ -68,6 +68,29 @@ def plot_diagram(result, quantity="M", step=-1, ax=None, scale=None, **kw):
     return ax
 
 
+def plot_buckling(result, mode=0, ax=None, scale=None, **kw):
+    """A buckling mode (analysis.buckling; index into result.buckling_load_factors) over the frame
+    as drawn: each element's ends moved by the mode's translations, scaled so that the largest
+    is `scale` (None: a tenth of the frame's size); titled with its critical load factor."""
+    ax = _axes(ax)
+    if not 0 <= mode < len(result.buckling_load_factors) and not -len(result.buckling_load_factors) <= mode < 0:
+        raise IndexError(f"no buckling mode {mode} ({len(result.buckling_load_factors)} found)")
+    size = float(np.ptp(result.node_xy, axis=0).max()) or 1.0
+    scale = 0.1 * size if scale is None else scale
+    index = {int(i): k for k, i in enumerate(result.node_ids)}
+    shape = result.buckling_modes[mode]
+    colour = kw.pop("color", "tab:red")
+    for a, b in result.element_nodes:
+        ends = [index[int(a)], index[int(b)]]
+        drawn = result.node_xy[ends]
+        moved = drawn + scale * shape[ends, :2]
+        ax.plot(drawn[:, 0], drawn[:, 1], color="0.75", lw=1)
+        ax.plot(moved[:, 0], moved[:, 1], color=colour, lw=1.5, **kw)
+    ax.set_aspect("equal")
+    ax.set_title(f"buckling mode {mode % len(result.buckling_load_factors) + 1}: λ = {result.buckling_load_factors[mode]:.4g}")
+    return ax
+
+
 def plot_load_displacement(result, node_id, dof="uy", ax=None, **kw):
     """λ against one dof over the steps with state; a staged run's stages each from where the one
     before ended (its λ starts again at 0), solid, dashed, …."""

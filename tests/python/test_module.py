@@ -583,6 +583,15 @@ def test_buckling_modes_of_a_column_come_back_as_arrays():
     assert shape[:, 1] == pytest.approx(np.sin(math.pi * x / L), abs=1e-3)
     written = json.loads(r.results_json)["buckling"]
     assert [mode["load_factor"] for mode in written] == list(r.buckling_load_factors)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots()
+    r.plot_buckling(1, ax=ax)
+    assert len(ax.lines) == 2 * 20 and "buckling mode 2" in ax.get_title()
+    with pytest.raises(IndexError, match="no buckling mode 5"):
+        r.plot_buckling(5, ax=ax)
+    plt.close(fig)
 
 
 def test_a_pickled_result_still_draws_its_curves():
