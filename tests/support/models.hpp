@@ -56,6 +56,23 @@ inline json pressed_beams(double fy, int steps, int lower = 600, int upper = 200
           {"analysis", {{"control", {{"type", "load"}, {"steps", steps}}}}}};
 }
 
+/// A load riding on a simply supported beam (10 m, 20 Timoshenko elements, EI 4e6): node 9
+/// drawn at its contact's gap (5 cm) above x = 1, its ux prescribed by `ride` and its uy free,
+/// pressed down by λ·10 kN, in `steps` load steps.
+inline json riding_load(double ride, int steps) {
+  return {{"materials", {{"steel", {{"E", 2e11}, {"G", 7.7e10}}}}},
+          {"sections", {{"s", {{"A", 0.004}, {"I", 2e-5}, {"shear_area", 0.002}}}}},
+          {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
+                                 {{"id", 9}, {"x", 1.0}, {"y", 0.05}}})},
+          {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 20}, {"element", "timoshenko"},
+                                    {"material", "steel"}, {"section", "s"}}})},
+          {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}}})},
+          {"loads", json::array({{{"node", 9}, {"fy", -1e4}}})},
+          {"prescribed", json::array({{{"node", 9}, {"ux", ride}}})},
+          {"contacts", json::array({{{"node", 9}, {"members", "all"}, {"gap", 0.05}}})},
+          {"analysis", {{"control", {{"type", "load"}, {"steps", steps}}}}}};
+}
+
 /// The reader's reason for refusing `m` (file: path: reason), or "" if it accepts it.
 inline std::string refusal(const json& m) {
   try {

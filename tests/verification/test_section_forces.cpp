@@ -51,17 +51,7 @@ TEST(SectionDiagrams, ALoadRidingOnASimplySupportedBeamMakesTheShearJumpUnderIt)
   // down by 10 kN, its ux prescribed) stopped at x = 3.3, 0.6 along the element 3.0–3.5. Linear
   // statics: M = P a b / L = 23.1 kN m under it (sagging), V = P b / L before it and −P a / L after
   // it — to the geometric effects (the gap's lever, the surface's slope): 1e-3 here.
-  json m = {{"materials", {{"steel", {{"E", 2e11}, {"G", 7.7e10}}}}},
-            {"sections", {{"s", {{"A", 0.004}, {"I", 2e-5}, {"shear_area", 0.002}}}}},
-            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
-                                   {{"id", 9}, {"x", 1.0}, {"y", 0.05}}})},
-            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 20}, {"element", "timoshenko"},
-                                      {"material", "steel"}, {"section", "s"}}})},
-            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}}})},
-            {"loads", json::array({{{"node", 9}, {"fy", -1e4}}})},
-            {"prescribed", json::array({{{"node", 9}, {"ux", 2.3}}})},
-            {"contacts", json::array({{{"node", 9}, {"members", "all"}, {"gap", 0.05}}})},
-            {"analysis", {{"control", {{"type", "load"}, {"steps", 4}}}}}};
+  const json m = riding_load(2.3, 4);
   tsm::Model model;
   const auto r = run(m, model);
   ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;

@@ -414,17 +414,7 @@ TEST(ContactResting, ALoadRidingOnABeamFollowsItsInfluenceLine) {
   // the beam's deflection under a point load λP at x = 1 + 8λ,
   // P a²b²/(3EIL) + P a b/(L GA_s), and the contact carries λP — to the geometric effects
   // (the surface's slope, the gap's lever): 1e-3 here.
-  json m = {{"materials", {{"steel", {{"E", 2e11}, {"G", 7.7e10}}}}},
-            {"sections", {{"s", {{"A", 0.004}, {"I", 2e-5}, {"shear_area", 0.002}}}}},
-            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 10.0}, {"y", 0.0}},
-                                   {{"id", 9}, {"x", 1.0}, {"y", 0.05}}})},
-            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 20}, {"element", "timoshenko"},
-                                      {"material", "steel"}, {"section", "s"}}})},
-            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "roller-x"}}})},
-            {"loads", json::array({{{"node", 9}, {"fy", -1e4}}})},
-            {"prescribed", json::array({{{"node", 9}, {"ux", 8.0}}})},
-            {"contacts", json::array({{{"node", 9}, {"members", "all"}, {"gap", 0.05}}})},
-            {"analysis", {{"control", {{"type", "load"}, {"steps", 16}}}}}};
+  const json m = riding_load(8.0, 16);
   tsm::Model model;
   const RunResult r = run(m, model);
   ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
