@@ -9,9 +9,10 @@ def _axes(ax):
     return ax
 
 
-def plot_shape(result, steps=(-1,), ax=None, undeformed=True, **kw):
+def plot_shape(result, steps=(-1,), ax=None, undeformed=True, scale=1.0, **kw):
     """The deformed shape at the given states (indices into result.state_steps): every element
-    drawn as its deflected curve, as Result.curves gives it."""
+    drawn as its deflected curve, as Result.curves gives it, its displacements from the drawn
+    geometry magnified `scale` times (1: true size; small deflections made visible)."""
     ax = _axes(ax)
     if undeformed:
         for a, b in result.element_nodes:
@@ -23,10 +24,16 @@ def plot_shape(result, steps=(-1,), ax=None, undeformed=True, **kw):
         colour = given or cmap(n / max(1, len(steps) - 1))
         label = f"step {result.state_steps[k]}"
         for c, points in enumerate(result.curves(k, segments=12)):
+            if scale != 1.0:  # from each element's drawn chord, at the same place along it
+                a, b = (result.node_xy[int(np.flatnonzero(result.node_ids == n)[0])] for n in result.element_nodes[c])
+                drawn = a + np.outer(np.linspace(0.0, 1.0, len(points)), b - a)
+                points = drawn + scale * (points - drawn)
             ax.plot(points[:, 0], points[:, 1], color=colour, label=label if c == 0 else None, **kw)
     ax.set_aspect("equal")
     ax.set_xlabel("x")
     ax.set_ylabel("y")
+    if scale != 1.0:
+        ax.set_title(f"displacements × {scale:g}")
     ax.legend(fontsize=8)
     return ax
 

@@ -519,6 +519,16 @@ def test_a_colour_given_to_plot_shape_draws_every_step_in_it():
     r.plot_shape(steps=(0, -1), ax=ax, undeformed=False)
     assert len({matplotlib.colors.to_hex(line.get_color()) for line in ax.lines}) == 2
     plt.close(fig)
+    # Magnified: every point of the curve 10 times as far from its place on the drawn chord.
+    fig, ax = plt.subplots()
+    r.plot_shape(ax=ax, undeformed=False, scale=10.0)
+    curves = r.curves(-1, segments=12)
+    for line, curve, (a, b) in zip(ax.lines, curves, r.element_nodes):
+        start, end = (r.node_xy[int(np.flatnonzero(r.node_ids == n)[0])] for n in (a, b))
+        drawn = start + np.outer(np.linspace(0, 1, 13), end - start)
+        assert np.allclose(np.column_stack(line.get_data()), drawn + 10.0 * (curve - drawn), rtol=0, atol=1e-12)
+    assert "× 10" in ax.get_title()
+    plt.close(fig)
 
 
 def test_the_diagrams_of_a_portal_frame_follow_its_statics_and_are_drawn_on_it(tmp_path):
