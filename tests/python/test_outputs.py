@@ -76,6 +76,14 @@ class Vtk(unittest.TestCase):
         # rotations: 2π at the tip, 0 at the root
         self.assertAlmostEqual(point_data["rotation"][-1][0], 2 * math.pi, places=6)
         self.assertAlmostEqual(point_data["rotation"][0][0], 0.0, places=12)
+        # pure bending: M is the tip moment at every point of every curve (counter-clockwise, bending
+        # the beam towards its left: positive), N and V vanish
+        with open(os.path.join(SOURCE, "examples", "cantilever-circle.json")) as f:
+            tip_moment = next(load["mz"] for load in json.load(f)["loads"] if "mz" in load)
+        for name in ("section_N", "section_V", "section_M"):
+            self.assertEqual(len(point_data[name]), len(points), name)
+        self.assertLess(max(abs(m[0] - tip_moment) for m in point_data["section_M"]), 1e-6 * tip_moment)
+        self.assertLess(max(abs(v[0]) for v in point_data["section_N"] + point_data["section_V"]), 1e-6 * tip_moment)
         try:
             import vtk  # Debian's python3-vtk9, when installed
         except ImportError:

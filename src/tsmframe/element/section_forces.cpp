@@ -42,4 +42,12 @@ std::vector<SectionStation> section_forces(double l, const Eigen::Vector3d& forc
   return stations;
 }
 
+SectionStation section_at(std::span<const SectionStation> stations, double x) {
+  size_t k = 0;  // the stretch [k, k + 1] holding x: the last that starts at or before it
+  while (k + 2 < stations.size() && stations[k + 1].x <= x) ++k;
+  const SectionStation &a = stations[k], &b = stations[k + 1];
+  const double t = b.x > a.x ? std::clamp((x - a.x) / (b.x - a.x), 0.0, 1.0) : 0.0;
+  return {x, a.N, a.V, a.M + t * (b.M - a.M)};
+}
+
 }  // namespace tsm::element

@@ -37,4 +37,8 @@ struct SectionStation {
 /// forces shared by its ends by the lever rule (N8), so that N(0) = N + Σ (1 − α) T.
 std::vector<SectionStation> section_forces(double l, const Eigen::Vector3d& forces, std::span<const PointForce> points);
 
+/// The section forces at x along an element from its stations (section_forces): N and V of the
+/// stretch holding x, M interpolated along it; at a point's x, the values just past it.
+SectionStation section_at(std::span<const SectionStation> stations, double x);
+
 }  // namespace tsm::element

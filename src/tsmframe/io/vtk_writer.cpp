@@ -5,6 +5,7 @@
 #include "tsmframe/io/element_curves.hpp"
 #include "tsmframe/io/json_writer.hpp"
 #include "tsmframe/io/output_file.hpp"
+#include "tsmframe/io/section_diagrams.hpp"
 
 namespace tsm::io {
 namespace {
@@ -13,9 +14,11 @@ struct Curve {
   std::vector<Eigen::Vector2d> points;        ///< current positions along the element
   std::vector<Eigen::Vector2d> displacement;  ///< current − drawn position of those material points
   std::vector<double> rotation;
+  std::vector<element::SectionStation> sections;  ///< N, V, M there (io/section_diagrams)
 };
 
-Curve drawn_curve(const Model& model, size_t element, const solver::StepRecord& step) {
+Curve drawn_curve(const Model& model, size_t element, const solver::StepRecord& step,
+                  const std::vector<element::SectionStation>& stations) {
   const Element& e = model.elements[element];
   const Eigen::VectorXd& D = step.displacements;
   Curve c;
@@ -27,6 +30,7 @@ Curve drawn_curve(const Model& model, size_t element, const solver::StepRecord& 
     const double s = static_cast<double>(k) / curve_segments;
     c.displacement.push_back(c.points[k] - (Xi + s * (Xj - Xi)));
     c.rotation.push_back((1.0 - s) * rotation_i + s * rotation_j);
+    c.sections.push_back(element::section_at(stations, s * stations.back().x));
   }
   return c;
 }
@@ -37,7 +41,8 @@ void write_vtu(const std::string& path, const Model& model, const solver::StepRe
   const Eigen::VectorXd& D = step.displacements;
   std::vector<Curve> curves;
   curves.reserve(model.elements.size());
-  for (size_t e = 0; e < model.elements.size(); ++e) curves.push_back(drawn_curve(model, e, step));
+  const std::vector<std::vector<element::SectionStation>> diagrams = section_diagrams(model, step);
+  for (size_t e = 0; e < model.elements.size(); ++e) curves.push_back(drawn_curve(model, e, step, diagrams[e]));
   struct ContactPoint {
     int node;
     Eigen::Vector2d position, force;
@@ -87,6 +92,15 @@ void write_vtu(const std::string& path, const Model& model, const solver::StepRe
     out << "</DataArray>\n<DataArray type=\"Float64\" Name=\"contact_force\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (size_t k = 0; k < curves.size() * per; ++k) out << "0 0 0\n";
     for (const ContactPoint& c : contacts) out << num(c.force.x()) << ' ' << num(c.force.y()) << " 0\n";
+    // The N, V, M diagrams along each element's curve (a contact point's jump between two points).
+    for (const auto& [name, value] : {std::pair{"section_N", &element::SectionStation::N},
+                                      std::pair{"section_V", &element::SectionStation::V},
+                                      std::pair{"section_M", &element::SectionStation::M}}) {
+      out << "</DataArray>\n<DataArray type=\"Float64\" Name=\"" << name << "\" format=\"ascii\">\n";
+      for (const Curve& c : curves)
+        for (const element::SectionStation& s : c.sections) out << num(s.*value) << '\n';
+      for (size_t k = 0; k < contacts.size(); ++k) out << "0\n";
+    }
     out << "</DataArray>\n</PointData>\n<CellData>\n";
     const char* names[] = {"N", "M_i", "M_j"};
     for (int f = 0; f < 3; ++f) {

@@ -93,4 +93,17 @@ TEST(SectionForces, APushsShareAlongTheChordMakesNJumpAndItsLeverACouple) {
   expect_shear_is_the_moments_slope(s);
 }
 
+TEST(SectionForces, BetweenStationsNAndVAreTheStretchsAndMIsInterpolated) {
+  // The simply supported beam of the point-force test: at x = 0.5 M = 3.75 (half way up to 7.5),
+  // V = 7.5; at the point itself the values just past it (V = −2.5); at x = 2.5 M = 7.5·(1.5/3).
+  const std::vector<PointForce> points = {{0.25, -10.0}};
+  const auto s = section_forces(4.0, {0.0, 0.0, 0.0}, points);
+  EXPECT_DOUBLE_EQ(tsm::element::section_at(s, 0.5).M, 3.75);
+  EXPECT_DOUBLE_EQ(tsm::element::section_at(s, 0.5).V, 7.5);
+  EXPECT_DOUBLE_EQ(tsm::element::section_at(s, 1.0).V, -2.5);
+  EXPECT_DOUBLE_EQ(tsm::element::section_at(s, 1.0).M, 7.5);
+  EXPECT_DOUBLE_EQ(tsm::element::section_at(s, 2.5).M, 3.75);
+  EXPECT_DOUBLE_EQ(tsm::element::section_at(s, 4.0).M, s.back().M);
+}
+
 }  // namespace
