@@ -14,16 +14,23 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
 
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/io/system_error.hpp"
 #include "tsmframe/io/json_writer.hpp"
+#include "tsmframe/io/model_drawing.hpp"
 #include "tsmframe/io/model_reader.hpp"
 #include "tsmframe/io/output_directory.hpp"
 #include "tsmframe/io/output_file.hpp"
 #include "tsmframe/io/restart_reader.hpp"
 #include "tsmframe/io/results_writer.hpp"
 #include "tsmframe/io/vtk_writer.hpp"
+#include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/solver/analysis.hpp"
 #include "tsmframe/study/study_runner.hpp"
 #include "tsmframe/study/study_writer.hpp"
@@ -86,12 +93,31 @@ std::string progress_line(const tsm::Model& model, const tsm::solver::StepRecord
   return os.str();
 }
 
+/// Runs one of scripts/ with Debian's python3 (no shell: paths pass as they are); its exit
+/// status (−1 where it could not be started or did not exit). `quiet`: its standard output goes
+/// to /dev/null.
+int run_script(const char* script, const std::vector<std::string>& arguments, bool quiet = false) {
+  std::vector<std::string> words = {"/usr/bin/python3", std::string(TSMFRAME_SCRIPTS_DIR) + "/" + script};
+  words.insert(words.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (quiet) posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  std::cout.flush();
+  pid_t child = 0;
+  const int failed = posix_spawn(&child, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  int status = 0;
+  if (failed != 0 || waitpid(child, &status, 0) < 0 || !WIFEXITED(status)) return -1;
+  return WEXITSTATUS(status);
+}
+
 /// --plot: the drawings into `directory`/plots (named as the user named the directory); false,
 /// said on stderr, where they fail (then no plots/: none half drawn).
 bool draw_plots(const std::filesystem::path& directory, const RunOptions& options) {
-  const std::string command = std::string("/usr/bin/python3 \"") + TSMFRAME_SCRIPTS_DIR + "/plot_run.py\" \"" +
-                              directory.string() + "\" \"" + options.out + "\"" + (options.quiet ? " >/dev/null" : "");
-  if (std::system(command.c_str()) == 0) return true;
+  if (run_script("plot_run.py", {directory.string(), options.out}, options.quiet) == 0) return true;
   std::error_code ignored;
   std::filesystem::remove_all(directory / "plots", ignored);
   std::cerr << "tsmframe: --plot failed (it needs Debian's python3-matplotlib: bash scripts/setup.sh)\n";
@@ -173,6 +199,48 @@ int run(const RunOptions& options) {
   const bool plotted = !options.plot || result.status == tsm::solver::Status::interrupted || draw_plots(output.path(), options);
   output.commit();
   return plotted ? report_run(options, result) : exit_not_converged;
+}
+
+struct PlotOptions {
+  std::string model;
+  std::string out;  // empty: the model's name with .png, in the current directory
+};
+
+/// `tsmframe plot`: the model drawn before solving (python/tsmframe/model_plot.py through
+/// scripts/plot_model.py). A model that is a mechanism is drawn too, and then refused as a run
+/// would refuse it (exit 2): the picture is where a missing support shows.
+int plot(const PlotOptions& options) {
+  std::filesystem::path out = options.out.empty() ? std::filesystem::path(options.model).stem().string() + ".png" : options.out;
+  const std::string extension = out.extension().string();
+  if (extension != ".png" && extension != ".svg" && extension != ".pdf") {
+    std::cerr << "tsmframe: --out " << out.string() << ": the picture's format is unknown (expected .png, .svg or .pdf)\n";
+    return exit_bad_input;
+  }
+  tsm::Model model;
+  try {
+    model = tsm::io::read_model_file(options.model, tsm::io::Mechanisms::allow);
+  } catch (const tsm::io::InputError& e) {
+    std::cerr << options.model << ": " << e.what() << '\n';
+    return exit_bad_input;
+  }
+  const std::optional<std::string> mechanism = tsm::starting_mechanism(model);
+  const std::filesystem::path drawing =
+      std::filesystem::temp_directory_path() / ("tsmframe-drawing-" + std::to_string(::getpid()) + ".json");
+  tsm::io::write_output_file(drawing.string(), [&](std::ostream& os) { tsm::io::write_model_drawing(os, model, mechanism); });
+  const int drawn = run_script("plot_model.py", {drawing.string(), out.string()});
+  std::error_code ignored;
+  std::filesystem::remove(drawing, ignored);
+  if (drawn == exit_system) return exit_system;  // the picture could not be written: the script said why
+  if (drawn != 0) {
+    std::cerr << "tsmframe: plot failed (it needs Debian's python3-matplotlib: bash scripts/setup.sh)\n";
+    return exit_system;
+  }
+  if (mechanism) {
+    std::cerr << options.model << ": supports: " << *mechanism << " (drawn in " << out.string() << ")\n";
+    return exit_bad_input;
+  }
+  std::cerr << "drawn: " << out.string() << '\n';
+  return exit_converged;
 }
 
 struct StudyOptions {
@@ -266,6 +334,11 @@ int main(int argc, char** argv) {
   run_command->add_option("-j,--threads", options.threads, "threads for the element loop and the factorisation (default: all cores; results are identical; models under 1,000 elements use one)")
       ->check(CLI::Range(1, 1024));
 
+  PlotOptions plot_options;
+  CLI::App* plot_command = app.add_subcommand("plot", "Draw MODEL.json before solving: members, supports, hinges, springs, loads, contacts");
+  plot_command->add_option("model", plot_options.model, "model file (docs/format.md, tsmframe-model/1)")->required();
+  plot_command->add_option("-o,--out", plot_options.out, "the picture: .png, .svg or .pdf (default: the model's name with .png, here)");
+
   StudyOptions study_options;
   CLI::App* study_command = app.add_subcommand("study", "Run a parameter study: one row per case in study.csv and study.json");
   study_command->add_option("study", study_options.study, "study file (tsmframe-study/1, see README)")->required();
@@ -283,6 +356,7 @@ int main(int argc, char** argv) {
   try {
     if (run_command->parsed()) return run(options);
     if (study_command->parsed()) return study(study_options);
+    if (plot_command->parsed()) return plot(plot_options);
   } catch (const tsm::io::SystemError& e) {
     std::cerr << "tsmframe: " << e.what() << '\n';
     return exit_system;

@@ -8,7 +8,9 @@ derived here.
     import shapes
     shapes.draw_shape(ax, results, step, scale=shapes.magnification(results, states), color="C0")
 """
+import importlib.util
 import math
+import os
 
 
 def size_of(results):
@@ -74,3 +76,13 @@ def draw_shape(ax, results, step, scale=1.0, **style):
     label = style.pop("label", None)
     for k, (xs, ys) in enumerate(element_lines(results, step, scale)):
         ax.plot(xs, ys, label=label if k == 0 else None, **style)
+
+
+def model_plot():
+    """The package's model drawing (python/tsmframe/model_plot.py, what Model.plot() draws), loaded
+    by its path: the scripts run with Debian's python3, the extension need not be built."""
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python", "tsmframe", "model_plot.py")
+    spec = importlib.util.spec_from_file_location("model_plot", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module

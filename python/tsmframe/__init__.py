@@ -23,7 +23,7 @@ import os as _os
 import numpy as _np
 
 from ._core import __version__, element_curves as _element_curves, read_model as _read_model, run_json as _run_json
-from ._core import study_json as _study_json
+from ._core import model_drawing as _model_drawing, study_json as _study_json
 
 __all__ = ["Model", "Result", "run", "load", "__version__"]
 
@@ -248,6 +248,19 @@ class Model:
         with open(path, "w") as f:
             f.write(self.to_json())
 
+    def drawing(self):
+        """The model's drawing document (tsmframe-drawing/1, docs/format.md "Model drawing"): the
+        meshed nodes and elements, supports, springs, loads per stage, contacts, and `mechanism`
+        (the free motion named) where the supports leave the structure free. ValueError for bad input."""
+        return _json.loads(_model_drawing(self.to_json()))
+
+    def plot(self, ax=None, node_labels=None):
+        """Draw the model before solving (matplotlib): members, supports by their usual symbols,
+        hinges, springs, loads as arrows, contact nodes and the members they may touch — what
+        `tsmframe plot` draws. A mechanism is drawn too, its free motion written under it. Returns ax."""
+        from .model_plot import plot_model
+        return plot_model(self.drawing(), ax, node_labels)
+
 
 def _read_text(path):
     """A file's text; ValueError "PATH: cannot read: reason" where it cannot be read."""
@@ -385,6 +398,12 @@ class Result:
         return [part[:, [1, column]] for part in _np.split(rows, cuts)]
 
     # plots (matplotlib, imported on use)
+    def plot_model(self, ax=None, node_labels=None):
+        """The model as drawn before solving (Model.plot's picture), from the supports, loads and
+        contacts results.json carries."""
+        from .model_plot import plot_model
+        return plot_model(self.json(), ax, node_labels)
+
     def plot_shape(self, steps=(-1,), ax=None, **kw):
         from .plots import plot_shape
         return plot_shape(self, steps, ax, **kw)

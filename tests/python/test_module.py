@@ -695,3 +695,42 @@ def test_a_run_the_machine_has_no_memory_for_is_a_memory_error_before_it_is_spen
     m.load(2, fy=-1.0).contact(members="all", nodes=nodes)
     with pytest.raises(MemoryError, match=r"^contacts: the run needs ~\d+(\.\d)? GB of memory \(80,001 contacts with 6,400,080,000 candidate elements"):
         tf.run(m)
+
+
+def test_a_model_is_drawn_before_it_is_solved():
+    # A portal on a pin and a roller, its beam hinged at one end, a sway load and a moment: the
+    # drawing document has the meshed model, and the picture its symbols — a triangle per pin and
+    # roller, two rollers' circles, the hinge's circle, an arrow per force and the moment's arc.
+    m = tf.Model("portal").material("steel", E=2e11).section("s", A=1e-2, I=1e-4)
+    m.node(1, 0, 0).node(2, 0, 3).node(3, 4, 3).node(4, 4, 0)
+    m.member(1, 2, "steel", "s").member(2, 3, "steel", "s", divisions=4, release="start").member(3, 4, "steel", "s")
+    m.support(1, "pinned").support(4, "roller-x").load(2, fx=1e3).load(3, fy=-2e3, mz=500.0)
+    d = m.drawing()
+    assert len(d["nodes"]) == 7 and len(d["elements"]) == 6
+    assert [s["held"] for s in d["supports"]] == [["ux", "uy"], ["uy"]]
+    assert d["load_cases"][0]["loads"] == [[2, 1e3, 0.0, 0.0], [3, 0.0, -2e3, 500.0]]
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Arc, Circle, FancyArrowPatch, Polygon
+    fig, ax = plt.subplots()
+    assert m.plot(ax=ax) is ax
+    kinds = [type(p) for p in ax.patches]
+    assert kinds.count(Polygon) == 2                 # the pin's and the roller's triangles
+    assert kinds.count(Circle) == 2 + 1              # the roller's two circles, the hinge
+    assert kinds.count(FancyArrowPatch) == 2 + 1     # two forces, the moment's head
+    assert kinds.count(Arc) == 1
+    assert not any("Not solvable" in t.get_text() for t in ax.texts)
+    plt.close(fig)
+    document = m.to_dict()
+    document["supports"][0]["type"] = "roller-x"     # both feet on rollers: free along x
+    loose = tf.Model.from_dict(document)
+    assert "free to move along x" in loose.drawing()["mechanism"]
+    with pytest.raises(ValueError, match="supports: structure is a mechanism"):
+        tf.run(loose)
+    fig, ax = plt.subplots()
+    loose.plot(ax=ax)
+    assert any("Not solvable: structure is a mechanism" in t.get_text() for t in ax.texts)
+    plt.close(fig)
+    with pytest.raises(ValueError, match='sectoin'):
+        tf.Model.from_dict({**m.to_dict(), "members": [{**m.to_dict()["members"][0], "sectoin": "s"}]}).drawing()

@@ -57,8 +57,8 @@ std::string largest_part_path(const MemoryEstimate& e) {
 class Reader {
  public:
   /// `input_bytes`: the text `document` was parsed from (0: given in memory).
-  Reader(const json& document, const MemoryBudget& budget, double input_bytes)
-      : doc_(document), budget_(budget), input_bytes_(input_bytes) {}
+  Reader(const json& document, const MemoryBudget& budget, double input_bytes, Mechanisms mechanisms)
+      : doc_(document), budget_(budget), input_bytes_(input_bytes), mechanisms_(mechanisms) {}
 
   Model read() {
     expect_object(doc_, "(document)");
@@ -91,7 +91,8 @@ class Reader {
     const MemoryEstimate estimate = estimate_memory(model_counts(model_, input_bytes_));
     check_memory(estimate, budget_, largest_part_path(estimate));
     check_resting_contacts();
-    check_mechanism();
+    if (mechanisms_ == Mechanisms::refuse)
+      if (auto mechanism = starting_mechanism(model_)) fail("supports", *mechanism);
     if (!model_.reference_prescribed.any()) model_.reference_prescribed.resize(0);  // nothing prescribed moves
     return std::move(model_);
   }
@@ -280,20 +281,6 @@ class Reader {
       model_.constrained[p.dof] = true;
       model_.reference_prescribed[p.dof] = p.value;
     }
-  }
-
-  /// The structure must hold where the analysis starts: the supports, and the first stage's
-  /// prescribed dofs (later stages only hold more).
-  void check_mechanism() {
-    if (model_.stages.empty()) {
-      if (auto mechanism = find_mechanism(model_)) fail("supports", *mechanism);
-      return;
-    }
-    const std::vector<bool> supports = model_.constrained;
-    for (const PrescribedTarget& p : model_.stages.front().prescribed) model_.constrained[p.dof] = true;
-    const auto mechanism = find_mechanism(model_);
-    model_.constrained = supports;
-    if (mechanism) fail("supports", *mechanism);
   }
 
   /// Contacts resting on a beam as drawn start in contact; an element carries any number of
@@ -522,6 +509,7 @@ class Reader {
   const json& doc_;
   const MemoryBudget& budget_;
   double input_bytes_ = 0.0;
+  Mechanisms mechanisms_ = Mechanisms::refuse;
   Model model_;
   std::optional<SectionTable> sections_;  ///< read after the header
   std::optional<Eigen::Vector2d> gravity_;  ///< "gravity", if given
@@ -537,20 +525,20 @@ class Reader {
 
 }  // namespace
 
-Model read_model(const json& document, const MemoryBudget& budget, double input_bytes) {
-  return Reader(document, budget, input_bytes).read();
+Model read_model(const json& document, const MemoryBudget& budget, double input_bytes, Mechanisms mechanisms) {
+  return Reader(document, budget, input_bytes, mechanisms).read();
 }
 
 Model read_model(const json& document) { return read_model(document, memory_budget()); }
 
-Model read_model_text(const std::string& text) {
+Model read_model_text(const std::string& text, Mechanisms mechanisms) {
   const MemoryBudget budget = memory_budget();
   const double bytes = static_cast<double>(text.size());
   check_memory(estimate_memory({.input_bytes = bytes}), budget, "(document)");  // before the document is parsed
-  return read_model(parse_json(text), budget, bytes);
+  return read_model(parse_json(text), budget, bytes, mechanisms);
 }
 
-Model read_model_file(const std::string& path) {
+Model read_model_file(const std::string& path, Mechanisms mechanisms) {
   try {
     const MemoryBudget budget = memory_budget();
     json document;
@@ -561,7 +549,7 @@ Model read_model_file(const std::string& path) {
       check_memory(estimate_memory({.input_bytes = bytes}), budget, "(document)");
       document = parse_json(text);
     }
-    return read_model(document, budget, bytes);
+    return read_model(document, budget, bytes, mechanisms);
   } catch (const MemoryShortage& e) {
     throw MemoryShortage(path, e.what());
   } catch (const SystemError& e) {

@@ -13,19 +13,25 @@
 
 namespace tsm::io {
 
+/// Whether a model that is a mechanism where the analysis starts is refused (InputError at
+/// "supports") — a run's reading — or read as drawn, for `tsmframe plot` to show it and name
+/// the free motion (model::starting_mechanism).
+enum class Mechanisms { refuse, allow };
+
 /// Builds a model from parsed JSON whose run fits `budget`; `input_bytes`: the text it was parsed
 /// from, if that is held while it is read. Throws InputError, and SystemError (at the JSON path
 /// where most of the memory goes) for a model whose run would not fit.
-Model read_model(const nlohmann::json& document, const MemoryBudget& budget, double input_bytes = 0.0);
+Model read_model(const nlohmann::json& document, const MemoryBudget& budget, double input_bytes = 0.0,
+                 Mechanisms mechanisms = Mechanisms::refuse);
 /// The same within the machine's memory now (memory_budget()).
 Model read_model(const nlohmann::json& document);
 
 /// Parses `text` (errors name line and column) and builds the model. Throws InputError, SystemError.
-Model read_model_text(const std::string& text);
+Model read_model_text(const std::string& text, Mechanisms mechanisms = Mechanisms::refuse);
 
 /// Reads the file at `path` (io/input_file.hpp: at most 1 GiB, no directory, no NUL byte), its
 /// text and parsed document held to the memory budget before it is parsed. Throws InputError (a
 /// missing file too), and SystemError prefixed with the path.
-Model read_model_file(const std::string& path);
+Model read_model_file(const std::string& path, Mechanisms mechanisms = Mechanisms::refuse);
 
 }  // namespace tsm::io

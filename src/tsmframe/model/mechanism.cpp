@@ -363,6 +363,15 @@ std::optional<std::string> find_mechanism(const Model& model, bool resting_conta
   return std::nullopt;
 }
 
+std::optional<std::string> starting_mechanism(Model& model) {
+  if (model.stages.empty()) return find_mechanism(model);
+  const std::vector<bool> supports = model.constrained;
+  for (const PrescribedTarget& p : model.stages.front().prescribed) model.constrained[p.dof] = true;
+  const auto mechanism = find_mechanism(model);
+  model.constrained = supports;
+  return mechanism;
+}
+
 std::string part_text(const Model& model, const FreeMotion& motion) {
   std::ostringstream os;
   os << "the part holding node " << model.nodes[motion.node].id;

@@ -19,6 +19,10 @@ namespace tsm {
 /// normal unless `resting_contacts_hold` is false.
 std::optional<std::string> find_mechanism(const Model& model, bool resting_contacts_hold = true);
 
+/// find_mechanism where the analysis starts: the supports and the first stage's prescribed dofs
+/// (later stages only hold more). `model.constrained` is marked while it looks and restored.
+std::optional<std::string> starting_mechanism(Model& model);
+
 /// A rigid-body motion a connected part is free to make against what holds it.
 struct FreeMotion {
   int node = -1;       ///< the part's first node (index)

@@ -1,17 +1,12 @@
 #include "tsmframe/model/stage.hpp"
 
 namespace tsm {
-namespace {
 
-/// What stage `t` applies per unit of its load factor that is fixed in direction: its nodal
-/// loads, and for the first stage the members' lumped loads (the model's reference_load).
 Eigen::VectorXd fixed_load(const Model& model, int t) {
   Eigen::VectorXd load = t == 0 ? model.reference_load : Eigen::VectorXd::Zero(model.dof_count());
   if (model.stages[t].load.size() > 0) load += model.stages[t].load;
   return load;
 }
-
-}  // namespace
 
 Model stage_model(const Model& model, int stage, const StageStart& start) {
   Model m = model;

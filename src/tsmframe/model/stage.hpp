@@ -17,6 +17,10 @@ struct StageStart {
   Eigen::VectorXd displacements;
 };
 
+/// What stage `t` applies per unit of its load factor that is fixed in direction (per dof): its
+/// nodal loads, and for the first stage the members' lumped loads (the model's reference_load).
+Eigen::VectorXd fixed_load(const Model& model, int t);
+
 /// The one-stage model that runs stage `stage` of `model` (which has stages) from `start`: its
 /// reference load and prescribed increments are the stage's (the first stage's with the
 /// members' loads), its dead load what the earlier stages applied at their final λ, its
