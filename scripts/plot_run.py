@@ -3,7 +3,8 @@
 
     /usr/bin/python3 scripts/plot_run.py DIR [SHOWN]
 
-Reads DIR/results.json and DIR/steps.csv; writes DIR/plots/deformed.png|svg (the steps that
+Reads DIR/results.json and DIR/steps.csv; writes DIR/plots/model.png|svg (the model as drawn
+before solving: supports, loads, contacts — `tsmframe plot`'s picture), DIR/plots/deformed.png|svg (the steps that
 carry full state, up to 12 of them, elements drawn as the deflected curves results.json carries
 — straight chords, and the legend says so, where it has none) and
 DIR/plots/load-displacement.png|svg (λ against ux, uy, rz of every monitored node, but those that
@@ -23,7 +24,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from shapes import draw_shape, has_curves, magnification, size_of, undeformed  # noqa: E402  (shared with report.py)
+from shapes import draw_shape, has_curves, magnification, model_plot, size_of, undeformed  # noqa: E402  (shared with report.py)
 
 
 def short_title(title, width=90, lines=3):
@@ -162,7 +163,12 @@ def main(directory, shown=None):
     for ext in ("png", "svg"):
         fig.savefig(os.path.join(plots, f"load-displacement.{ext}"), dpi=130, bbox_inches="tight")
     plt.close(fig)
-    written = ["deformed.png", "load-displacement.png"]
+    written = ["model.png", "deformed.png", "load-displacement.png"]
+    fig, ax = plt.subplots(figsize=(8, 6))  # the model as drawn: results.json carries its supports, loads, contacts
+    model_plot().plot_model(results, ax)
+    for ext in ("png", "svg"):
+        fig.savefig(os.path.join(plots, f"model.{ext}"), dpi=130, bbox_inches="tight")
+    plt.close(fig)
     if force_displacement(results, rows, plots):
         written.append("force-displacement.png")
     print(f"plots: {os.path.join(shown or directory, 'plots')}/{', '.join(written)} (and .svg)")

@@ -24,7 +24,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from shapes import draw_shape, has_curves, magnification, undeformed  # noqa: E402  (shared with plot_run.py)
+from shapes import draw_shape, has_curves, magnification, model_plot, undeformed  # noqa: E402  (shared with plot_run.py)
 
 COLOURS = {"euler-bernoulli": "tab:red", "timoshenko": "tab:blue"}
 NAMES = {"euler-bernoulli": "Euler–Bernoulli", "timoshenko": "Timoshenko"}
@@ -182,7 +182,9 @@ def fig6(out):
 # ---- The examples: each one's deformed shapes and how its run ended ----
 
 def examples(out):
-    """[(name, title, summary, notes, png)] for every examples/*.json run into OUT/<name>/."""
+    """[(name, title, summary, notes, model_png, png)] for every examples/*.json run into OUT/<name>/:
+    the model as drawn before solving, and its deformed shapes."""
+    drawing = model_plot()
     source = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples")
     rows = []
     for file in sorted(os.listdir(source)):
@@ -199,6 +201,11 @@ def examples(out):
         if results.get("stages"):  # a staged run: where each stage ended
             summary += "; " + ", ".join(f"stage {s['stage']}{' (' + s['name'] + ')' if s['name'] else ''} to step {s['last_step']}"
                                         for s in results["stages"])
+        fig, ax = plt.subplots(figsize=(4.2, 3.0))
+        drawing.plot_model(results, ax, node_labels=False)
+        ax.set_title(name + ": the model", fontsize=8)
+        ax.get_legend().remove()  # the symbols speak for themselves at this size
+        model_png = save(fig, out, f"model-{name}")
         states = [s for s in steps if "displacements" in s]
         if len(states) > 6:
             states = [states[round(k * (len(states) - 1) / 5)] for k in range(6)]
@@ -212,7 +219,7 @@ def examples(out):
         ax.set_xticks([])
         ax.set_yticks([])
         ax.set_title(name + (f" (displacements × {scale:g})" if scale != 1.0 else "") + chords_only(results), fontsize=8)
-        rows.append((name, results.get("title", ""), summary, results.get("notes", []), save(fig, out, f"example-{name}")))
+        rows.append((name, results.get("title", ""), summary, results.get("notes", []), model_png, save(fig, out, f"example-{name}")))
     return rows
 
 
@@ -294,12 +301,15 @@ closer to the edge.</p>""")
     if example_rows:
         parts.append("""<h2>The examples</h2>
 <p>Every model in <code>examples/</code>, run by <code>scripts/run.sh</code> into <code>out/&lt;name&gt;/</code>
-(results.json, steps.csv; <code>tsmframe run … --plot</code> draws the full plots): its deformed shapes from
-the undeformed (grey) to the last step (yellow), how the run ended, and its notes.</p>""")
-        for name, title, summary, notes, png in example_rows:
+(results.json, steps.csv; <code>tsmframe run … --plot</code> draws the full plots): the model as
+<code>tsmframe plot</code> draws it before solving (supports, hinges, springs, loads at λ = 1 — a stage's in
+its own colour —, contact nodes and the members they may touch), its deformed shapes from the undeformed
+(grey) to the last step (yellow), how the run ended, and its notes.</p>""")
+        for name, title, summary, notes, model_png, png in example_rows:
             note_list = "".join(f"<li>{e(n)}</li>" for n in notes)
             parts.append(f'<div style="display:flex;gap:1em;align-items:flex-start;margin:1em 0">'
-                         f'<div style="flex:0 0 360px">{embed(png)}</div><div><b>{e(name)}</b>: {e(title)}<br>'
+                         f'<div style="flex:0 0 300px">{embed(model_png)}</div>'
+                         f'<div style="flex:0 0 300px">{embed(png)}</div><div><b>{e(name)}</b>: {e(title)}<br>'
                          f'<em>{e(summary)}</em>{"<ul>" + note_list + "</ul>" if notes else ""}</div></div>')
     parts.append("</body></html>")
     os.makedirs(out, exist_ok=True)

@@ -294,7 +294,7 @@ class Plots(unittest.TestCase):
             out = os.path.join(d, "frame")
             r = run("run", os.path.join(SOURCE, "examples", "portal-frame.json"), "--out", out, "--plot", "-q")
             self.assertEqual(r.returncode, 0, r.stderr)
-            for name in ("deformed.png", "load-displacement.png", "deformed.svg"):
+            for name in ("model.png", "deformed.png", "load-displacement.png", "deformed.svg", "model.svg"):
                 path = os.path.join(out, "plots", name)
                 self.assertTrue(os.path.exists(path), name)
                 self.assertGreater(os.path.getsize(path), 1000, name)
@@ -331,6 +331,8 @@ class Plots(unittest.TestCase):
             self.assertIn(f"<li>{html.escape(notes[0])}</li>", page)  # its strain note
             for name in ("portal-frame", "push-on-a-node"):
                 self.assertGreater(os.path.getsize(os.path.join(d, "plots", f"example-{name}.png")), 1000)
+                self.assertGreater(os.path.getsize(os.path.join(d, "plots", f"model-{name}.png")), 1000)  # the model drawn
+            self.assertEqual(page.count('<img src="data:image/png;base64,'), 4)  # each example's model and shapes
             self.assertIn("not produced: run scripts/run.sh first", page)
 
     def test_a_paragraph_long_title_is_wrapped_not_a_page_wide_plot(self):
