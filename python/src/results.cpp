@@ -65,6 +65,7 @@ void add_outcome(py::dict& out, const Model& model, const solver::RunResult& res
   for (const solver::StageEnd& end : result.stages) {
     py::dict stage;
     stage["stage"] = end.stage + 1;
+    stage["name"] = model.stages[end.stage].name;
     stage["status"] = solver::status_name(end.status);
     stage["last_step"] = end.last_step;
     stage["load_factor"] = end.load_factor;

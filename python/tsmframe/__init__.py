@@ -316,7 +316,7 @@ class Result:
     node_ids (n,), node_xy (n, 2), element_ids (m,), element_nodes (m, 2) node ids
     step (S,), load_factor (S,), iterations (S,), converged (S,), residual_norms: S arrays, criterion: S strings
     stage (S,)                 the stage (1, 2, …) each step belongs to (1 without stages); stages: where
-                               each stage that ran ended, dicts of status, last_step, load_factor
+                               each stage that ran ended, dicts of stage, name, status, last_step, load_factor
     negative_eigenvalues (S,)  of the tangent at each converged step: 0 stable, > 0 unstable
                                equilibrium; -1 unknown (a contact active, or a failed attempt)
     state_steps (K,)           step numbers that carry full state (analysis.output)
@@ -377,12 +377,24 @@ class Result:
     def json(self):
         return _json.loads(self.results_json)
 
+    @classmethod
+    def load(cls, path, model=None):
+        """A Result read back from a results.json that `tsmframe run` or Result.write wrote (and
+        the steps.csv beside it): the same arrays as the run gave, but the contact columns, which
+        follow the file's `contacts` (ascending node ids per entry). `model` (a Model, a dict, a
+        JSON text or a file path: the model that ran) is needed by curves() only. ValueError for a
+        file that is not a results.json."""
+        from .results_file import read_results
+        return cls(read_results(_os.fspath(path)), None if model is None else _model_text(model)[0])
+
     def curves(self, step=-1, segments=8):
         """Every element's deflected curve at a state (index into state_steps; -1 = last): an array
         (m, segments + 1, 2) of current (x, y) at s = k / segments along each element's chord —
         the element's own shape under its end rotations, a hinged end free of moment, an end
         spring in series (the same curves as the ParaView files and results.json's "curves")."""
         if self._model is None:
+            if self._model_text is None:
+                raise ValueError("curves() needs the model the results are of: Result.load(path, model=…)")
             self._model = _read_model(self._model_text)
         return _element_curves(self._model, self.displacements[step], self.element_forces[step], segments)
 
@@ -438,17 +450,23 @@ def run(model, threads=0, start=None, step=None):
     if start is not None:
         start_text = start.results_json if isinstance(start, Result) else _read_text(_os.fspath(start))
     step = 0 if step is None else int(step)
+    text, path = _model_text(model)
+    try:
+        return Result(_run_json(text, threads, start_text, step), text)
+    except ValueError as e:
+        if path is None:
+            raise
+        raise ValueError(f"{path}: {e}") from None
+
+
+def _model_text(model):
+    """(the model's docs/format.md JSON text, its file's path or None) of a Model, a dict, a JSON
+    text or a file path."""
     if isinstance(model, Model):
-        text = model.to_json()
-    elif isinstance(model, dict):
-        text = _dumps(model)
-    elif isinstance(model, str) and model.lstrip().startswith("{"):
-        text = model
-    else:
-        path = _os.fspath(model)
-        text = _read_text(path)
-        try:
-            return Result(_run_json(text, threads, start_text, step), text)
-        except ValueError as e:
-            raise ValueError(f"{path}: {e}") from None
-    return Result(_run_json(text, threads, start_text, step), text)
+        return model.to_json(), None
+    if isinstance(model, dict):
+        return _dumps(model), None
+    if isinstance(model, str) and model.lstrip().startswith("{"):
+        return model, None
+    path = _os.fspath(model)
+    return _read_text(path), path

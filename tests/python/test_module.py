@@ -734,3 +734,52 @@ def test_a_model_is_drawn_before_it_is_solved():
     plt.close(fig)
     with pytest.raises(ValueError, match='sectoin'):
         tf.Model.from_dict({**m.to_dict(), "members": [{**m.to_dict()["members"][0], "sectoin": "s"}]}).drawing()
+
+
+EXAMPLES = sorted(f for f in os.listdir(os.path.join(SOURCE, "examples")) if f.endswith(".json"))
+
+
+@pytest.mark.parametrize("example", EXAMPLES)
+def test_a_result_read_back_from_its_files_equals_the_run(example, tmp_path):
+    # Every example: Result.load of what the run wrote holds the same arrays and texts, exactly
+    # (results.json keeps every double's shortest round-trip text); the contact columns, which
+    # follow the file's contacts, are matched by node.
+    path = os.path.join(SOURCE, "examples", example)
+    r = tf.run(path)
+    r.write(tmp_path)
+    back = tf.Result.load(tmp_path / "results.json", model=path)
+    assert back.results_json == r.results_json and back.steps_csv == r.steps_csv
+    column = [int(np.flatnonzero(r.contact_nodes == node)[0]) for node in back.contact_nodes]
+    assert sorted(column) == list(range(len(r.contact_nodes)))
+    for name in ("contact_element", "contact_also", "contact_alpha", "contact_force"):
+        assert np.array_equal(getattr(back, name), getattr(r, name)[:, column]), name
+    skipped = {"contact_nodes", "contact_element", "contact_also", "contact_alpha", "contact_force", "_model", "_model_text"}
+    for name, value in vars(r).items():
+        if name in skipped:
+            continue
+        mine = getattr(back, name)
+        if isinstance(value, np.ndarray):
+            assert mine.dtype.kind == value.dtype.kind and np.array_equal(mine, value), name
+        elif name in ("residual_norms", "section_forces"):
+            assert len(mine) == len(value) and all(np.array_equal(a, b) for a, b in zip(mine, value)), name
+        else:
+            assert mine == value, name
+    if len(back.state_steps):
+        assert np.array_equal(back.curves(-1), r.curves(-1))
+
+
+def test_a_result_read_back_without_its_model_has_all_but_the_curves(tmp_path):
+    r = tf.run(os.path.join(SOURCE, "examples", "portal-frame.json"))
+    r.write(tmp_path)
+    back = tf.Result.load(str(tmp_path / "results.json"))
+    assert np.array_equal(back.displacements, r.displacements) and back.ok
+    with pytest.raises(ValueError, match="curves\\(\\) needs the model"):
+        back.curves()
+    (tmp_path / "other.json").write_text('{"format": "tsmframe-model/1"}')
+    with pytest.raises(ValueError, match='other.json: not a results.json of tsmframe'):
+        tf.Result.load(tmp_path / "other.json")
+    with pytest.raises(ValueError, match="nothere.json: cannot read: No such file"):
+        tf.Result.load(tmp_path / "nothere.json")
+    (tmp_path / "cut.json").write_text(r.results_json[:1000])
+    with pytest.raises(ValueError, match="cut.json: invalid JSON at line"):
+        tf.Result.load(tmp_path / "cut.json")
