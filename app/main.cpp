@@ -52,6 +52,7 @@ struct RunOptions {
   bool vtk = false;
   bool plot = false;
   bool curves = false;  // results.json's "curves" (on with --plot, whose drawings read them)
+  bool report = false;  // DIR/report.html (scripts/report_run.py, through the built Python package)
   int threads = 0;  // 0: all cores
   std::string from;  // a restart: DIR/results.json[#STEP] (empty: none)
 };
@@ -124,6 +125,16 @@ bool draw_plots(const std::filesystem::path& directory, const RunOptions& option
   return false;
 }
 
+/// --report: `directory`/report.html; false, said on stderr, where it fails (then no report.html).
+bool write_report(const std::filesystem::path& directory, const RunOptions& options) {
+  if (run_script("report_run.py", {TSMFRAME_PYTHON_DIR, directory.string(), options.model, options.out}, options.quiet) == 0)
+    return true;
+  std::error_code ignored;
+  std::filesystem::remove(directory / "report.html", ignored);
+  std::cerr << "tsmframe: --report failed (it needs the Python module and Debian's python3-matplotlib: bash scripts/setup.sh)\n";
+  return false;
+}
+
 /// The run's closing lines on stderr (its notes, how it ended); returns the exit code.
 int report_run(const RunOptions& options, const tsm::solver::RunResult& result) {
   int converged_steps = 0, iterations = 0;
@@ -179,7 +190,7 @@ int run(const RunOptions& options) {
   const tsm::solver::StopRequest& stop = tsm::app::install_stop_signals();
   // Every output goes into the temporary directory, made (and so checked) before the analysis;
   // the commit puts it in place of --out in one step.
-  tsm::io::OutputDirectory output(options.out, {"results.json", "steps.csv", "vtk", "plots"});
+  tsm::io::OutputDirectory output(options.out, {"results.json", "steps.csv", "vtk", "plots", "report.html"});
   // ParaView files are written as the steps converge (each step's full state exists only then).
   const std::filesystem::path vtk_dir = output.path() / "vtk";
   if (options.vtk) tsm::io::make_directories(vtk_dir.string());
@@ -196,9 +207,11 @@ int run(const RunOptions& options) {
   tsm::io::write_results(output.path().string(), model, result, {.curves = options.curves || options.plot});
   if (options.vtk) tsm::io::write_pvd((vtk_dir / "results.pvd").string(), vtk_steps);
   // An interrupted run is asked to end: no plots.
-  const bool plotted = !options.plot || result.status == tsm::solver::Status::interrupted || draw_plots(output.path(), options);
+  const bool interrupted = result.status == tsm::solver::Status::interrupted;
+  const bool plotted = !options.plot || interrupted || draw_plots(output.path(), options);
+  const bool reported = !options.report || interrupted || write_report(output.path(), options);
   output.commit();
-  return plotted ? report_run(options, result) : exit_not_converged;
+  return plotted && reported ? report_run(options, result) : exit_not_converged;
 }
 
 struct PlotOptions {
@@ -329,6 +342,8 @@ int main(int argc, char** argv) {
   run_command->add_flag("--log-iterations", options.log_iterations, "print the residual of every iterate");
   run_command->add_flag("--vtk", options.vtk, "ParaView files: DIR/vtk/results.pvd and one .vtu per converged step");
   run_command->add_flag("--plot", options.plot, "plots: deformed shapes and load-displacement curves in DIR/plots/ (implies --curves)");
+  run_command->add_flag("--report", options.report,
+                        "DIR/report.html: the model drawn, how the run ended, shapes, load-displacement, N/V/M, buckling modes");
   run_command->add_flag("--curves", options.curves,
                         "results.json: each element's deflected curve at every step with state (\"curves\")");
   run_command->add_option("-j,--threads", options.threads, "threads for the element loop and the factorisation (default: all cores; results are identical; models under 1,000 elements use one)")

@@ -181,9 +181,32 @@ def fig6(out):
 
 # ---- The examples: each one's deformed shapes and how its run ended ----
 
+def engineer_figures(out, name, model, results_path):
+    """The M diagram at the last state and the first buckling mode (with analysis.buckling) of one
+    example, drawn by the tsmframe package from its results read back: [png], [] where the
+    package is not built (PYTHONPATH=build/python, as scripts/run.sh runs this)."""
+    try:
+        import tsmframe as tf
+    except ImportError:
+        return []
+    r = tf.Result.load(results_path, model=model)
+    pngs = []
+    if len(r.state_steps):
+        fig, ax = plt.subplots(figsize=(4.2, 3.0))
+        r.plot_diagram("M", ax=ax)
+        ax.set_title(f"{name}: M at step {r.state_steps[-1]}", fontsize=8)
+        pngs.append(save(fig, out, f"moment-{name}"))
+    if len(r.buckling_load_factors):
+        fig, ax = plt.subplots(figsize=(4.2, 3.0))
+        r.plot_buckling(0, ax=ax)
+        ax.set_title(f"{name}: buckling mode 1, λ = {r.buckling_load_factors[0]:.4g}", fontsize=8)
+        pngs.append(save(fig, out, f"buckling-{name}"))
+    return pngs
+
+
 def examples(out):
-    """[(name, title, summary, notes, model_png, png)] for every examples/*.json run into OUT/<name>/:
-    the model as drawn before solving, and its deformed shapes."""
+    """[(name, title, summary, notes, [png])] for every examples/*.json run into OUT/<name>/: the
+    model as drawn before solving, its deformed shapes, its M diagram, its first buckling mode."""
     drawing = model_plot()
     source = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples")
     rows = []
@@ -219,7 +242,8 @@ def examples(out):
         ax.set_xticks([])
         ax.set_yticks([])
         ax.set_title(name + (f" (displacements × {scale:g})" if scale != 1.0 else "") + chords_only(results), fontsize=8)
-        rows.append((name, results.get("title", ""), summary, results.get("notes", []), model_png, save(fig, out, f"example-{name}")))
+        pngs = [model_png, save(fig, out, f"example-{name}")] + engineer_figures(out, name, os.path.join(source, file), path)
+        rows.append((name, results.get("title", ""), summary, results.get("notes", []), pngs))
     return rows
 
 
@@ -304,13 +328,14 @@ closer to the edge.</p>""")
 (results.json, steps.csv; <code>tsmframe run … --plot</code> draws the full plots): the model as
 <code>tsmframe plot</code> draws it before solving (supports, hinges, springs, loads at λ = 1 — a stage's in
 its own colour —, contact nodes and the members they may touch), its deformed shapes from the undeformed
-(grey) to the last step (yellow), how the run ended, and its notes.</p>""")
-        for name, title, summary, notes, model_png, png in example_rows:
+(grey) to the last step (yellow), its bending moment M at the last state (drawn on the tension side), its
+first buckling mode where the model asks for buckling, how the run ended, and its notes.</p>""")
+        for name, title, summary, notes, pngs in example_rows:
             note_list = "".join(f"<li>{e(n)}</li>" for n in notes)
-            parts.append(f'<div style="display:flex;gap:1em;align-items:flex-start;margin:1em 0">'
-                         f'<div style="flex:0 0 300px">{embed(model_png)}</div>'
-                         f'<div style="flex:0 0 300px">{embed(png)}</div><div><b>{e(name)}</b>: {e(title)}<br>'
-                         f'<em>{e(summary)}</em>{"<ul>" + note_list + "</ul>" if notes else ""}</div></div>')
+            figures = "".join(f'<div style="flex:0 0 260px">{embed(png)}</div>' for png in pngs)
+            parts.append(f'<div style="margin:1.5em 0"><div><b>{e(name)}</b>: {e(title)}<br>'
+                         f'<em>{e(summary)}</em>{"<ul>" + note_list + "</ul>" if notes else ""}</div>'
+                         f'<div style="display:flex;flex-wrap:wrap;gap:0.5em">{figures}</div></div>')
     parts.append("</body></html>")
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "report.html"), "w") as f:

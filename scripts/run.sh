@@ -42,7 +42,7 @@ for study in studies/*.json; do
   printf '%-28s exit %d  %s\n' "study $name" "$code" "$(tail -n 1 "out/studies-$name.log")" | tee -a out/summary.txt
   [ $code -le 1 ] || status=1
 done
-/usr/bin/python3 scripts/report.py out | tee -a out/summary.txt
+PYTHONPATH=build/python /usr/bin/python3 scripts/report.py out | tee -a out/summary.txt  # the package draws M and buckling modes
 # The same Fig. 7 study through the Python module (examples/python/)
 PYTHONPATH=build/python /usr/bin/python3 examples/python/fig7_contact_edge.py out/python > out/python.log 2>&1 \
   && echo "python example fig7_contact_edge: out/python/fig7-python.png" | tee -a out/summary.txt \

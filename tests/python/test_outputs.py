@@ -301,6 +301,41 @@ class Plots(unittest.TestCase):
             with open(os.path.join(out, "plots", "deformed.png"), "rb") as f:
                 self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
 
+    def test_report_writes_one_page_of_what_an_engineer_reads(self):
+        # --report: DIR/report.html, self-contained, drawn by the package from the results read
+        # back — the model, the shapes, λ against the monitored dofs, N/V/M and, for the column
+        # (analysis.buckling), its modes with their load factors; nothing else left in DIR.
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "column")
+            r = run("run", os.path.join(SOURCE, "examples", "column-buckling.json"), "--out", out, "--report")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertIn(f"report: {out}/report.html", r.stdout)
+            self.assertEqual(sorted(os.listdir(out)), ["report.html", "results.json", "steps.csv"])
+            with open(os.path.join(out, "report.html")) as f:
+                page = f.read()
+            for heading in ("The model", "Deformed shapes", "Load–displacement", "N, V and M at the last state",
+                            "Buckling mode 1 (linearised, at the unloaded state)", "Buckling mode 2 (linearised, at the unloaded state)"):
+                self.assertTrue(f"<h2>{heading}</h2>" in page, heading)
+            self.assertEqual(page.count('<img src="data:image/png;base64,'), 6)
+            with open(os.path.join(out, "results.json")) as f:
+                factors = [m["load_factor"] for m in json.load(f)["buckling"]]
+            self.assertTrue("Linearised critical load factors: " + ", ".join(f"{x:.6g}" for x in factors) in page)
+            self.assertTrue("converged: 20 converged steps" in page)
+            # A run that stops short is reported too: its converged steps and why it stopped.
+            m = os.path.join(d, "short.json")
+            with open(os.path.join(SOURCE, "examples", "portal-frame.json")) as f:
+                model = json.load(f)
+            model["analysis"]["max_iterations"] = 1
+            model["analysis"]["max_cutbacks"] = 0
+            with open(m, "w") as f:
+                json.dump(model, f)
+            r = run("run", m, "--out", os.path.join(d, "short"), "--report", "-q")
+            self.assertEqual(r.returncode, 1, r.stderr)
+            with open(os.path.join(d, "short", "report.html")) as f:
+                page = f.read()
+            self.assertTrue("<h2>The model</h2>" in page)
+            self.assertTrue("<b>cutback-limit: 0 converged steps, 1 iterations — step 1 (load factor 0 -&gt; 0.1) failed" in page)
+
     def test_the_report_shows_each_example_run_with_its_shapes_and_notes(self):
         # out/ as scripts/run.sh leaves it, for two examples and no studies: the report has a
         # section per example (its shapes drawn, how it ended, its notes) and says the studies'
@@ -309,8 +344,9 @@ class Plots(unittest.TestCase):
             for name in ("portal-frame", "push-on-a-node"):
                 r = run("run", os.path.join(SOURCE, "examples", name + ".json"), "--out", os.path.join(d, name), "-q")
                 self.assertEqual(r.returncode, 0, r.stderr)
+            package = os.path.join(os.path.dirname(os.path.abspath(BINARY)), "python")  # as scripts/run.sh runs it
             r = subprocess.run(["/usr/bin/python3", os.path.join(SOURCE, "scripts", "report.py"), d],
-                               capture_output=True, text=True)
+                               capture_output=True, text=True, env={**os.environ, "PYTHONPATH": package})
             self.assertEqual(r.returncode, 0, r.stderr)
             with open(os.path.join(d, "report.html")) as f:
                 page = f.read()
@@ -332,7 +368,8 @@ class Plots(unittest.TestCase):
             for name in ("portal-frame", "push-on-a-node"):
                 self.assertGreater(os.path.getsize(os.path.join(d, "plots", f"example-{name}.png")), 1000)
                 self.assertGreater(os.path.getsize(os.path.join(d, "plots", f"model-{name}.png")), 1000)  # the model drawn
-            self.assertEqual(page.count('<img src="data:image/png;base64,'), 4)  # each example's model and shapes
+                self.assertGreater(os.path.getsize(os.path.join(d, "plots", f"moment-{name}.png")), 1000)  # its M
+            self.assertEqual(page.count('<img src="data:image/png;base64,'), 6)  # each example's model, shapes and M
             self.assertIn("not produced: run scripts/run.sh first", page)
 
     def test_a_paragraph_long_title_is_wrapped_not_a_page_wide_plot(self):
