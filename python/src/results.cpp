@@ -38,6 +38,25 @@ void add_outcome(py::dict& out, const Model& model, const solver::RunResult& res
     critical.append(point);
   }
   out["critical_points"] = critical;
+  py::list limits;  // λ's extrema along the path, located where the stepping could
+  for (const solver::LimitPoint& p : result.limit_points) {
+    py::dict point;
+    point["step"] = p.step;
+    point["kind"] = p.maximum ? "maximum" : "minimum";
+    point["load_factor"] = p.load_factor;
+    if (p.refined) {
+      py::dict located;
+      located["load_factor"] = p.refined->load_factor;
+      located["node"] = model.nodes[p.refined->dof / dofs_per_node].id;
+      located["dof"] = dof_name(p.refined->dof % dofs_per_node);
+      located["value"] = p.refined->value;
+      located["evaluations"] = p.refined->evaluations;
+      point["located"] = located;
+    }
+    if (p.contact_kink) point["contact_kink"] = true;
+    limits.append(point);
+  }
+  out["limit_points"] = limits;
   py::list neutral;  // steps in neutral equilibrium: the motion the supports leave free there
   for (const solver::NeutralStep& n : result.neutral_steps) {
     py::dict step;

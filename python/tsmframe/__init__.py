@@ -307,6 +307,10 @@ class Result:
     status, message            how the run ended ("converged", "diverged", …)
     notes                      remarks on the path (list of sentences; e.g. a jump across a snap-back)
     critical_points            bifurcations found under load control: dicts of step, load_factor, bracket
+    limit_points               λ's extrema along the path: dicts of step, kind ("maximum", "minimum"), load_factor
+                               (the step's); under arc-length control without contacts "located": the extremum
+                               between the steps (load_factor, and the node, dof and value there); "contact_kink"
+                               where a contact changed elements around it (maybe the mesh's extremum)
     buckling_load_factors (b,), buckling_modes (b, n, 3)
                                with analysis.buckling: the linearised critical load factors at the unloaded state,
                                ascending, and their mode shapes (ux, uy, rz per node, largest translation 1)

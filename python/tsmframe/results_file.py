@@ -90,6 +90,7 @@ def read_results(path):
     data = {
         "status": document["status"], "message": document["message"], "notes": document.get("notes", []),
         "critical_points": [{**c, "bracket": tuple(c["bracket"])} for c in document.get("critical_points", [])],
+        "limit_points": document.get("limit_points", []),
         "neutral_equilibria": [{**n, **({"about": tuple(n["about"])} if "about" in n else {"direction": tuple(n["direction"])})}
                                for n in document.get("neutral_equilibria", [])],
         "stages": document.get("stages", []),

@@ -8,7 +8,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <cmath>
+#include <fstream>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -95,6 +98,47 @@ TEST(ArcLength, AgreesWithLoadControlWhereBothGo) {
 // 24 from the knee; E = 720, A = 6, I = 2 (b = 3, h = 2). Limit load P L²/EI ≈ 18.5 (Lee, Manuel &
 // Rossow 1968; Schweizerhof & Wriggers, CMAME 59, 1986), followed by a snap-back: the load
 // point's deflection turns back along the path.
+
+TEST(ArcLength, TheTrussLimitPointsAreLocatedBetweenCoarseSteps) {
+  // Steps of 0.02 (the steps' own extrema 2.5e-3 off): each limit point is located between them
+  // to the closed form's extremum, λ to 1e-9 (the equilibria's Newton tolerance is 1e-8), the apex
+  // drop there to 1e-3 of the rise (the top is flat: λ − λ* ∝ (w − w*)²). The bars hinged at both
+  // ends: with I = 1e-9 their bending alone moves the extremum by 7e-7.
+  json m = truss_model({{"type", "arc-length"}, {"initial_increment", 0.02}, {"max_increment", 0.02}, {"max_steps", 500},
+                        {"until", {{"node", 2}, {"dof", "uy"}, {"value", -0.25}}}});
+  for (json& member : m["members"]) member["release"] = "both";
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  ASSERT_EQ(r.limit_points.size(), 2u);
+  // The closed form's extrema by golden sections: the maximum before the bars are flat, the minimum after.
+  const auto extreme = [](double a, double b, double sign) {
+    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+    for (int k = 0; k < 200; ++k) {
+      const double c = b - g * (b - a), d = a + g * (b - a);
+      if (sign * truss_load(c) > sign * truss_load(d)) b = d;
+      else a = c;
+    }
+    return 0.5 * (a + b);
+  };
+  const double w_max = extreme(0.0, rise, 1.0), w_min = extreme(rise, 2.0 * rise, -1.0);
+  const double exact[2][2] = {{w_max, truss_load(w_max)}, {w_min, truss_load(w_min)}};
+  for (int k = 0; k < 2; ++k) {
+    const tsm::solver::LimitPoint& p = r.limit_points[k];
+    ASSERT_TRUE(p.refined.has_value()) << "limit point " << k;
+    EXPECT_EQ(p.maximum, k == 0);
+    EXPECT_FALSE(p.contact_kink);
+    const double step_error = std::abs(p.load_factor * reference_load - exact[k][1]);
+    EXPECT_GT(step_error, 1e-4 * std::abs(exact[k][1])) << "the steps already hit it: no test of the location";
+    EXPECT_NEAR(p.refined->load_factor * reference_load, exact[k][1], 1e-9 * std::abs(exact[k][1])) << "limit point " << k;
+    EXPECT_EQ(p.refined->dof, 3 * model.node_index(2) + tsm::uy);
+    EXPECT_NEAR(-p.refined->value, exact[k][0], 1e-3 * rise) << "limit point " << k;
+    EXPECT_LE(p.refined->evaluations, 6);
+    std::printf("[figure] truss limit %d: steps %.3e off, located %.3e off (%d equilibria)\n", k,
+                step_error / std::abs(exact[k][1]),
+                std::abs(p.refined->load_factor * reference_load - exact[k][1]) / std::abs(exact[k][1]), p.refined->evaluations);
+  }
+}
 
 TEST(ArcLength, LeesFrameLimitLoadAndSnapBack) {
   const json m = {
@@ -401,6 +445,40 @@ TEST(ArcLength, ContactAgreesWithLoadControl) {
   EXPECT_EQ(arc.steps.back().contacts[0].element, at.contacts[0].element);
   EXPECT_NEAR(arc.steps.back().contacts[0].alpha, at.contacts[0].alpha, 1e-9);
   EXPECT_NEAR(arc.steps.back().contacts[0].force, at.contacts[0].force, 1e-8 * at.contacts[0].force);
+}
+
+}  // namespace
+
+namespace {
+
+// ---- A limit point where a contact point changes elements ----
+
+TEST(ArcLength, AnExtremumWhereAContactChangesElementsIsToldAsSuch) {
+  // examples/cantilever-on-cantilever-arc-length.json: one cantilever's tip slides along the other
+  // (20 elements), under arc-length control. Each limit point is marked where, and only where, a
+  // contact's element changes between the steps around it, and then has a note; with contacts the
+  // points are not located (a trial equilibrium would move the contacts' references).
+  std::ifstream file(std::string(TSMFRAME_SOURCE_DIR) + "/examples/cantilever-on-cantilever-arc-length.json");
+  tsm::Model model;
+  const RunResult r = run(json::parse(file), model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  std::vector<const StepRecord*> path;
+  for (const StepRecord& s : r.steps)
+    if (s.converged) path.push_back(&s);
+  int kinks = 0;
+  for (const tsm::solver::LimitPoint& p : r.limit_points) {
+    EXPECT_FALSE(p.refined.has_value());
+    const auto at = std::find_if(path.begin(), path.end(), [&](const StepRecord* s) { return s->step == p.step; });
+    ASSERT_TRUE(at != path.end() && at != path.begin() && at + 1 != path.end());
+    const auto element = [](const StepRecord* s) { return std::make_pair(s->contacts[0].element, s->contacts[0].partner); };
+    const bool changes = element(*(at - 1)) != element(*at) || element(*at) != element(*(at + 1));
+    EXPECT_EQ(p.contact_kink, changes) << "step " << p.step;
+    kinks += changes;
+    const std::string note = "the load " + std::string(p.maximum ? "maximum" : "minimum") + " at step " + std::to_string(p.step);
+    EXPECT_EQ(std::count_if(r.notes.begin(), r.notes.end(), [&](const std::string& n) { return n.rfind(note, 0) == 0; }),
+              changes ? 1 : 0) << "step " << p.step;
+  }
+  EXPECT_GE(kinks, 1);
 }
 
 }  // namespace

@@ -187,6 +187,13 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
   for (const solver::LimitPoint& p : result.limit_points) {
     w.newline().begin_object();
     w.key("step").value(p.step).key("kind").value(p.maximum ? "maximum" : "minimum").key("load_factor").value(p.load_factor);
+    if (p.refined) {  // located between the steps (solver/limit_point)
+      const solver::RefinedLimit& r = *p.refined;
+      w.key("located").begin_object().key("load_factor").value(r.load_factor);
+      w.key("node").value(model.nodes[r.dof / dofs_per_node].id).key("dof").value(dof_name(r.dof % dofs_per_node));
+      w.key("value").value(r.value).key("evaluations").value(r.evaluations).end_object();
+    }
+    if (p.contact_kink) w.key("contact_kink").value(true);
     w.end_object();
   }
   w.end_array();

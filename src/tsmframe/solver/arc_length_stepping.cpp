@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "tsmframe/solver/diagnosis.hpp"
+#include "tsmframe/solver/limit_point.hpp"
 #include "tsmframe/solver/stability.hpp"
 #include "tsmframe/solver/step_start.hpp"
 
@@ -48,6 +50,12 @@ class ArcLengthStepping {
     const double after = watched(control_, state.load_factor, state.displacements);
     return (before - control_.until_value) * (after - control_.until_value) <= 0.0 && after != before;
   }
+  /// Where the step just converged to `state` from `start` makes its start a strict extremum of λ:
+  /// the bracket around it (not with contacts, whose references a trial equilibrium would move).
+  std::optional<LimitBracket> limit_bracket(const Eigen::VectorXd& start, const State& state) const;
+  /// Locates the limit point in `bracket` from `peak` (its step's state), then evaluates the
+  /// structure at `state` again, where the path goes on.
+  void locate(const LimitBracket& bracket, const State& peak, State& state);
   /// No arc reaches the path from the step's start (restored in `state`): one load-controlled
   /// step of the last Δλ across the jump. Returns whether it converged.
   bool jump_across(State& state);
@@ -68,6 +76,9 @@ class ArcLengthStepping {
   double arc_;
   int halvings_ = 0, converged_steps_ = 0;
   const bool watching_;
+  // The converged step before the newest, for a limit point at the newest: its λ and number.
+  double previous_start_lambda_ = std::nan("");
+  int previous_step_ = 0;
   StepStart saved_;  // the start of the step being tried (reused: no allocation per step)
 };
 
@@ -120,8 +131,14 @@ RunResult ArcLengthStepping::run(State& state) {
 bool ArcLengthStepping::converged(StepRecord record, const NewtonOutcome& outcome, State& state) {
   record.increment = state.load_factor - saved_.load_factor();
   ++converged_steps_;
-  // The step's increment steers the next predictor.
+  const int step = record.step;
   const Eigen::VectorXd& start = saved_.displacements();
+  const std::optional<LimitBracket> bracket = limit_bracket(start, state);
+  State peak;  // the extreme step's state, taken before recording lets its displacements go
+  if (bracket) saved_.restore(peak);
+  previous_start_lambda_ = saved_.load_factor();
+  previous_step_ = step;
+  // The step's increment steers the next predictor.
   constraint_.previous_increment.resize(dofs_.free_count());
   for (int eq = 0; eq < dofs_.free_count(); ++eq)
     constraint_.previous_increment[eq] = state.displacements[dofs_.dof(eq)] - start[dofs_.dof(eq)];
@@ -139,7 +156,34 @@ bool ArcLengthStepping::converged(StepRecord record, const NewtonOutcome& outcom
   if (reached) saved_.restore(landed);
   recorder_.converged(std::move(record), outcome, state);
   if (reached) land(std::move(landed), state);
+  else if (bracket) locate(*bracket, peak, state);
   return reached;
+}
+
+std::optional<LimitBracket> ArcLengthStepping::limit_bracket(const Eigen::VectorXd& start, const State& state) const {
+  const Eigen::VectorXd& into = constraint_.previous_increment;  // the step before's increment
+  if (!model_.contacts.empty() || std::isnan(previous_start_lambda_) || into.size() == 0) return std::nullopt;
+  const double before = previous_start_lambda_, here = saved_.load_factor(), after = state.load_factor;
+  const bool maximum = here > before && here > after, minimum = here < before && here < after;
+  if (!maximum && !minimum) return std::nullopt;
+  // A translation locates it (a rotation may be held only by a member's small bending stiffness:
+  // a pin-jointed bar's end), a rotation only where no translation moves one way.
+  Eigen::VectorXd out(dofs_.free_count()), translation(dofs_.free_count());
+  for (int eq = 0; eq < dofs_.free_count(); ++eq) {
+    out[eq] = state.displacements[dofs_.dof(eq)] - start[dofs_.dof(eq)];
+    translation[eq] = dofs_.dof(eq) % dofs_per_node == rz ? 0.0 : 1.0;
+  }
+  int eq = monotone_equation(into, out, translation);
+  if (eq < 0) eq = monotone_equation(into, out, Eigen::VectorXd::Ones(dofs_.free_count()) - translation);
+  if (eq < 0) return std::nullopt;
+  const double u = start[dofs_.dof(eq)];
+  return LimitBracket{previous_step_, maximum, eq, {u - into[eq], u, u + out[eq]}, {before, here, after}};
+}
+
+void ArcLengthStepping::locate(const LimitBracket& bracket, const State& peak, State& state) {
+  if (const std::optional<RefinedLimit> refined = refine_limit_point(bracket, peak, dofs_, newton_))
+    result_.refined_limits.push_back(*refined);
+  newton_.reset(state);
 }
 
 void ArcLengthStepping::land(State landed, State& state) {

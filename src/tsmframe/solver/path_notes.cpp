@@ -238,8 +238,19 @@ std::vector<std::string> neutral_notes(const Model& model, const std::vector<Neu
 
 }  // namespace
 
-/// Limit points: converged steps whose λ is a strict local extremum of the path.
-std::vector<LimitPoint> limit_points(const std::vector<StepRecord>& steps) {
+namespace {
+
+/// Whether a contact point changed elements between two converged steps (passed an element end,
+/// or touched or let go: the contact's path has a kink there either way).
+bool contact_changed_element(const StepRecord& a, const StepRecord& b) {
+  for (size_t c = 0; c < std::min(a.contacts.size(), b.contacts.size()); ++c)
+    if (a.contacts[c].element != b.contacts[c].element || a.contacts[c].partner != b.contacts[c].partner) return true;
+  return false;
+}
+
+}  // namespace
+
+std::vector<LimitPoint> limit_points(const std::vector<StepRecord>& steps, const std::vector<RefinedLimit>& refined) {
   std::vector<const StepRecord*> path;
   for (const StepRecord& s : steps)
     if (s.converged) path.push_back(&s);
@@ -247,12 +258,37 @@ std::vector<LimitPoint> limit_points(const std::vector<StepRecord>& steps) {
   double before = 0.0;  // λ at the start of the path
   for (size_t k = 0; k + 1 < path.size(); ++k) {
     const double here = path[k]->load_factor, after = path[k + 1]->load_factor;
-    if (here > before && here > after) points.push_back({path[k]->step, true, here});
-    if (here < before && here < after) points.push_back({path[k]->step, false, here});
+    const bool maximum = here > before && here > after, minimum = here < before && here < after;
     before = here;
+    if (!maximum && !minimum) continue;
+    LimitPoint point{path[k]->step, maximum, here};
+    for (const RefinedLimit& r : refined)
+      if (r.step == point.step) point.refined = r;
+    point.contact_kink = (k > 0 && contact_changed_element(*path[k - 1], *path[k])) ||
+                             contact_changed_element(*path[k], *path[k + 1]);
+    points.push_back(point);
   }
   return points;
 }
+
+namespace {
+
+/// Limit points where a contact point changed elements between the steps around them.
+std::vector<std::string> contact_kink_notes(const std::vector<LimitPoint>& limits) {
+  std::vector<std::string> notes;
+  for (const LimitPoint& p : limits) {
+    if (!p.contact_kink) continue;
+    std::ostringstream os;
+    os << "the load " << (p.maximum ? "maximum" : "minimum") << " at step " << p.step << " (load factor " << p.load_factor
+       << ") comes where a contact point changes elements (passes an element end, touches or lets go): the contact's "
+       << "path kinks there, so that on a coarse mesh the extremum may be the mesh's rather than the structure's — a "
+       << "finer mesh of the touched members tells";
+    notes.push_back(os.str());
+  }
+  return notes;
+}
+
+}  // namespace
 
 std::string unresolved_buckling_note(int asked, size_t found) {
   std::ostringstream os;
@@ -265,7 +301,9 @@ std::string unresolved_buckling_note(int asked, size_t found) {
 
 /// What the result says about its path besides the steps: the limit points, and the notes.
 void close_path(const Model& model, RunResult& result, ControlType control) {
-  result.limit_points = limit_points(result.steps);
+  result.limit_points = limit_points(result.steps, result.refined_limits);
+  if (control == ControlType::load)  // λ's extrema are the path's legs: the user's, not the structure's
+    for (LimitPoint& p : result.limit_points) p.contact_kink = false;
   result.notes = nothing_carried_notes(result.steps);
   if (control == ControlType::displacement)
     for (std::string& note : jump_notes(result.steps)) result.notes.push_back(std::move(note));
@@ -273,6 +311,7 @@ void close_path(const Model& model, RunResult& result, ControlType control) {
     for (std::string& note : snap_notes(result.steps)) result.notes.push_back(std::move(note));
   for (std::string& note : stability_notes(result.steps, result.limit_points, result.critical_points))
     result.notes.push_back(std::move(note));
+  for (std::string& note : contact_kink_notes(result.limit_points)) result.notes.push_back(std::move(note));
   for (std::string& note : neutral_notes(model, result.neutral_steps)) result.notes.push_back(std::move(note));
   for (std::string& note : slid_off_notes(model, result.steps)) result.notes.push_back(std::move(note));
   for (std::string& note : strain_notes(model, result.steps)) result.notes.push_back(std::move(note));

@@ -12,8 +12,10 @@
 
 namespace tsm::solver {
 
-/// Limit points: converged steps whose λ is a strict local extremum of the path.
-std::vector<LimitPoint> limit_points(const std::vector<StepRecord>& steps);
+/// Limit points: converged steps whose λ is a strict local extremum of the path, each with its
+/// location where the stepping found it (`refined`, by step), and marked where a contact point
+/// passed an element end between the steps around it.
+std::vector<LimitPoint> limit_points(const std::vector<StepRecord>& steps, const std::vector<RefinedLimit>& refined = {});
 
 /// The note for linearised buckling that resolved `found` of the `asked` modes, the next lost in
 /// round-off (solver/buckling).

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -84,11 +85,25 @@ struct StepRecord {
   std::vector<std::vector<ContactPoint>> contact_iterates;
 };
 
+/// A limit point located between the converged steps around it (solver/limit_point): λ's
+/// extremum and where it is, as the value of one dof.
+struct RefinedLimit {
+  int step = 0;               ///< the converged step nearest it
+  double load_factor = 0.0;   ///< λ at the extremum
+  int dof = 0;                ///< the dof that located it (global), and its value there
+  double value = 0.0;
+  int evaluations = 0;        ///< equilibria solved to find it
+};
+
 /// A converged step where λ is largest or smallest among its neighbours on the path.
 struct LimitPoint {
   int step = 0;
   bool maximum = true;
   double load_factor = 0.0;
+  std::optional<RefinedLimit> refined;  ///< arc-length control without contacts
+  /// A contact point changed elements between the steps around it (passed an element end, touched
+  /// or let go): the contact's path kinks there, and the extremum may be the mesh's, not the structure's.
+  bool contact_kink = false;
 };
 
 /// Where the tangent lost its positive definiteness between two converged steps under load
@@ -120,6 +135,7 @@ struct RunResult {
   RunFailure failure;   ///< why it did not, as facts
   std::vector<StepRecord> steps;
   std::vector<LimitPoint> limit_points;  ///< in path order
+  std::vector<RefinedLimit> refined_limits;  ///< the limit points located, by the stepping
   std::vector<CriticalPoint> critical_points;  ///< bifurcations found under load control, in path order
   std::vector<NeutralStep> neutral_steps;      ///< in path order
   Buckling buckling;                           ///< linearised buckling at the unloaded state, if asked for
