@@ -8,7 +8,25 @@
 
 namespace tsm::python {
 
-void run_interruptible(const std::function<void(const solver::StopRequest*)>& work) {
+namespace {
+
+/// The signals, then `poll`, with the GIL held: whether either raised (the error stays set).
+bool check(const std::function<void()>& poll) {
+  py::gil_scoped_acquire acquire;
+  if (PyErr_CheckSignals() != 0) return true;  // the main thread only
+  if (!poll) return false;
+  try {
+    poll();
+  } catch (py::error_already_set& e) {
+    e.restore();
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void run_interruptible(const std::function<void(const solver::StopRequest*)>& work, const std::function<void()>& poll) {
   solver::StopRequest stop;
   std::exception_ptr failure;
   bool done = false, interrupted = false;
@@ -30,16 +48,14 @@ void run_interruptible(const std::function<void(const solver::StopRequest*)>& wo
     while (!finished.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; })) {
       if (interrupted) continue;
       lock.unlock();
-      {
-        py::gil_scoped_acquire acquire;
-        interrupted = PyErr_CheckSignals() != 0;  // the main thread only; the exception stays set
-      }
+      interrupted = check(poll);
       if (interrupted) stop.request();
       lock.lock();
     }
     lock.unlock();
     worker.join();
   }
+  if (!interrupted && poll) poll();  // what the work queued after the last check
   if (interrupted) throw py::error_already_set();
   if (failure) std::rethrow_exception(failure);
 }

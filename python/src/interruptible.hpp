@@ -12,6 +12,10 @@
 namespace tsm::python {
 
 /// Runs `work` with the stop request it is to poll, as above; what `work` throws is rethrown.
-void run_interruptible(const std::function<void(const solver::StopRequest*)>& work);
+/// `poll` (if any) runs with the GIL held beside each check of the signals and once when the work
+/// is done — where a progress callback reports what the work queued; what it raises stops the
+/// work like Ctrl-C and is raised here.
+void run_interruptible(const std::function<void(const solver::StopRequest*)>& work,
+                       const std::function<void()>& poll = {});
 
 }  // namespace tsm::python

@@ -254,12 +254,32 @@ class Model:
         (the free motion named) where the supports leave the structure free. ValueError for bad input."""
         return _json.loads(_model_drawing(self.to_json()))
 
+    def _repr_png_(self):
+        """Jupyter shows a Model as its drawing (None, and so its text, where it cannot be read)."""
+        try:
+            drawing = self.drawing()
+        except ValueError:
+            return None
+        from .model_plot import plot_model
+        return _png(lambda ax: plot_model(drawing, ax))
+
     def plot(self, ax=None, node_labels=None):
         """Draw the model before solving (matplotlib): members, supports by their usual symbols,
         hinges, springs, loads as arrows, contact nodes and the members they may touch — what
         `tsmframe plot` draws. A mechanism is drawn too, its free motion written under it. Returns ax."""
         from .model_plot import plot_model
         return plot_model(self.drawing(), ax, node_labels)
+
+
+def _png(draw, size=(7.0, 4.5)):
+    """PNG bytes of a figure `draw(ax)` fills, drawn off pyplot (no figure left open to show twice)."""
+    import io
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=size)
+    draw(fig.subplots())
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", dpi=90, bbox_inches="tight")
+    return buffer.getvalue()
 
 
 def _read_text(path):
@@ -413,6 +433,29 @@ class Result:
         cuts = _np.flatnonzero(_np.diff(rows[:, 0])) + 1
         return [part[:, [1, column]] for part in _np.split(rows, cuts)]
 
+    def _repr_html_(self):
+        """Jupyter shows a Result as how its run ended — status, steps, λ, limit and buckling load
+        factors, notes — over its deformed shape at the last state."""
+        import base64
+        import html
+        e = html.escape
+        converged = self.load_factor[self.converged == 1]
+        rows = [("status", self.status + (f": {self.message}" if self.message else "")),
+                ("converged steps", f"{len(converged)} ({int(self.iterations.sum())} iterations)"),
+                ("load factor at the end", f"{converged[-1]:.6g}" if len(converged) else "—")]
+        if self.limit_points:
+            rows.append(("limit points", ", ".join(
+                f"{p['kind']} {p.get('located', p)['load_factor']:.6g} (step {p['step']})" for p in self.limit_points)))
+        if len(self.buckling_load_factors):
+            rows.append(("buckling load factors", ", ".join(f"{x:.6g}" for x in self.buckling_load_factors)))
+        table = "".join(f"<tr><th style='text-align:left'>{e(k)}</th><td style='text-align:left'>{e(v)}</td></tr>" for k, v in rows)
+        notes = "".join(f"<li>{e(n)}</li>" for n in self.notes)
+        figure = ""
+        if len(self.state_steps) and (self._model is not None or self._model_text is not None):
+            png = _png(lambda ax: self.plot_shape(ax=ax))
+            figure = f'<img src="data:image/png;base64,{base64.b64encode(png).decode()}">'
+        return f"<table>{table}</table>" + (f"<ul>{notes}</ul>" if notes else "") + figure
+
     # plots (matplotlib, imported on use)
     def plot_model(self, ax=None, node_labels=None):
         """The model as drawn before solving (Model.plot's picture), from the supports, loads and
@@ -445,18 +488,22 @@ class Result:
         return plot_iterations(self, ax, **kw)
 
 
-def run(model, threads=0, start=None, step=None):
+def run(model, threads=0, start=None, step=None, progress=None):
     """Run a Model, a docs/format.md dict, a JSON text or a file path. Raises ValueError for bad input.
     start: go on from a kept step of an earlier run of the same model — a Result, or the path of
     its results.json — at step `step` (None: its newest step with state); the steps are numbered
-    on from it (the CLI's --from)."""
+    on from it (the CLI's --from).
+    progress: called with a dict for each step as it ends (step, stage, load_factor, iterations,
+    converged, cutbacks, message; a step redone to land on an arc-length `until` is heard again),
+    in the calling thread, every 50 ms at most behind the solver;
+    an exception it raises stops the run at its next step and is raised here (as Ctrl-C does)."""
     start_text = ""
     if start is not None:
         start_text = start.results_json if isinstance(start, Result) else _read_text(_os.fspath(start))
     step = 0 if step is None else int(step)
     text, path = _model_text(model)
     try:
-        return Result(_run_json(text, threads, start_text, step), text)
+        return Result(_run_json(text, threads, start_text, step, progress), text)
     except ValueError as e:
         if path is None:
             raise

@@ -1,6 +1,7 @@
 """The Python module (issue 7), run by pytest from the README's test command:
 results equal the CLI's results.json bit for bit, bad input raises ValueError with the JSON path,
 arrays have the documented shapes, the model builder works, plots are written as PNG."""
+import html
 import json
 import math
 import os
@@ -783,3 +784,39 @@ def test_a_result_read_back_without_its_model_has_all_but_the_curves(tmp_path):
     (tmp_path / "cut.json").write_text(r.results_json[:1000])
     with pytest.raises(ValueError, match="cut.json: invalid JSON at line"):
         tf.Result.load(tmp_path / "cut.json")
+
+
+def test_a_progress_callback_hears_every_step_and_may_stop_the_run():
+    # Lee's frame under arc-length control: every step in order, the last twice — the arc-length
+    # step that passed the `until` target, then the same step redone to land on it (as the
+    # command line's progress lines show it).
+    seen = []
+    r = tf.run(os.path.join(SOURCE, "examples", "lee-frame-arc-length.json"), progress=seen.append)
+    assert [s["step"] for s in seen] == list(r.step) + [r.step[-1]]
+    last = {s["step"]: s for s in seen}
+    assert [last[k]["load_factor"] for k in r.step] == list(r.load_factor)
+    assert [last[k]["iterations"] for k in r.step] == list(r.iterations)
+    assert all(s["converged"] and s["stage"] == 1 and s["message"] == "" for s in seen)
+
+    class Enough(Exception):
+        pass
+
+    def stop_at_ten(s):
+        if s["step"] >= 10:
+            raise Enough(s["step"])
+
+    with pytest.raises(Enough):
+        tf.run(os.path.join(SOURCE, "examples", "lee-frame-arc-length.json"), progress=stop_at_ten)
+
+
+def test_jupyter_shows_a_model_as_its_drawing_and_a_result_as_its_end():
+    m = tf.load(os.path.join(SOURCE, "examples", "williams-toggle-arc-length.json"))
+    png = m._repr_png_()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 1000
+    assert tf.Model.from_dict({"nodes": "not a list"})._repr_png_() is None  # a bad model shows as text
+    r = tf.run(m)
+    page = r._repr_html_()
+    assert "<th style='text-align:left'>status</th><td style='text-align:left'>converged</td>" in page
+    assert f"maximum {r.limit_points[0]['located']['load_factor']:.6g} (step {r.limit_points[0]['step']})" in page
+    assert page.count('<img src="data:image/png;base64,') == 1
+    assert r.notes and all(f"<li>{html.escape(n)}</li>" in page for n in r.notes)
