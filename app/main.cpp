@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -35,6 +36,7 @@
 #include "tsmframe/study/study_runner.hpp"
 #include "tsmframe/study/study_writer.hpp"
 #include "tsmframe/version.hpp"
+#include "progress.hpp"
 #include "stop_signals.hpp"
 
 namespace {
@@ -195,8 +197,15 @@ int run(const RunOptions& options) {
   const std::filesystem::path vtk_dir = output.path() / "vtk";
   if (options.vtk) tsm::io::make_directories(vtk_dir.string());
   std::vector<std::pair<double, std::string>> vtk_steps;
+  // On a terminal a converged step's line gives way to the next; failed attempts and the
+  // iterates' log stay.
+  tsm::app::LiveLine live(std::cerr, tsm::app::stderr_is_terminal() && !options.log_iterations);
   const auto observer = [&](const tsm::solver::StepRecord& step) {
-    if (!options.quiet) std::cerr << progress_line(model, step, options.log_iterations) << std::endl;
+    if (!options.quiet) {
+      const std::string line = progress_line(model, step, options.log_iterations);
+      if (step.converged) live.passing(line);
+      else live.lasting(line);
+    }
     if (!options.vtk || !step.converged || !step.has_state) return;
     char name[32];
     std::snprintf(name, sizeof name, "step-%05d.vtu", step.step);
@@ -204,6 +213,7 @@ int run(const RunOptions& options) {
     vtk_steps.emplace_back(step.load_factor, name);
   };
   const tsm::solver::RunResult result = tsm::solver::run_analysis(model, observer, &stop, from ? &*from : nullptr);
+  live.finish();
   tsm::io::write_results(output.path().string(), model, result, {.curves = options.curves || options.plot});
   if (options.vtk) tsm::io::write_pvd((vtk_dir / "results.pvd").string(), vtk_steps);
   // An interrupted run is asked to end: no plots.
@@ -306,10 +316,20 @@ int study(const StudyOptions& options) {
   const tsm::solver::StopRequest& stop = tsm::app::install_stop_signals();
   tsm::io::OutputDirectory output(options.out, {"study.csv", "study.json", "cases"});  // as a run's (run above)
   const size_t total = definition.case_count();
-  size_t done = 0;
+  size_t done = 0, not_converged = 0;
+  // On a terminal a bar with the time left; elsewhere a line per case.
+  const bool bar = tsm::app::stderr_is_terminal();
+  tsm::app::LiveLine live(std::cerr, bar);
+  const auto started = std::chrono::steady_clock::now();
   const auto progress = [&](const tsm::study::CaseResult& row) {
     ++done;
+    not_converged += row.converged ? 0 : 1;
     if (options.quiet) return;
+    if (bar) {
+      const auto elapsed = std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() - started);
+      live.passing(tsm::app::progress_bar(done, total, not_converged, elapsed));
+      return;
+    }
     std::cerr << "case " << row.index + 1 << '/' << total;
     for (size_t p = 0; p < definition.parameters.size(); ++p)
       std::cerr << "  " << definition.parameters[p].name << ' ' << definition.parameters[p].labels[row.choice[p]];
@@ -319,6 +339,7 @@ int study(const StudyOptions& options) {
   // Ctrl-C: no new case starts, the running ones stop at their next step; the rows of the cases run are written.
   const std::vector<tsm::study::CaseResult> rows =
       tsm::study::run_study(definition, options.jobs, output.path().string(), progress, &stop);
+  live.finish();
   tsm::study::write_study(output.path().string(), definition, rows);
   output.commit();
   return report_study(options, total, rows);
