@@ -162,21 +162,37 @@ def _moment(ax, frame, node, mz, colour):
     _arrow(ax, tip, (0.3 * r * d[0], 0.3 * r * d[1]), colour)
 
 
+def _arrows(ax, heads, vectors, colour, dashed=False):
+    """Arrows ending at `heads`, each `vectors` long, as one artist (a distributed load's hundred
+    lumped forces drawn one patch each took seconds)."""
+    if not heads:
+        return
+    tails = [(x - dx, y - dy) for (x, y), (dx, dy) in zip(heads, vectors)]
+    ax.quiver([t[0] for t in tails], [t[1] for t in tails], [v[0] for v in vectors], [v[1] for v in vectors],
+              angles="xy", scale_units="xy", scale=1.0, color=colour, width=0.0025, headwidth=4, headlength=6,
+              headaxislength=5.5, zorder=6, linestyle="--" if dashed else "-", facecolor="none" if dashed else colour,
+              edgecolor=colour, linewidth=0.8 if dashed else 0.0)
+
+
 def _load_case(ax, frame, drawing, case, colour, scale):
     labelled = len(case["loads"]) + len(case["follower"]) <= 12  # a distributed load's many arrows unlabelled
+    heads, vectors = [], []
     for node, fx, fy, mz in case["loads"]:
         x, y = frame.xy[node]
         if fx or fy:
-            _arrow(ax, (x, y), (fx * scale, fy * scale), colour)
+            heads.append((x, y))
+            vectors.append((fx * scale, fy * scale))
             if labelled:
                 ax.annotate(f"{math.hypot(fx, fy):.4g}", (x - fx * scale, y - fy * scale), fontsize=7, color=colour)
         if mz:
             _moment(ax, frame, node, mz, colour)
             if labelled:
                 ax.annotate(f"{mz:.4g}", (x, y), xytext=(8, 8), textcoords="offset points", fontsize=7, color=colour)
-    for node, fx, fy in case["follower"]:
-        _arrow(ax, frame.xy[node], (fx * scale, fy * scale), colour, linestyle="--")
+    _arrows(ax, heads, vectors, colour)
+    _arrows(ax, [frame.xy[node] for node, _, _ in case["follower"]], [(fx * scale, fy * scale) for _, fx, fy in case["follower"]],
+            colour, dashed=True)
     pressures = dict((m, p) for m, p in case["pressures"])
+    heads, vectors = [], []
     for e in drawing["elements"]:
         p = pressures.get(e["member"])
         if not p:
@@ -184,8 +200,9 @@ def _load_case(ax, frame, drawing, case, colour, scale):
         (xa, ya), (xb, yb) = (frame.xy[n] for n in e["nodes"])
         t = _unit(xb - xa, yb - ya)
         push = (t[1] * math.copysign(1, p), -t[0] * math.copysign(1, p))  # from the member's left to its right
-        mid = ((xa + xb) / 2, (ya + yb) / 2)
-        _arrow(ax, mid, (push[0] * 1.5 * frame.symbol, push[1] * 1.5 * frame.symbol), colour, linestyle="--")
+        heads.append(((xa + xb) / 2, (ya + yb) / 2))
+        vectors.append((push[0] * 1.5 * frame.symbol, push[1] * 1.5 * frame.symbol))
+    _arrows(ax, heads, vectors, colour, dashed=True)
     for p in case["prescribed"]:
         x, y = frame.xy[p["node"]]
         text = f'{p["dof"]} {"+" if p["increment"] else "="} {p["value"]:.4g}'
@@ -217,12 +234,17 @@ def plot_model(drawing, ax=None, node_labels=None):
         _, ax = plt.subplots(figsize=(8, 6))
     frame = _Frame(drawing)
     touched = {m for c in drawing.get("contacts", []) for m in c["members"]}
+    # Each kind of line one artist, broken between elements (a line per element is slow to draw).
+    members, shaded = ([], []), ([], [])
     for e in drawing["elements"]:
         (xa, ya), (xb, yb) = (frame.xy[n] for n in e["nodes"])
-        if e["member"] in touched:
-            ax.plot([xa, xb], [ya, yb], color=CONTACT, lw=6, alpha=0.3, solid_capstyle="butt", zorder=1)
-        ax.plot([xa, xb], [ya, yb], color=MEMBER, lw=1.6, zorder=2)
+        for lines in (members, shaded) if e["member"] in touched else (members,):
+            lines[0].extend((xa, xb, math.nan))
+            lines[1].extend((ya, yb, math.nan))
         _ends(ax, frame, e)
+    if shaded[0]:
+        ax.plot(*shaded, color=CONTACT, lw=6, alpha=0.3, solid_capstyle="butt", zorder=1)
+    ax.plot(*members, color=MEMBER, lw=1.6, zorder=2)
     for s in drawing.get("supports", []):
         _support(ax, frame, s)
     hinged = any("release" in e for e in drawing["elements"])

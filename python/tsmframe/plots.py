@@ -14,21 +14,24 @@ def plot_shape(result, steps=(-1,), ax=None, undeformed=True, scale=1.0, **kw):
     drawn as its deflected curve, as Result.curves gives it, its displacements from the drawn
     geometry magnified `scale` times (1: true size; small deflections made visible)."""
     ax = _axes(ax)
-    if undeformed:
-        for a, b in result.element_nodes:
-            p = result.node_xy[[int(np.flatnonzero(result.node_ids == a)[0]), int(np.flatnonzero(result.node_ids == b)[0])]]
-            ax.plot(p[:, 0], p[:, 1], color="0.75", lw=1)
+    index = {int(i): k for k, i in enumerate(result.node_ids)}
+    ends = np.array([[index[int(a)], index[int(b)]] for a, b in result.element_nodes]).reshape(-1, 2)
+    if undeformed:  # one line broken between elements: one artist, not one per element
+        drawn = np.full((len(ends), 3, 2), np.nan)
+        drawn[:, 0], drawn[:, 1] = result.node_xy[ends[:, 0]], result.node_xy[ends[:, 1]]
+        ax.plot(drawn[:, :, 0].ravel(), drawn[:, :, 1].ravel(), color="0.75", lw=1)
     cmap = plt.get_cmap("viridis")
     given = kw.pop("color", None)  # one colour for every step drawn, else one per step from the colour map
     for n, k in enumerate(steps):
         colour = given or cmap(n / max(1, len(steps) - 1))
-        label = f"step {result.state_steps[k]}"
-        for c, points in enumerate(result.curves(k, segments=12)):
-            if scale != 1.0:  # from each element's drawn chord, at the same place along it
-                a, b = (result.node_xy[int(np.flatnonzero(result.node_ids == n)[0])] for n in result.element_nodes[c])
-                drawn = a + np.outer(np.linspace(0.0, 1.0, len(points)), b - a)
-                points = drawn + scale * (points - drawn)
-            ax.plot(points[:, 0], points[:, 1], color=colour, label=label if c == 0 else None, **kw)
+        points = result.curves(k, segments=12)  # (elements, 13, 2)
+        if scale != 1.0:  # from each element's drawn chord, at the same place along it
+            a, b = result.node_xy[ends[:, 0]], result.node_xy[ends[:, 1]]
+            s = np.linspace(0.0, 1.0, points.shape[1])[None, :, None]
+            drawn = a[:, None, :] + s * (b - a)[:, None, :]
+            points = drawn + scale * (points - drawn)
+        broken = np.concatenate([points, np.full((len(points), 1, 2), np.nan)], axis=1).reshape(-1, 2)
+        ax.plot(broken[:, 0], broken[:, 1], color=colour, label=f"step {result.state_steps[k]}", **kw)
     ax.set_aspect("equal")
     ax.set_xlabel("x")
     ax.set_ylabel("y")
