@@ -215,7 +215,10 @@ int run(const RunOptions& options) {
   const tsm::solver::RunResult result = tsm::solver::run_analysis(model, observer, &stop, from ? &*from : nullptr);
   live.finish();
   tsm::io::write_results(output.path().string(), model, result, {.curves = options.curves || options.plot});
-  if (options.vtk) tsm::io::write_pvd((vtk_dir / "results.pvd").string(), vtk_steps);
+  if (options.vtk) {
+    tsm::io::write_pvd((vtk_dir / "results.pvd").string(), vtk_steps);
+    tsm::io::write_buckling_vtu(vtk_dir.string(), model, result.buckling);
+  }
   // An interrupted run is asked to end: no plots.
   const bool interrupted = result.status == tsm::solver::Status::interrupted;
   const bool plotted = !options.plot || interrupted || draw_plots(output.path(), options);

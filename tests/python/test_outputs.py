@@ -48,6 +48,33 @@ class Vtk(unittest.TestCase):
     def tearDown(self):
         self.dir.cleanup()
 
+    def test_buckling_modes_are_paraview_files_of_their_own(self):
+        # The column (analysis.buckling, 2 modes): vtk/buckling.pvd lists buckling-mode-1.vtu and -2
+        # by their critical load factors, as results.json has them; each node's "displacement" is
+        # its mode shape scaled so that the largest translation is a tenth of the model's size (to
+        # 1e-6 of the size: the drawn curves' ends, as in the step files).
+        out = os.path.join(self.dir.name, "column")
+        r = run("run", os.path.join(SOURCE, "examples", "column-buckling.json"), "--out", out, "--vtk", "-q")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(out, "results.json")) as f:
+            results = json.load(f)
+        pvd = ET.parse(os.path.join(out, "vtk", "buckling.pvd")).getroot()
+        sets = list(pvd.iter("DataSet"))
+        self.assertEqual([d.get("file") for d in sets], ["buckling-mode-1.vtu", "buckling-mode-2.vtu"])
+        self.assertEqual([float(d.get("name").split()[-1]) for d in sets], [m["load_factor"] for m in results["buckling"]])
+        xs = [n["x"] for n in results["nodes"]]
+        ys = [n["y"] for n in results["nodes"]]
+        size = math.hypot(max(xs) - min(xs), max(ys) - min(ys))
+        for k, mode in enumerate(results["buckling"]):
+            _, points, point_data, _ = read_vtu(os.path.join(out, "vtk", f"buckling-mode-{k + 1}.vtu"))
+            moved = point_data["displacement"]
+            for e, element in enumerate(results["elements"]):  # each element's first and last curve point: its nodes
+                for node, point in ((element["nodes"][0], 9 * e), (element["nodes"][1], 9 * e + 8)):
+                    shape = mode["shape"][str(node)]
+                    self.assertAlmostEqual(moved[point][0], 0.1 * size * shape[0], delta=1e-6 * size)
+                    self.assertAlmostEqual(moved[point][1], 0.1 * size * shape[1], delta=1e-6 * size)
+            self.assertAlmostEqual(max(math.hypot(u, v) for u, v, _ in moved), 0.1 * size, delta=1e-3 * size)
+
     def test_circle_points_lie_on_the_exact_circle(self):
         out = os.path.join(self.dir.name, "circle")
         r = run("run", os.path.join(SOURCE, "examples", "cantilever-circle.json"), "--out", out, "--vtk", "-q")

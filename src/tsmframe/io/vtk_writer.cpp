@@ -130,4 +130,21 @@ void write_pvd(const std::string& path, const std::vector<std::pair<double, std:
   });
 }
 
+void write_buckling_vtu(const std::string& directory, const Model& model, const solver::Buckling& buckling) {
+  if (buckling.modes.empty()) return;
+  std::vector<std::pair<double, std::string>> files;
+  for (size_t k = 0; k < buckling.modes.size(); ++k) {
+    solver::StepRecord drawn;  // the mode in a step's form: moved by it, no forces
+    drawn.step = static_cast<int>(k) + 1;
+    drawn.load_factor = buckling.modes[k].load_factor;
+    drawn.converged = drawn.has_state = true;
+    drawn.displacements = 0.1 * model.size * buckling.modes[k].shape;  // its largest translation is 1
+    drawn.element_forces = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(model.elements.size()));
+    const std::string name = "buckling-mode-" + std::to_string(k + 1) + ".vtu";
+    write_vtu(directory + "/" + name, model, drawn);
+    files.emplace_back(drawn.load_factor, name);
+  }
+  write_pvd(directory + "/buckling.pvd", files);
+}
+
 }  // namespace tsm::io

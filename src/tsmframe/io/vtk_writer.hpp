@@ -25,4 +25,10 @@ void write_vtu(const std::string& path, const Model& model, const solver::StepRe
 /// Writes the .pvd series: (load factor, .vtu file name relative to the .pvd) per step.
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& steps);
 
+/// The linearised buckling modes (analysis.buckling) in `directory`: buckling-mode-K.vtu each —
+/// the frame as drawn moved by the mode, scaled so that its largest translation is a tenth of the
+/// model's size, in the step files' form ("displacement" the scaled mode, forces zero) — and
+/// buckling.pvd listing them with their critical load factors. Nothing where there are none.
+void write_buckling_vtu(const std::string& directory, const Model& model, const solver::Buckling& buckling);
+
 }  // namespace tsm::io
