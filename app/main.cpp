@@ -33,6 +33,7 @@
 #include "tsmframe/io/vtk_writer.hpp"
 #include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/solver/analysis.hpp"
+#include "tsmframe/solver/unloaded_mechanism.hpp"
 #include "tsmframe/study/study_runner.hpp"
 #include "tsmframe/study/study_writer.hpp"
 #include "tsmframe/version.hpp"
@@ -249,10 +250,11 @@ int plot(const PlotOptions& options) {
     std::cerr << options.model << ": " << e.what() << '\n';
     return exit_bad_input;
   }
-  const std::optional<std::string> mechanism = tsm::starting_mechanism(model);
+  const std::optional<tsm::solver::Mechanism> mechanism = tsm::solver::drawn_mechanism(model);
   const std::filesystem::path drawing =
       std::filesystem::temp_directory_path() / ("tsmframe-drawing-" + std::to_string(::getpid()) + ".json");
-  tsm::io::write_output_file(drawing.string(), [&](std::ostream& os) { tsm::io::write_model_drawing(os, model, mechanism); });
+  const std::optional<std::string> named = mechanism ? std::optional<std::string>(mechanism->text) : std::nullopt;
+  tsm::io::write_output_file(drawing.string(), [&](std::ostream& os) { tsm::io::write_model_drawing(os, model, named); });
   const int drawn = run_script("plot_model.py", {drawing.string(), out.string()});
   std::error_code ignored;
   std::filesystem::remove(drawing, ignored);
@@ -262,7 +264,8 @@ int plot(const PlotOptions& options) {
     return exit_system;
   }
   if (mechanism) {
-    std::cerr << options.model << ": supports: " << *mechanism << " (drawn in " << out.string() << ")\n";
+    std::cerr << options.model << ": " << (mechanism->at_supports ? "supports: " : "") << mechanism->text << " (drawn in "
+              << out.string() << ")\n";
     return exit_bad_input;
   }
   std::cerr << "drawn: " << out.string() << '\n';

@@ -3,7 +3,7 @@
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/io/model_drawing.hpp"
 #include "tsmframe/io/model_reader.hpp"
-#include "tsmframe/model/mechanism.hpp"
+#include "tsmframe/solver/unloaded_mechanism.hpp"
 #include "src/bindings.hpp"
 
 namespace tsm::python {
@@ -21,7 +21,8 @@ std::shared_ptr<Model> read_model(const std::string& text) {
 std::string model_drawing(const std::string& text) {
   try {
     Model model = io::read_model_text(text, io::Mechanisms::allow);
-    return io::model_drawing(model, starting_mechanism(model));
+    const std::optional<solver::Mechanism> mechanism = solver::drawn_mechanism(model);
+    return io::model_drawing(model, mechanism ? std::optional<std::string>(mechanism->text) : std::nullopt);
   } catch (const io::InputError& e) {
     throw py::value_error(e.what());
   }

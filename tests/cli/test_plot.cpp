@@ -89,6 +89,25 @@ TEST_F(Plot, AMechanismIsDrawnThenRefused) {
   EXPECT_TRUE(fs::exists(dir_ / "loose.png"));
 }
 
+TEST_F(Plot, AMechanismAmongHingesIsDrawnThenRefused) {
+  // Pinned feet and a beam hinged at both ends: the supports hold the frame as a body, but it sways
+  // with no element deforming — found as a run finds it (the unloaded tangent's null vector).
+  json m = portal();
+  m["members"][1]["release"] = "both";
+  write("sway.json", m);
+  const Outcome o = plot("sway.json");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output.rfind("sway.json: the structure is a mechanism: unloaded, it can move with no element deforming — ", 0), 0u)
+      << o.output;
+  EXPECT_NE(o.output.find("moving along x"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("(drawn in sway.png)\n"), std::string::npos) << o.output;
+  EXPECT_TRUE(fs::exists(dir_ / "sway.png"));
+  const Outcome run = run_command("cd " + dir_.string() + " && " + TSMFRAME_CLI + " run sway.json -q 2>&1");
+  EXPECT_EQ(run.exit_code, 1);  // the run meets the same mechanism at its first step
+  EXPECT_NE(run.output.find("the structure is a mechanism: unloaded, it can move with no element deforming"), std::string::npos)
+      << run.output;
+}
+
 TEST_F(Plot, BadInputDrawsNothing) {
   json m = portal();
   m["members"][0]["sectoin"] = "s";

@@ -707,16 +707,16 @@ def test_a_run_the_machine_has_no_memory_for_is_a_memory_error_before_it_is_spen
 
 
 def test_a_model_is_drawn_before_it_is_solved():
-    # A portal on a pin and a roller, its beam hinged at one end, a sway load and a moment: the
-    # drawing document has the meshed model, and the picture its symbols — a triangle per pin and
-    # roller, two rollers' circles, the hinge's circle, an arrow per force and the moment's arc.
+    # A portal fixed at one foot, on a roller at the other, its beam hinged at one end, a sway load
+    # and a moment: the drawing document has the meshed model, and the picture its symbols — the
+    # roller's triangle and two wheels, the hinge's circle, the forces' arrows and the moment's arc.
     m = tf.Model("portal").material("steel", E=2e11).section("s", A=1e-2, I=1e-4)
     m.node(1, 0, 0).node(2, 0, 3).node(3, 4, 3).node(4, 4, 0)
     m.member(1, 2, "steel", "s").member(2, 3, "steel", "s", divisions=4, release="start").member(3, 4, "steel", "s")
-    m.support(1, "pinned").support(4, "roller-x").load(2, fx=1e3).load(3, fy=-2e3, mz=500.0)
+    m.support(1, "fixed").support(4, "roller-x").load(2, fx=1e3).load(3, fy=-2e3, mz=500.0)
     d = m.drawing()
-    assert len(d["nodes"]) == 7 and len(d["elements"]) == 6
-    assert [s["held"] for s in d["supports"]] == [["ux", "uy"], ["uy"]]
+    assert len(d["nodes"]) == 7 and len(d["elements"]) == 6 and "mechanism" not in d
+    assert [s["held"] for s in d["supports"]] == [["ux", "uy", "rz"], ["uy"]]
     assert d["load_cases"][0]["loads"] == [[2, 1e3, 0.0, 0.0], [3, 0.0, -2e3, 500.0]]
     import matplotlib
     matplotlib.use("Agg")
@@ -726,7 +726,7 @@ def test_a_model_is_drawn_before_it_is_solved():
     fig, ax = plt.subplots()
     assert m.plot(ax=ax) is ax
     kinds = [type(p) for p in ax.patches]
-    assert kinds.count(Polygon) == 2                 # the pin's and the roller's triangles
+    assert kinds.count(Polygon) == 1                 # the roller's triangle
     assert kinds.count(Circle) == 2 + 1              # the roller's two circles, the hinge
     assert kinds.count(FancyArrowPatch) == 1         # the moment's head
     forces = [c for c in ax.collections if isinstance(c, Quiver)]
@@ -735,7 +735,10 @@ def test_a_model_is_drawn_before_it_is_solved():
     assert not any("Not solvable" in t.get_text() for t in ax.texts)
     plt.close(fig)
     document = m.to_dict()
-    document["supports"][0]["type"] = "roller-x"     # both feet on rollers: free along x
+    document["supports"][0] = {"node": 1, "type": "pinned"}  # a pin, a hinge above it and a roller: it sways
+    assert tf.Model.from_dict(document).drawing()["mechanism"].startswith(
+        "the structure is a mechanism: unloaded, it can move with no element deforming")
+    document["supports"][0] = {"node": 1, "type": "roller-x"}  # both feet on rollers: free along x
     loose = tf.Model.from_dict(document)
     assert "free to move along x" in loose.drawing()["mechanism"]
     with pytest.raises(ValueError, match="supports: structure is a mechanism"):
