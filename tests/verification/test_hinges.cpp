@@ -9,11 +9,14 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "support/models.hpp"
+#include "tsmframe/io/model_reader.hpp"
 #include "tsmframe/io/results_writer.hpp"
+#include "tsmframe/solver/unloaded_mechanism.hpp"
 
 namespace {
 
@@ -441,6 +444,40 @@ TEST(Hinges, AFourHingedPortalIsNamedAsTheMechanismItIs) {
     EXPECT_NE(r.message.find("moving along x"), std::string::npos) << r.message;
     EXPECT_TRUE(r.steps.empty() || !r.steps.back().converged);
   }
+}
+
+TEST(Hinges, AFinerFourHingedPortalWhoseTangentFactorisesIsNamedToo) {
+  // Eight elements a member (examples/portal-frame.json's mesh with pinned feet and a hinged beam):
+  // the unloaded tangent's sway pivot rounds off zero and the factorisation goes through, the first
+  // correction blows up — and that failure from the unloaded state is named as the mechanism it is,
+  // as up front (unloaded_mechanism, what `tsmframe plot` tells), its smallest eigenvalue at
+  // round-off level (below 1e-3 of the 1e-9 shift).
+  json m = four_hinged_portal({{"type", "load"}, {"steps", 2}});
+  for (json& member : m["members"]) member["divisions"] = 8;
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::singular) << r.message;
+  EXPECT_EQ(r.failure.step_failure.reason, tsm::solver::StepFailure::Reason::mechanism) << r.message;
+  EXPECT_EQ(r.failure.cutbacks, 0);
+  EXPECT_NE(r.message.find("moving along x"), std::string::npos) << r.message;
+  const std::optional<std::string> up_front = tsm::solver::unloaded_mechanism(model);
+  ASSERT_TRUE(up_front.has_value());
+  EXPECT_EQ(up_front->rfind("the structure is a mechanism: unloaded, it can move with no element deforming — nodes 2, 3", 0), 0u)
+      << *up_front;
+}
+
+TEST(Hinges, ASlenderButSoundStructureIsNoMechanism) {
+  // A cantilever 1,000 times longer than the radius of gyration in 100 elements: its lowest mode's
+  // stiffness is ~1.5e-8 of the largest diagonal entry — within the hundred shifts a tangent that did
+  // not factorise is granted, far above round-off: no mechanism.
+  const json m = {{"materials", {{"steel", {{"E", 2e11}}}}},
+                  {"sections", {{"s", {{"A", 1e-2}, {"I", 1e-8}}}}},
+                  {"nodes", json::array({{{"id", 1}, {"x", 0}, {"y", 0}}, {{"id", 2}, {"x", 1}, {"y", 0}}})},
+                  {"members", json::array({{{"from", 1}, {"to", 2}, {"material", "steel"}, {"section", "s"}, {"divisions", 100}}})},
+                  {"supports", json::array({{{"node", 1}, {"type", "fixed"}}})},
+                  {"loads", json::array({{{"node", 2}, {"fy", -1.0}}})}};
+  EXPECT_FALSE(tsm::solver::unloaded_mechanism(tsm::io::read_model(m)).has_value());
+  EXPECT_TRUE(tsm::solver::unloaded_mechanism(tsm::io::read_model(four_hinged_portal({{"type", "load"}}))).has_value());
 }
 
 TEST(Hinges, ThreeHingesInALineLetTheMiddleOneDrop) {

@@ -11,16 +11,13 @@ namespace {
 // (even 1e-6 of the largest in a slender fine mesh: 10³ per iteration).
 constexpr double shift_fraction = 1e-9;
 constexpr int iterations = 6;
-// K's eigenvalue along the vector found, against the shift: below this many shifts it is a null
-// vector (round-off in the factor leaves a few), above it a stiff mode (no null vector).
-constexpr double null_within_shifts = 100.0;
 // A node moves "most" where its translation is at least this fraction of the largest one (a
 // rigid part's nodes all do; along a column turning about its foot, only its top).
 constexpr double moving_fraction = 0.9;
 
 }  // namespace
 
-Eigen::VectorXd null_vector(BlockMatrix& K, LinearSolver& solver, int free_count) {
+Eigen::VectorXd null_vector(BlockMatrix& K, LinearSolver& solver, int free_count, double within_shifts) {
   double largest = 0.0;
   for (int c = 0; c < K.size; ++c) largest = std::max(largest, K.value[K.column[c]].diagonal().cwiseAbs().maxCoeff());
   if (!(largest > 0.0) || free_count == 0) return {};
@@ -38,7 +35,7 @@ Eigen::VectorXd null_vector(BlockMatrix& K, LinearSolver& solver, int free_count
     eigenvalue = 1.0 / norm - shift;  // ‖(K + σI)⁻¹ x‖ = 1 / (μ + σ) along an eigenvector
     x = y / norm;
   }
-  return std::abs(eigenvalue) <= null_within_shifts * shift ? x : Eigen::VectorXd();
+  return std::abs(eigenvalue) <= within_shifts * shift ? x : Eigen::VectorXd();
 }
 
 void name_free_motion(const Model& model, const Eigen::VectorXd& mode, StepFailure& failure) {

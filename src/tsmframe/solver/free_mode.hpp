@@ -14,10 +14,18 @@
 
 namespace tsm::solver {
 
+/// How close to zero K's eigenvalue along the vector found must be, in shifts (1e-9 of K's
+/// largest diagonal entry): a tangent that did not factorise is singular, and round-off in the
+/// factor leaves a few shifts; one that did factorise is a mechanism only where its smallest
+/// eigenvalue is at round-off level (a slender cantilever's lowest mode reaches 1e-7 of the
+/// largest diagonal entry, a mechanism's 1e-16).
+inline constexpr double singular_within_shifts = 100.0;
+inline constexpr double regular_within_shifts = 1e-3;
+
 /// The null vector of the symmetric tangent `K` (over the free equations, unit length), or an
-/// empty vector where K is not singular to round-off. Overwrites K with a factor, and `solver`'s
-/// factorisation.
-Eigen::VectorXd null_vector(BlockMatrix& K, LinearSolver& solver, int free_count);
+/// empty vector where K's smallest eigenvalue is more than `within_shifts` shifts from zero.
+/// Overwrites K with a factor, and `solver`'s factorisation.
+Eigen::VectorXd null_vector(BlockMatrix& K, LinearSolver& solver, int free_count, double within_shifts);
 
 /// Names a free motion `mode` (every dof, global) in `failure` (Reason::mechanism): the nodes that
 /// move most and their common direction, or the node that turns where nothing translates.

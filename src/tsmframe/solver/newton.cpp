@@ -35,7 +35,11 @@ NewtonOutcome& NewtonSolver::fail(NewtonOutcome& out, StepFailure failure, int i
 
 NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state) {
   NewtonOutcome out = iterate(constraint, state);
-  if (out.status != Status::converged) problem_.explain(state, out.failure);
+  if (out.status != Status::converged) {
+    problem_.explain(state, out.failure);
+    // A blow-up from the unloaded state that the explanation finds to be a mechanism is one.
+    if (out.failure.reason == StepFailure::Reason::mechanism) out.status = step_status(out.failure);
+  }
   return out;
 }
 

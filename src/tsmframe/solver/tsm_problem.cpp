@@ -151,6 +151,7 @@ void TsmProblem::begin_step(const State& state) {
   // on in one direction, one element per iterate, is not limited here.
   max_reversals_ = 4 * static_cast<int>(state.contacts.size());
   predictor_pending_ = true;
+  from_unloaded_ = physical(state).isZero() && (dead_load().size() == 0 || dead_load().isZero());
 }
 
 std::optional<StepFailure> TsmProblem::after_iterate(const State& state) const {
@@ -236,25 +237,34 @@ void TsmProblem::take_contact_references(State& state) const {
   contacts_->restore(state.contact_references, state.chord_rotations, state.contacts);
 }
 
+bool TsmProblem::name_unloaded_mechanism(const State& state, StepFailure& failure, double within_shifts) {
+  State scratch = state;  // at the unloaded state (a blown-up iterate moved off it), evaluated again
+  scratch.displacements.setZero();
+  scratch.load_factor = 0.0;
+  std::fill(scratch.chord_rotations.begin(), scratch.chord_rotations.end(), 0.0);
+  evaluate(scratch, false);
+  analyse_pattern();
+  const Eigen::VectorXd mode = null_vector(system_.tangent_for_factorisation(), solver_, equations_.free_count(), within_shifts);
+  if (mode.size() == 0) return false;
+  const Model& model = system_.model();
+  Eigen::VectorXd all = Eigen::VectorXd::Zero(model.dof_count());
+  for (int eq = 0; eq < equations_.free_count(); ++eq) all[equations_.free_dofs[eq]] = mode[eq];
+  system_.frames().to_global(all);
+  name_free_motion(model, all, failure);
+  return true;
+}
+
 void TsmProblem::explain(const State& state, StepFailure& failure) {
   failure.hinged = hinged_;
   failure.contacts = contacts_ != nullptr;
   const Model& model = system_.model();
-  // Singular at the unloaded state (no displacement, no load held from an earlier stage): the
-  // elements' own stiffness leaves a motion free — a mechanism; named by its null vector.
-  if (failure.reason == StepFailure::Reason::singular_tangent && failure.iteration == 1 && physical(state).isZero() &&
-      (dead_load().size() == 0 || dead_load().isZero())) {
-    State scratch = state;  // evaluated again: the failed factorisation overwrote the tangent
-    evaluate(scratch, false);
-    analyse_pattern();
-    Eigen::VectorXd mode = null_vector(system_.tangent_for_factorisation(), solver_, equations_.free_count());
-    if (mode.size() > 0) {
-      Eigen::VectorXd all = Eigen::VectorXd::Zero(model.dof_count());
-      for (int eq = 0; eq < equations_.free_count(); ++eq) all[equations_.free_dofs[eq]] = mode[eq];
-      system_.frames().to_global(all);
-      name_free_motion(model, all, failure);
-    }
-    return;
+  // Singular, or blown up, at the unloaded state (no displacement, no load held from an earlier
+  // stage): the elements' own stiffness may leave a motion free — a mechanism; named by its null
+  // vector. A tangent that did factorise (its pivots rounded off zero: a four-hinged portal's
+  // sway) only where its smallest eigenvalue is at round-off level.
+  const bool singular = failure.reason == StepFailure::Reason::singular_tangent;
+  if ((singular || failure.reason == StepFailure::Reason::blew_up) && failure.iteration == 1 && from_unloaded_) {
+    if (name_unloaded_mechanism(state, failure, singular ? singular_within_shifts : regular_within_shifts) || singular) return;
   }
   // A free end: the node ends one element only. A point within contact_at_free_end of one is as
   // good as off it when the step fails: along the bent beam's normal Newton's iterates there

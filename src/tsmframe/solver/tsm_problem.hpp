@@ -45,6 +45,9 @@ class TsmProblem final : public Problem {
   /// restart's, contacts a stage brings back; contact_set's restore), and where they were taken.
   void take_contact_references(State& state) const;
   void explain(const State& state, StepFailure& failure) override;
+  /// The free motion the tangent at the unloaded state (`state`'s, its displacements and λ zero) leaves, within `within_shifts` shifts of
+  /// zero (free_mode.hpp), named in `failure` (Reason::mechanism); whether there is one.
+  bool name_unloaded_mechanism(const State& state, StepFailure& failure, double within_shifts);
   std::vector<ContactPoint> contact_points(const State& state) const override;
 
   const Model& model() const { return system_.model(); }
@@ -73,6 +76,7 @@ class TsmProblem final : public Problem {
 
  private:
   mutable Eigen::VectorXd physical_;  ///< physical()'s, where frames turn
+  bool from_unloaded_ = false;        ///< the step began at the unloaded state (begin_step)
   /// Evaluates at `state` and settles its contacts (detect, release, hand over; re-evaluating
   /// after each change). Returns whether the contact set changed. `contacts_only`: the state is
   /// the last evaluation's, only its contacts changed (what they touch is evaluated again).

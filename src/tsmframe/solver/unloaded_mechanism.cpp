@@ -5,6 +5,7 @@
 #include "tsmframe/contact/contact_set.hpp"
 #include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/solver/diagnosis.hpp"
+#include "tsmframe/solver/free_mode.hpp"
 #include "tsmframe/solver/tsm_problem.hpp"
 
 namespace tsm::solver {
@@ -19,13 +20,15 @@ std::optional<std::string> unloaded_mechanism(const Model& model) {
   state.chord_rotations.assign(model.elements.size(), 0.0);
   state.contacts = contacts.initial_states();
   problem.take_contact_references(state);
-  // As the first step's failure at a singular tangent is explained (TsmProblem::explain): the
-  // null vector of the unloaded tangent, where it has one, named.
+  problem.evaluate(state);
+  // The unloaded tangent's null vector, as a run's first step that fails there names it
+  // (TsmProblem::explain): within a few shifts of zero where it does not factorise, at round-off
+  // level where it does.
+  const bool regular = problem.factorize(state, true, nullptr).ok;
   StepFailure failure;
-  failure.reason = StepFailure::Reason::singular_tangent;
   failure.iteration = 1;
-  problem.explain(state, failure);
-  if (failure.reason != StepFailure::Reason::mechanism) return std::nullopt;
+  if (!problem.name_unloaded_mechanism(state, failure, regular ? regular_within_shifts : singular_within_shifts))
+    return std::nullopt;
   return step_failure_text(failure, model);
 }
 
