@@ -73,6 +73,11 @@ void add_outcome(py::dict& out, const Model& model, const solver::RunResult& res
     neutral.append(step);
   }
   out["neutral_equilibria"] = neutral;
+  py::list rounded;  // steps whose stability round-off leaves unknown: the pivot whose sign is lost
+  for (const solver::RoundedStep& r : result.rounded_steps)
+    rounded.append(py::dict(py::arg("step") = r.step, py::arg("node") = model.nodes[r.pivot.node].id,
+                            py::arg("dof") = dof_name(r.pivot.dof), py::arg("ratio") = r.pivot.ratio));
+  out["rounded_inertia"] = rounded;
   std::vector<double> factors, shapes;  // linearised buckling at the unloaded state (analysis.buckling)
   for (const solver::BucklingMode& mode : result.buckling.modes) {
     factors.push_back(mode.load_factor);

@@ -337,12 +337,16 @@ class Result:
     neutral_equilibria         steps whose supports let a part move as a rigid body, its loads doing no
                                work (a singular tangent; no eigenvalue count): dicts of step, node, part_nodes,
                                motion ("rotation" about (x, y), or "translation" along direction)
+    rounded_inertia            steps whose stability round-off leaves unknown (negative_eigenvalues -1): dicts of
+                               step, node, dof and ratio — the pivot whose sign is lost, against that node's own
+                               stiffness (below 1e-12: a member very much longer than deep in many short elements)
     node_ids (n,), node_xy (n, 2), element_ids (m,), element_nodes (m, 2) node ids
     step (S,), load_factor (S,), iterations (S,), converged (S,), residual_norms: S arrays, criterion: S strings
     stage (S,)                 the stage (1, 2, …) each step belongs to (1 without stages); stages: where
                                each stage that ran ended, dicts of stage, name, status, last_step, load_factor
     negative_eigenvalues (S,)  of the tangent at each converged step: 0 stable, > 0 unstable
-                               equilibrium; -1 unknown (a contact active, or a failed attempt)
+                               equilibrium; -1 unknown (a contact active, a failed attempt, or round-off:
+                               rounded_inertia)
     state_steps (K,)           step numbers that carry full state (analysis.output)
     displacements (K, n, 3)    ux, uy, rz per node; rz is the true total rotation
     element_forces (K, m, 3)   N, M_i, M_j (chord frame)

@@ -93,6 +93,7 @@ def read_results(path):
         "limit_points": document.get("limit_points", []),
         "neutral_equilibria": [{**n, **({"about": tuple(n["about"])} if "about" in n else {"direction": tuple(n["direction"])})}
                                for n in document.get("neutral_equilibria", [])],
+        "rounded_inertia": document.get("rounded_inertia", []),
         "stages": document.get("stages", []),
         "node_ids": np.array([n["id"] for n in nodes], dtype=np.int32),
         "node_xy": np.array([[n["x"], n["y"]] for n in nodes], dtype=float).reshape(-1, 2),

@@ -48,7 +48,7 @@ class ToyProblem final : public solver::Problem {
     return floor;
   }
   bool has_optional_terms() const override { return false; }
-  solver::Factorisation factorize(const solver::State&, bool, Eigen::VectorXd* rhs) override {
+  solver::Factorisation factorize(const solver::State&, bool, Eigen::VectorXd* rhs, bool) override {
     if (!(tangent_ != 0.0) || !std::isfinite(tangent_)) return {false, -1};
     if (rhs) (*rhs)[0] /= tangent_;
     return {true, tangent_ < 0.0 ? 1 : 0};

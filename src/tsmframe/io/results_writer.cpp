@@ -228,6 +228,13 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
     w.end_object();
   }
   w.end_array();
+  // Steps whose stability round-off leaves unknown: the pivot whose sign is lost.
+  w.newline().key("rounded_inertia").begin_array();
+  for (const solver::RoundedStep& r : result.rounded_steps) {
+    w.newline().begin_object().key("step").value(r.step).key("node").value(model.nodes[r.pivot.node].id);
+    w.key("dof").value(dof_name(r.pivot.dof)).key("ratio").value(r.pivot.ratio).end_object();
+  }
+  w.end_array();
   if (!model.stages.empty()) {  // where each stage that ran ended
     w.newline().key("stages").begin_array();
     for (const solver::StageEnd& end : result.stages) {

@@ -127,6 +127,7 @@ TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, in
   Block& diagonal = a.value[a.column[k]];
   double d00 = diagonal(0, 0), d01 = diagonal(0, 1), d02 = diagonal(0, 2), d11 = diagonal(1, 1), d12 = diagonal(1, 2),
          d22 = diagonal(2, 2);
+  if (guard_inertia_ && t_begin == first) original_diagonal_[k] = {d00, d11, d22};  // what the pivot is measured against
   for (int t = t_begin; t < t_end; ++t) {
     const int i = row_column_[t];
     Block& z = a.value[row_position_[t]];
@@ -163,7 +164,9 @@ TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, in
   d << d00, d01, d02, d01, d11, d12, d02, d12, d22;
   int negatives = 0;
   if (!invert_pivot(d, diagonal, &negatives)) return false;
-  if (negatives > 0) thread_negatives_[omp_get_thread_num()].count += negatives;  // each thread its own line
+  if (negatives > 0) thread_inertia_[omp_get_thread_num()].inertia.negative += negatives;  // each thread its own line
+  if (guard_inertia_ && !inverse_clear(diagonal, original_diagonal_[k]))
+    check_pivot(d, original_diagonal_[k], k, thread_inertia_[omp_get_thread_num()].inertia);
   return true;
 }
 
@@ -185,8 +188,9 @@ bool BlockLDLT::factorize_row(BlockMatrix& a, int k, double* forward) {
 
 bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
   factor_ = &a;
-  negative_pivots_ = 0;
-  thread_negatives_.assign(omp_get_max_threads(), {});
+  dense_inertia_ = {};
+  thread_inertia_.assign(omp_get_max_threads(), {});
+  if (guard_inertia_) original_diagonal_.resize(size_);
   double* forward = forward_rhs ? forward_rhs->data() : nullptr;
   // Rows of one subtree touch only that subtree's columns (their patterns are descendants):
   // the tasks run concurrently, each in ascending order.
@@ -254,17 +258,21 @@ bool BlockLDLT::factorize_dense_path(BlockMatrix& a, const BlockLDLTSchedule::St
 #pragma omp single
   {
     dense_.setZero(3 * rows, 3 * rows);
+    dense_original_.resize(rows);
     for (int q = stage.begin; q < stage.end; ++q) {
       const int k = schedule_.top_rows[q], i = q - stage.begin;
+      if (guard_inertia_) dense_original_[i] = original_diagonal_[k];
       dense_.block<3, 3>(3 * i, 3 * i) = a.value[a.column[k]].transpose();  // its lower triangle = the running upper one
       for (int t = schedule_.split[q]; t < row_start_[k + 1]; ++t)
         dense_.block<3, 3>(3 * i, 3 * (row_column_[t] - lowest)) = a.value[row_position_[t]];
     }
   }
-  if (!dense_ldlt_.factorize(dense_)) return false;
+  if (!dense_ldlt_.factorize(dense_, guard_inertia_ ? dense_original_.data() : nullptr)) return false;
 #pragma omp single
   {
-  negative_pivots_ += dense_ldlt_.negative_pivots();
+  Inertia dense = dense_ldlt_.inertia();
+  if (dense.row >= 0) dense.row = schedule_.top_rows[stage.begin + dense.row];
+  dense_inertia_.add(dense);
   for (int q = stage.begin; q < stage.end; ++q) {
     const int k = schedule_.top_rows[q], i = q - stage.begin;
     a.value[a.column[k]] = dense_.block<3, 3>(3 * i, 3 * i);

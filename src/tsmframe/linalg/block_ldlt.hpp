@@ -22,6 +22,7 @@
 #include "tsmframe/linalg/block_ldlt_schedule.hpp"
 #include "tsmframe/linalg/block_matrix.hpp"
 #include "tsmframe/linalg/dense_block_ldlt.hpp"
+#include "tsmframe/linalg/inertia.hpp"
 
 namespace tsm::linalg {
 
@@ -40,14 +41,21 @@ class BlockLDLT {
   /// Completes a solve whose forward substitution ran with factorize: x = L⁻ᵀ D⁻¹ y, in place.
   void finish_solve(Eigen::VectorXd& y) const;
 
-  /// Negative eigenvalues of D in the last factorisation (the tangent's inertia, Sylvester):
-  /// 0 for a positive definite tangent; more once a structure is past a limit or bifurcation
-  /// point. Counted from each pivot block's leading minors.
-  int negative_pivots() const {
-    int total = negative_pivots_;
-    for (const PerThread& t : thread_negatives_) total += t.count;
+  /// Whether factorize() checks each pivot for eigenvalues within round-off of zero
+  /// (inertia.hpp): where the inertia is read as the stability of an equilibrium. Off, the count
+  /// is taken as it comes (a few per cent of a chain's factorisation less).
+  void guard_inertia(bool on) { guard_inertia_ = on; }
+  /// The inertia of D in the last factorisation (the tangent's, Sylvester): 0 negative
+  /// eigenvalues for a positive definite tangent; more once a structure is past a limit or
+  /// bifurcation point; with the guard on, unknown where a pivot is within round-off of zero
+  /// (inertia.hpp). Its row: a block row.
+  Inertia inertia() const {
+    Inertia total = dense_inertia_;
+    for (const PerThread& t : thread_inertia_) total.add(t.inertia);
     return total;
   }
+  /// Negative eigenvalues of D in the last factorisation, whether or not round-off leaves them in doubt.
+  int negative_pivots() const { return inertia().negative; }
 
   /// Subtrees factorised (and solved) as parallel tasks, and the rows above them.
   int task_count() const { return schedule_.task_count(); }
@@ -67,11 +75,15 @@ class BlockLDLT {
 
  private:
   int size_ = 0;
-  int negative_pivots_ = 0;  ///< see negative_pivots(): the dense top's, plus the rows' per thread
+  bool guard_inertia_ = false;
+  Inertia dense_inertia_;  ///< see inertia(): the dense top's, plus the rows' per thread
   struct alignas(64) PerThread {
-    int count = 0;
+    Inertia inertia;
   };
-  std::vector<PerThread> thread_negatives_;
+  std::vector<PerThread> thread_inertia_;
+  /// The diagonal of each block row's A_kk, kept as the row starts: what its pivot is measured against.
+  std::vector<Eigen::Vector3d> original_diagonal_;
+  std::vector<Eigen::Vector3d> dense_original_;  ///< original_diagonal_ of a dense path's rows, in its order
   const BlockMatrix* factor_ = nullptr;  ///< the matrix holding L and D⁻¹ after factorize
   // Row k of A's lower triangle (the entries (k, i), i < k, one in each column i): row_start_[k]
   // .. row_start_[k+1] in row_position_ (their index in value), columns ascending. Row k of L

@@ -19,7 +19,7 @@ int negative_eigenvalues(const Eigen::Matrix3d& d, double c22, double det) {
   return static_cast<int>((eigen.eigenvalues().array() < 0.0).count());
 }
 
-bool DenseBlockLDLT::factorize(Eigen::MatrixXd& a) {
+bool DenseBlockLDLT::factorize(Eigen::MatrixXd& a, const Eigen::Vector3d* original) {
   const int p = static_cast<int>(a.rows()) / 3;
   for (int j0 = 0; j0 < p; j0 += panel_blocks) {
     const int j1 = std::min(p, j0 + panel_blocks);
@@ -28,14 +28,15 @@ bool DenseBlockLDLT::factorize(Eigen::MatrixXd& a) {
     // trailing update.
 #pragma omp single
     {
-      if (j0 == 0) negative_pivots_ = 0;
+      if (j0 == 0) inertia_ = {};
       ok_ = true;
       pivot_.resize(j1 - j0);
       Eigen::Matrix<double, Eigen::Dynamic, 3> z;
       for (int j = j0; j < j1 && ok_; ++j) {
         const Eigen::Matrix3d d = a.block<3, 3>(3 * j, 3 * j).selfadjointView<Eigen::Lower>();
         Eigen::Matrix3d inverse;
-        ok_ = invert_pivot(d, inverse, &negative_pivots_);
+        ok_ = invert_pivot(d, inverse, &inertia_.negative);
+        if (ok_ && original) check_pivot(d, original[j], j, inertia_);
         const int below = 3 * (p - j - 1), later = 3 * (j1 - j - 1);
         auto l = a.block(3 * (j + 1), 3 * j, below, 3);
         z = l;

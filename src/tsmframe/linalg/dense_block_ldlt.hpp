@@ -16,6 +16,8 @@
 #include <cmath>
 #include <vector>
 
+#include "tsmframe/linalg/inertia.hpp"
+
 namespace tsm::linalg {
 
 class DenseBlockLDLT {
@@ -23,15 +25,19 @@ class DenseBlockLDLT {
   /// Factorises the symmetric matrix in the lower triangle of `a` (3p × 3p; its strict upper
   /// triangle is ignored and overwritten) in place: below the diagonal blocks L, on them D_j⁻¹
   /// (full 3×3). Returns false (on every thread) if a pivot block is singular or not finite.
-  bool factorize(Eigen::MatrixXd& a);
+  /// With `original` (p entries: the diagonal of each block row of the matrix the pivots came
+  /// from, which may be a Schur complement's), pivots within round-off of zero are told.
+  bool factorize(Eigen::MatrixXd& a, const Eigen::Vector3d* original = nullptr);
+  /// The inertia of D in the last factorisation (its rows: block rows of `a`).
+  const Inertia& inertia() const { return inertia_; }
   /// Negative eigenvalues of D in the last factorisation.
-  int negative_pivots() const { return negative_pivots_; }
+  int negative_pivots() const { return inertia_.negative; }
 
  private:
   std::vector<Eigen::Matrix3d> pivot_;  ///< D_j of the panel being applied
   Eigen::MatrixXd scaled_;              ///< L(rest, panel) D_panel, for the trailing update
   bool ok_ = true;
-  int negative_pivots_ = 0;
+  Inertia inertia_;
 };
 
 /// Negative eigenvalues of the symmetric 3×3 block `d` (upper triangle), from its leading

@@ -14,6 +14,7 @@
 #include <array>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "tsmframe/assembly/dof_map.hpp"
@@ -43,9 +44,14 @@ class LinearSolver {
   /// the forward substitution rides along the factorisation (one pass over the factor less).
   bool factorize_and_solve(BlockMatrix& matrix, const std::vector<RankOne>& rank_one, Eigen::VectorXd& x,
                            const Refill& refill = {});
-  /// Negative eigenvalues of the symmetric part A in the last factorisation (block LDLᵀ's
-  /// inertia), −1 when the last factorisation was the general SparseLU one (unknown).
-  int negative_pivots() const { return general_ ? -1 : ldlt_.negative_pivots(); }
+  /// Whether the next factorisations guard their inertia against round-off (BlockLDLT::guard_inertia).
+  void guard_inertia(bool on) { ldlt_.guard_inertia(on); }
+  /// The inertia of the symmetric part A in the last factorisation (block LDLᵀ's; its rows are
+  /// blocks, DofMap::block_node), none when the last factorisation was the general SparseLU one.
+  std::optional<linalg::Inertia> inertia() const {
+    if (general_) return std::nullopt;
+    return ldlt_.inertia();
+  }
   /// Solves with the last factorisation.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
   /// Solves in place: `x` holds the right-hand side and receives the solution.

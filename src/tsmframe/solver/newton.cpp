@@ -47,6 +47,7 @@ PathCorrection NewtonSolver::solve(const PathConstraint& constraint, int iterati
                                    NewtonOutcome& out, Eigen::VectorXd*& correction) {
   const bool with_optional_terms = iteration == 1 || out.residual_norms.back() < sliding_terms_below;
   const auto factorized = [&](const Factorisation f) {
+    if (f.ok && iteration == 1) out.start_rounded = f.rounded;
     if (f.ok && f.negative_pivots >= 0) {
       if (iteration == 1) out.start_negative_pivots = f.negative_pivots;
       else out.most_negative_pivots = std::max(out.most_negative_pivots, f.negative_pivots);
@@ -61,12 +62,12 @@ PathCorrection NewtonSolver::solve(const PathConstraint& constraint, int iterati
     const double dlambda = iteration == 1 ? constraint.load_increment : 0.0;
     if (dlambda != 0.0) passes_.add_load_direction(dlambda, residual_);
     if (iteration == 1) drive_norms_ = passes_.kind_norms(residual_);
-    if (!factorized(problem_.factorize(state, with_optional_terms, &residual_)))
+    if (!factorized(problem_.factorize(state, with_optional_terms, &residual_, iteration == 1)))
       return {0.0, StepFailure::Reason::singular_tangent};
     return {dlambda};
   }
   correction = &correction_;
-  if (!factorized(problem_.factorize(state, with_optional_terms, nullptr))) return {0.0, StepFailure::Reason::singular_tangent};
+  if (!factorized(problem_.factorize(state, with_optional_terms, nullptr, iteration == 1))) return {0.0, StepFailure::Reason::singular_tangent};
   // δD = δD_R + δλ δD_F: K⁻¹ F_dir into along_load_ and K⁻¹ R into along_residual_.
   passes_.load_direction(along_load_);
   problem_.solve_in_place(along_load_);

@@ -6,6 +6,7 @@
 // is path_control's, when the step has converged or failed is convergence's.
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "tsmframe/solver/convergence.hpp"
@@ -34,6 +35,8 @@ struct NewtonOutcome {
   /// Negative eigenvalues of the tangent (its symmetric part) at the step's first factorisation
   /// (−1: unknown) and the most at any later one in the step.
   int start_negative_pivots = -1, most_negative_pivots = 0;
+  /// Where round-off left the first factorisation's inertia unknown.
+  std::optional<RoundedInertia> start_rounded;
   /// Bergan's current stiffness at the step's start: |Δλ| / ‖ΔD‖ of the first iterate (the
   /// tangent's own response to the load, translations only); 0 where the first iterate moved
   /// nothing or changed no λ.

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <map>
 #include <sstream>
 #include <string>
 
+#include "tsmframe/linalg/inertia.hpp"
 #include "tsmframe/solver/diagnosis.hpp"
 
 namespace tsm::solver {
@@ -168,7 +170,8 @@ std::vector<std::string> stability_notes(const std::vector<StepRecord>& steps, c
                                        [&](const CriticalPoint& c) { return c.step == r.first; });
     if (critical != critical_points.end())
       os << " (it turns indefinite at load factor " << critical->load_factor << ", within ±"
-         << 0.5 * std::abs(critical->unstable - critical->stable) << ", by bisection between the steps)";
+         << 0.5 * std::abs(critical->unstable - critical->stable) << ", by bisection between the steps"
+         << (critical->rounded ? "; nearer it, round-off leaves the eigenvalue count in doubt" : "") << ")";
     else if (r.stable_before)  // where the tangent lost its definiteness: a bracket for the critical load
       os << " (stable at load factor " << r.stable_before->load_factor << ", step " << r.stable_before->step
          << "; unstable at " << r.first_record->load_factor << ")";
@@ -211,29 +214,54 @@ std::vector<std::string> strain_notes(const Model& model, const std::vector<Step
   return {os.str()};
 }
 
+/// One note per run of consecutive steps in `listed` (each with a `step`), from its first entry:
+/// `write(os, first, plural)` after "step N ends" or "steps N–M end".
+template <class Listed, class Write>
+std::vector<std::string> notes_per_run(const std::vector<Listed>& listed, Write write) {
+  std::vector<std::string> notes;
+  for (size_t k = 0; k < listed.size();) {
+    size_t last = k;
+    while (last + 1 < listed.size() && listed[last + 1].step == listed[last].step + 1) ++last;
+    std::ostringstream os;
+    if (last == k) os << "step " << listed[k].step << " ends";
+    else os << "steps " << listed[k].step << "–" << listed[last].step << " end";
+    write(os, listed[k], last > k);
+    notes.push_back(os.str());
+    k = last + 1;
+  }
+  return notes;
+}
+
 /// Converged steps in neutral equilibrium (Recorder: the supports let a part move as a rigid
 /// body there, its loads doing no work along the motion): one note per run of consecutive such
 /// steps, naming the first one's motion. Their tangent is singular, so that no eigenvalue count
 /// is given for them.
 std::vector<std::string> neutral_notes(const Model& model, const std::vector<NeutralStep>& neutral) {
-  std::vector<std::string> notes;
-  for (size_t k = 0; k < neutral.size();) {
-    size_t last = k;
-    while (last + 1 < neutral.size() && neutral[last + 1].step == neutral[last].step + 1) ++last;
-    const FreeMotion& motion = neutral[k].motion;
-    std::ostringstream os;
-    if (last == k) os << "step " << neutral[k].step << " ends";
-    else os << "steps " << neutral[k].step << "–" << neutral[last].step << " end";
+  return notes_per_run(neutral, [&](std::ostringstream& os, const NeutralStep& first, bool) {
+    const FreeMotion& motion = first.motion;
     os << " in neutral equilibrium: there the supports let " << part_text(model, motion) << " "
        << motion_text(motion) << " as a rigid body"
        << (motion.kind == FreeMotion::Kind::rotation ? " (their lines of action pass through that point)"
                                                      : " (none acts along it)")
        << " and its loads do no work along that motion, so the tangent stiffness is singular and its eigenvalues tell "
           "nothing of the stability";
-    notes.push_back(os.str());
-    k = last + 1;
-  }
-  return notes;
+  });
+}
+
+/// Converged steps whose stability round-off leaves unknown (Recorder, stability: a pivot of the
+/// tangent's factorisation within round-off of zero, linalg/inertia.hpp): one note per run of
+/// consecutive such steps, naming its first step's pivot.
+std::vector<std::string> rounded_notes(const Model& model, const std::vector<RoundedStep>& rounded) {
+  return notes_per_run(rounded, [&](std::ostringstream& os, const RoundedStep& first, bool plural) {
+    const RoundedInertia& pivot = first.pivot;
+    os << " with " << (plural ? "their" : "its") << " stability unknown (no negative_eigenvalues): round-off "
+       << "leaves the tangent stiffness's eigenvalue count in doubt — its pivot at node " << model.nodes[pivot.node].id
+       << " along " << dof_name(pivot.dof) << " is " << std::setprecision(2) << pivot.ratio
+       << " of that node's own stiffness there, below " << linalg::doubtful_pivot
+       << ", within the factorisation's rounding, so that no double-precision count has its sign. A structure far "
+       << "softer as a whole than its stiffest element does this (a member very much longer than deep, in many short "
+       << "elements): fewer, longer elements resolve it";
+  });
 }
 
 }  // namespace
@@ -261,7 +289,8 @@ std::vector<LimitPoint> limit_points(const std::vector<StepRecord>& steps, const
     const bool maximum = here > before && here > after, minimum = here < before && here < after;
     before = here;
     if (!maximum && !minimum) continue;
-    LimitPoint point{path[k]->step, maximum, here};
+    LimitPoint point;
+    point.step = path[k]->step, point.maximum = maximum, point.load_factor = here;
     for (const RefinedLimit& r : refined)
       if (r.step == point.step) point.refined = r;
     point.contact_kink = (k > 0 && contact_changed_element(*path[k - 1], *path[k])) ||
@@ -313,6 +342,7 @@ void close_path(const Model& model, RunResult& result, ControlType control) {
     result.notes.push_back(std::move(note));
   for (std::string& note : contact_kink_notes(result.limit_points)) result.notes.push_back(std::move(note));
   for (std::string& note : neutral_notes(model, result.neutral_steps)) result.notes.push_back(std::move(note));
+  for (std::string& note : rounded_notes(model, result.rounded_steps)) result.notes.push_back(std::move(note));
   for (std::string& note : slid_off_notes(model, result.steps)) result.notes.push_back(std::move(note));
   for (std::string& note : strain_notes(model, result.steps)) result.notes.push_back(std::move(note));
 }

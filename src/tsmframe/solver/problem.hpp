@@ -35,10 +35,12 @@ struct Equations {
 };
 
 /// A factorisation of the tangent: whether it succeeded and the negative eigenvalues of its
-/// symmetric part (−1: unknown, the tangent not symmetric).
+/// symmetric part (−1: unknown — the tangent not symmetric, or round-off leaves the count in
+/// doubt, `rounded` saying where).
 struct Factorisation {
   bool ok = false;
   int negative_pivots = -1;
+  std::optional<RoundedInertia> rounded;
 };
 
 /// What the structure's passes at a converged iterate decided.
@@ -84,8 +86,9 @@ class Problem {
   virtual bool has_optional_terms() const = 0;
   /// Factorises the tangent of the last evaluation, at `state`, with or without the optional
   /// terms (without them where asked, then with them if the rest alone is singular); with `rhs`,
-  /// solves for it in place.
-  virtual Factorisation factorize(const State& state, bool with_optional_terms, Eigen::VectorXd* rhs) = 0;
+  /// solves for it in place. `stability`: its inertia will be read as the stability of the
+  /// equilibrium at `state` (a step's first iterate): guarded against round-off.
+  virtual Factorisation factorize(const State& state, bool with_optional_terms, Eigen::VectorXd* rhs, bool stability) = 0;
   /// Solves with the last factorisation, in place.
   virtual void solve_in_place(Eigen::VectorXd& x) const = 0;
 

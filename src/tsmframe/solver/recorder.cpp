@@ -140,15 +140,19 @@ void Recorder::take_neutral(StepRecord& record, const State& state) {
 }
 
 void Recorder::started_from_newest(const NewtonOutcome& outcome, bool tells) {
-  if (last_with_state_ < 0 || !tells || outcome.start_negative_pivots < 0) return;
+  if (last_with_state_ < 0 || !tells) return;
   StepRecord& newest = result_.steps[last_with_state_];
-  if (newest.negative_eigenvalues < 0 && !newest.neutral) newest.negative_eigenvalues = outcome.start_negative_pivots;
+  if (newest.negative_eigenvalues >= 0 || newest.neutral) return;
+  newest.negative_eigenvalues = outcome.start_negative_pivots;
+  const bool listed = !result_.rounded_steps.empty() && result_.rounded_steps.back().step == newest.step;
+  if (outcome.start_rounded && !listed) result_.rounded_steps.push_back({newest.step, *outcome.start_rounded});
 }
 
 void Recorder::replace_last(StepRecord record, const NewtonOutcome& outcome, const State& state) {
   record.step = result_.steps.back().step;
   record.cutbacks = result_.steps.back().cutbacks;
   result_.steps.pop_back();
+  std::erase_if(result_.rounded_steps, [&](const RoundedStep& r) { return r.step == record.step; });
   last_with_state_ = -1;
   for (int k = static_cast<int>(result_.steps.size()) - 1; k >= 0 && last_with_state_ < 0; --k)
     if (result_.steps[k].has_state) last_with_state_ = k;

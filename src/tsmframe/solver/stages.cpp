@@ -48,6 +48,7 @@ void append_stage(RunResult& run, RunResult stage_result, int stage, const std::
   run.limit_points.insert(run.limit_points.end(), stage_result.limit_points.begin(), stage_result.limit_points.end());
   run.critical_points.insert(run.critical_points.end(), stage_result.critical_points.begin(), stage_result.critical_points.end());
   run.neutral_steps.insert(run.neutral_steps.end(), stage_result.neutral_steps.begin(), stage_result.neutral_steps.end());
+  run.rounded_steps.insert(run.rounded_steps.end(), stage_result.rounded_steps.begin(), stage_result.rounded_steps.end());
   for (const std::string& note : stage_result.notes) run.notes.push_back(in_stage_text(note, stage, name));
   run.status = stage_result.status;
   run.failure = stage_result.failure;

@@ -49,7 +49,7 @@ struct StepRecord {
   /// Negative eigenvalues of the tangent stiffness at the converged state (its inertia): 0 a
   /// stable equilibrium, n > 0 an unstable one (past a limit or bifurcation point); −1 unknown
   /// (a contact is active, or a follower load is not conservative: the tangent is then not
-  /// symmetric).
+  /// symmetric; or round-off leaves the count in doubt: RunResult::rounded_steps).
   int negative_eigenvalues = -1;
   /// The supports let a part move here as a rigid body, its loads doing no work along the motion
   /// (RunResult::neutral_steps says how): the tangent is singular, negative_eigenvalues unknown.
@@ -113,6 +113,22 @@ struct CriticalPoint {
   int step = 0;                ///< the first unstable step
   double load_factor = 0.0;    ///< the bracket's middle
   double stable = 0.0, unstable = 0.0;  ///< the bracket: equilibria solved there, stable and not
+  bool rounded = false;  ///< the bisection stopped where round-off left the count in doubt
+};
+
+/// Where round-off leaves the tangent's inertia unknown (linalg/inertia.hpp): the pivot whose
+/// sign is lost — its node (index), the dof it acts most along (0 u, 1 v, 2 θ, in the node's
+/// frame) and its size against that node's own diagonal stiffness there.
+struct RoundedInertia {
+  int node = -1;
+  int dof = 0;
+  double ratio = 0.0;
+};
+
+/// A converged step whose stability round-off leaves unknown (negative_eigenvalues −1).
+struct RoundedStep {
+  int step = 0;
+  RoundedInertia pivot;
 };
 
 /// A converged step in neutral equilibrium: the motion its supports leave free (StepRecord::neutral).
@@ -138,6 +154,7 @@ struct RunResult {
   std::vector<RefinedLimit> refined_limits;  ///< the limit points located, by the stepping
   std::vector<CriticalPoint> critical_points;  ///< bifurcations found under load control, in path order
   std::vector<NeutralStep> neutral_steps;      ///< in path order
+  std::vector<RoundedStep> rounded_steps;      ///< in path order
   Buckling buckling;                           ///< linearised buckling at the unloaded state, if asked for
   /// Remarks on the path, converged or not: a sentence each (e.g. a jump across a snap-back
   /// under displacement control).

@@ -102,7 +102,8 @@ void TsmProblem::analyse_pattern() {
   analysed_pattern_ = system_.pattern_version();
 }
 
-Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms, Eigen::VectorXd* rhs) {
+Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms, Eigen::VectorXd* rhs, bool stability) {
+  solver_.guard_inertia(stability);
   analyse_pattern();
   // The SparseLU fallback (contacts only) needs the tangent the in-place LDLᵀ overwrote: it is
   // evaluated again at the same state, which stays as it is (a scratch evaluation).
@@ -124,12 +125,10 @@ Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms
   const std::vector<RankOne>& sliding = !follower ? contact : contact.empty() ? skew : both;
   BlockMatrix& K = system_.tangent_for_factorisation();
   const auto attempt = [&](const std::vector<RankOne>& terms, Eigen::VectorXd* x) {
-    Factorisation f;
-    f.ok = x ? solver_.factorize_and_solve(K, terms, *x, refill) : solver_.factorize(K, terms, refill);
+    const bool ok = x ? solver_.factorize_and_solve(K, terms, *x, refill) : solver_.factorize(K, terms, refill);
     // With a follower load's skew terms the tangent is not symmetric: its symmetric part's
     // inertia tells nothing of stability (a non-conservative load).
-    f.negative_pivots = follower ? -1 : solver_.negative_pivots();
-    return f;
+    return factorisation(ok, !follower);
   };
   const bool lagged = lags(contact);
   if ((with_optional_terms && !lagged) || contact.empty()) return attempt(sliding, rhs);
@@ -403,12 +402,22 @@ std::vector<int> TsmProblem::look_ahead_releases(State& state, bool& overwrote_t
   return also;
 }
 
-int TsmProblem::negative_eigenvalues(State& state, bool evaluated) {
+Factorisation TsmProblem::factorisation(bool ok, bool symmetric) const {
+  Factorisation f;
+  f.ok = ok;
+  const std::optional<linalg::Inertia> inertia = solver_.inertia();
+  if (!ok || !symmetric || !inertia) return f;
+  if (inertia->known()) f.negative_pivots = inertia->negative;
+  else f.rounded = RoundedInertia{system_.dofs().block_node(inertia->row), inertia->component, inertia->ratio};
+  return f;
+}
+
+Factorisation TsmProblem::negative_eigenvalues(State& state, bool evaluated) {
   if (!evaluated) evaluate(state);
-  if (!system_.follower_rank_one().empty()) return -1;  // not symmetric: the inertia tells nothing
+  if (!system_.follower_rank_one().empty()) return {};  // not symmetric: the inertia tells nothing
   analyse_pattern();
-  if (!solver_.factorize(system_.tangent_for_factorisation())) return -1;
-  return solver_.negative_pivots();
+  solver_.guard_inertia(true);
+  return factorisation(solver_.factorize(system_.tangent_for_factorisation()), true);
 }
 
 std::vector<ContactPoint> TsmProblem::contact_points(const State& state) const {

@@ -35,7 +35,7 @@ class TsmProblem final : public Problem {
   const Eigen::VectorXd& prescribed_coupling() const override { return eval_.prescribed_coupling; }
   assembly::RoundingFloor rounding_floor(const State& state, bool with_contacts) const override;
   bool has_optional_terms() const override { return !system_.contact_rank_one().empty(); }
-  Factorisation factorize(const State& state, bool with_optional_terms, Eigen::VectorXd* rhs) override;
+  Factorisation factorize(const State& state, bool with_optional_terms, Eigen::VectorXd* rhs, bool stability) override;
   void solve_in_place(Eigen::VectorXd& x) const override { solver_.solve_in_place(x); }
   void begin_step(const State& state) override;
   std::optional<StepFailure> after_iterate(const State& state) const override;
@@ -51,12 +51,12 @@ class TsmProblem final : public Problem {
   std::vector<ContactPoint> contact_points(const State& state) const override;
 
   const Model& model() const { return system_.model(); }
-  /// Negative eigenvalues of the tangent at `state` (its inertia, by one LDLᵀ factorisation): 0
-  /// where that equilibrium is stable, n > 0 where it is not; −1 if the tangent does not
-  /// factorise or is not symmetric. `evaluated`: the last evaluation was at `state` (a step
-  /// converged there and nothing was factorised since), else it is evaluated again. Uses up the
-  /// tangent: a step after it must start with an evaluation.
-  int negative_eigenvalues(State& state, bool evaluated);
+  /// The tangent at `state` factorised once for its inertia: negative_pivots 0 where that
+  /// equilibrium is stable, n > 0 where it is not; −1 if the tangent does not factorise, is not
+  /// symmetric or round-off leaves the count in doubt (`rounded`). `evaluated`: the last
+  /// evaluation was at `state` (a step converged there and nothing was factorised since), else it
+  /// is evaluated again. Uses up the tangent: a step after it must start with an evaluation.
+  Factorisation negative_eigenvalues(State& state, bool evaluated);
   /// Element forces (N, M_i, M_j) at `state` (a converged state: its chord rotations are its
   /// evaluation's).
   Eigen::VectorXd element_forces(const State& state) const;
@@ -108,6 +108,9 @@ class TsmProblem final : public Problem {
   int max_switches_ = 0, max_reversals_ = 0;  ///< the current step's budget
   bool predictor_pending_ = false;  ///< the step's first evaluation (the predictor's iterate) is still to come
   LinearSolver solver_;
+  /// The last factorisation's outcome and what it tells of the tangent's inertia (`symmetric`:
+  /// no follower load's skew terms in it).
+  Factorisation factorisation(bool ok, bool symmetric) const;
   assembly::Evaluation eval_;
   Eigen::VectorXd kept_rhs_;  ///< a right-hand side kept for a second factorisation (with the sliding terms)
   int analysed_pattern_ = -1;  ///< pattern version the linear solver has analysed

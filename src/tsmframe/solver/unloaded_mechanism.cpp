@@ -24,7 +24,7 @@ std::optional<std::string> unloaded_mechanism(const Model& model) {
   // The unloaded tangent's null vector, as a run's first step that fails there names it
   // (TsmProblem::explain): within a few shifts of zero where it does not factorise, at round-off
   // level where it does.
-  const bool regular = problem.factorize(state, true, nullptr).ok;
+  const bool regular = problem.factorize(state, true, nullptr, false).ok;
   StepFailure failure;
   failure.iteration = 1;
   if (!problem.name_unloaded_mechanism(state, failure, regular ? regular_within_shifts : singular_within_shifts))
