@@ -149,7 +149,8 @@ int report_run(const RunOptions& options, const tsm::solver::RunResult& result) 
   if (!options.quiet && !result.buckling.modes.empty()) {  // analysis.buckling
     std::cerr << "buckling: critical load factors";
     for (const auto& mode : result.buckling.modes) std::cerr << ' ' << mode.load_factor;
-    std::cerr << " (linearised, at the unloaded state)\n";
+    if (result.buckling.step == 0) std::cerr << " (linearised, at the unloaded state)\n";
+    else std::cerr << " (linearised, at step " << result.buckling.step << ", load factor " << result.buckling.base_load_factor << ")\n";
   }
   const std::string written = "; " + std::to_string(converged_steps) + " converged steps written to " + options.out + "/results.json";
   if (result.status == tsm::solver::Status::interrupted) {

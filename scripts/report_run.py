@@ -85,7 +85,8 @@ def sections(r, directory):
     for k in range(min(4, len(r.buckling_load_factors))):
         fig, ax = plt.subplots(figsize=(8, 4.5))
         r.plot_buckling(k, ax=ax)
-        parts.append((f"Buckling mode {k + 1} (linearised, at the unloaded state)", image(fig)))
+        where = f"from step {r.buckling_step}" if getattr(r, "buckling_step", 0) else "at the unloaded state"
+        parts.append((f"Buckling mode {k + 1} (linearised, {where})", image(fig)))
     if len(r.contact_nodes) and (r.contact_element > 0).any():
         fig, ax = plt.subplots(figsize=(8, 4.5))
         r.plot_contact(ax=ax)

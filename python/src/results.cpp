@@ -85,6 +85,7 @@ void add_outcome(py::dict& out, const Model& model, const solver::RunResult& res
   }
   out["buckling_load_factors"] = array<double>({count(factors.size())}, factors);
   out["buckling_modes"] = array<double>({count(factors.size()), model.node_count(), 3}, shapes);
+  out["buckling_step"] = result.buckling.step;  // 0: at the unloaded state
   py::list stages;  // a staged run's stages that ran: where each ended
   for (const solver::StageEnd& end : result.stages) {
     py::dict stage;

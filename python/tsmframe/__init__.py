@@ -227,7 +227,7 @@ class Model:
     def analysis(self, control=None, steps=None, **settings):
         """control: {"type": "load", "steps": N} | {"type": "displacement", …} | {"type": "arc-length", …},
         or steps=N alone for load control in N equal steps;
-        settings: tolerance, max_iterations, cutback, max_cutbacks, output, monitor, buckling ({"modes": k})."""
+        settings: tolerance, max_iterations, cutback, max_cutbacks, output, monitor, buckling ({"modes": k, "at": "unloaded", "end" or a step})."""
         if control is not None and steps is not None:
             raise ValueError("analysis: give control or steps, not both")
         if steps is not None:
@@ -332,8 +332,9 @@ class Result:
                                between the steps (load_factor, and the node, dof and value there); "contact_kink"
                                where a contact changed elements around it (maybe the mesh's extremum)
     buckling_load_factors (b,), buckling_modes (b, n, 3)
-                               with analysis.buckling: the linearised critical load factors at the unloaded state,
-                               ascending, and their mode shapes (ux, uy, rz per node, largest translation 1)
+                               with analysis.buckling: the linearised critical load factors, ascending, and their
+                               mode shapes (ux, uy, rz per node, largest translation 1), at the unloaded state or
+                               a converged one ("at": "end" or a step): buckling_step (0: unloaded)
     neutral_equilibria         steps whose supports let a part move as a rigid body, its loads doing no
                                work (a singular tangent; no eigenvalue count): dicts of step, node, part_nodes,
                                motion ("rotation" about (x, y), or "translation" along direction)

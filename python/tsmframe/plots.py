@@ -79,9 +79,10 @@ def plot_diagram(result, quantity="M", step=-1, ax=None, scale=None, **kw):
 
 
 def plot_buckling(result, mode=0, ax=None, scale=None, **kw):
-    """A buckling mode (analysis.buckling; index into result.buckling_load_factors) over the frame
-    as drawn: each element's ends moved by the mode's translations, scaled so that the largest
-    is `scale` (None: a tenth of the frame's size); titled with its critical load factor."""
+    """A buckling mode (analysis.buckling; index into result.buckling_load_factors) over the state
+    it was estimated from (the frame as drawn, or its converged step): each element's ends moved
+    by the mode's translations, scaled so that the largest is `scale` (None: a tenth of the
+    frame's size); titled with its critical load factor and the step."""
     ax = _axes(ax)
     if not 0 <= mode < len(result.buckling_load_factors) and not -len(result.buckling_load_factors) <= mode < 0:
         raise IndexError(f"no buckling mode {mode} ({len(result.buckling_load_factors)} found)")
@@ -90,14 +91,19 @@ def plot_buckling(result, mode=0, ax=None, scale=None, **kw):
     index = {int(i): k for k, i in enumerate(result.node_ids)}
     shape = result.buckling_modes[mode]
     colour = kw.pop("color", "tab:red")
+    step = int(getattr(result, "buckling_step", 0))
+    base = result.node_xy
+    if step > 0 and step in list(result.state_steps):
+        base = base + result.displacements[list(result.state_steps).index(step)][:, :2]
     for a, b in result.element_nodes:
         ends = [index[int(a)], index[int(b)]]
-        drawn = result.node_xy[ends]
+        drawn = base[ends]
         moved = drawn + scale * shape[ends, :2]
         ax.plot(drawn[:, 0], drawn[:, 1], color="0.75", lw=1)
         ax.plot(moved[:, 0], moved[:, 1], color=colour, lw=1.5, **kw)
     ax.set_aspect("equal")
-    ax.set_title(f"buckling mode {mode % len(result.buckling_load_factors) + 1}: λ = {result.buckling_load_factors[mode]:.4g}")
+    where = f" (from step {step})" if step > 0 else ""
+    ax.set_title(f"buckling mode {mode % len(result.buckling_load_factors) + 1}: λ = {result.buckling_load_factors[mode]:.4g}{where}")
     return ax
 
 

@@ -67,7 +67,8 @@ def _buckling(document, index):
     for k, mode in enumerate(modes):
         for node, u in mode["shape"].items():
             shapes[k, index[int(node)]] = u
-    return {"buckling_load_factors": np.array([m["load_factor"] for m in modes], dtype=float), "buckling_modes": shapes}
+    return {"buckling_load_factors": np.array([m["load_factor"] for m in modes], dtype=float), "buckling_modes": shapes,
+            "buckling_step": document.get("buckling_from", {}).get("step", 0)}
 
 
 def read_results(path):

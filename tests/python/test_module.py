@@ -638,6 +638,38 @@ def test_buckling_modes_of_a_column_come_back_as_arrays():
     plt.close(fig)
 
 
+def test_buckling_from_a_converged_step_comes_back_with_its_step_and_is_drawn_on_that_state(tmp_path):
+    # The column's path before buckling is linear: from step 2 (λ₀ = 0.5 of the critical load),
+    # the estimate is the unloaded one within the shortening (< 1e-4); its step comes back, is
+    # read back from results.json, and the mode is drawn on that state.
+    P, EI, L = 1e3, 2e11 * 1e-6, 4.0
+    m = tf.Model("column").material("steel", E=2e11).section("s", A=1e-2, I=1e-6)
+    m.node(1, 0, 0).node(2, L, 0).member(1, 2, "steel", "s", divisions=20)
+    m.support(1, "pinned").support(2, "roller-x").load(2, fx=-P)
+    critical = math.pi ** 2 * EI / (L ** 2 * P)
+    m.analysis({"type": "load", "path": [0.25 * critical, 0.5 * critical, 0.6 * critical]}, buckling={"modes": 1, "at": 2})
+    r = tf.run(m)
+    assert r.buckling_step == 2
+    kh = math.pi / 20
+    assert r.buckling_load_factors[0] == pytest.approx(critical * (1 + kh ** 2 / 12), rel=1e-4)
+    path = tmp_path / "results.json"
+    path.write_text(r.results_json)
+    again = tf.Result.load(str(path), model=m)
+    assert again.buckling_step == 2 and list(again.buckling_load_factors) == list(r.buckling_load_factors)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots()
+    r.plot_buckling(0, ax=ax)
+    assert "from step 2" in ax.get_title()
+    shortened = ax.lines[0].get_xydata()  # the first element's state, grey
+    assert shortened[0, 0] == pytest.approx(0.0) and shortened[1, 0] < L / 20
+    plt.close(fig)
+    with pytest.raises(ValueError, match=r"analysis.buckling.at: expected"):
+        m.analysis(steps=1, buckling={"modes": 1, "at": "middle"})
+        tf.run(m)
+
+
 def test_a_pickled_result_still_draws_its_curves():
     import pickle
     r = tf.run(os.path.join(SOURCE, "examples", "semi-rigid-portal.json"))

@@ -128,6 +128,101 @@ TEST(LinearBuckling, ItIsWhereThePerfectColumnsPathTurnsUnstable) {
   EXPECT_NEAR(r.critical_points[0].load_factor, r.buckling.modes[0].load_factor, 1e-4 * r.buckling.modes[0].load_factor);
 }
 
+TEST(LinearBuckling, FromAStateOfTheColumnItIsTheSameEstimate) {
+  // The cantilever column's path before buckling is linear (a uniform shortening, 1e-4 of it at
+  // most here): estimated from the state at λ₀ = 0.5 or 0.7 (`"at": "end"`), the critical load is
+  // the unloaded estimate's, the shortening aside (< 1e-4), and the same mode.
+  json m = column(json::array({{{"node", 1}, {"type", "fixed"}}}));
+  m["loads"][0]["fx"] = -2e5;  // λ_cr ≈ 0.77
+  tsm::Model model;
+  const auto unloaded = run(m, model);
+  ASSERT_EQ(unloaded.buckling.modes.size(), 2u);
+  EXPECT_EQ(unloaded.buckling.step, 0);
+  m["analysis"]["buckling"]["at"] = "end";
+  for (const double base : {0.5, 0.7}) {
+    m["analysis"]["control"] = {{"type", "load"}, {"path", {base}}};
+    const auto r = run(m, model);
+    ASSERT_EQ(r.buckling.modes.size(), 2u) << base;
+    EXPECT_EQ(r.buckling.step, 1);
+    EXPECT_EQ(r.buckling.base_load_factor, base);
+    for (int k = 0; k < 2; ++k) {
+      const double expected = unloaded.buckling.modes[k].load_factor;
+      EXPECT_NEAR(r.buckling.modes[k].load_factor, expected, 1e-4 * expected) << base << " mode " << k;
+      EXPECT_LT((r.buckling.modes[k].shape - unloaded.buckling.modes[k].shape).cwiseAbs().maxCoeff(), 1e-3);
+    }
+  }
+}
+
+TEST(LinearBuckling, AtAStepItIsThatStatesEstimateWhateverTheOutputKeeps) {
+  // `"at": 2` on a path 0.3, 0.6, 0.7 is the estimate `"at": "end"` gives on the path 0.3, 0.6:
+  // the step's state is kept for it though the output keeps only the last; a step the run does
+  // not reach leaves no modes and a note that says so.
+  json m = column(json::array({{{"node", 1}, {"type", "fixed"}}}));
+  m["loads"][0]["fx"] = -2e5;
+  tsm::Model model;
+  m["analysis"]["buckling"]["at"] = "end";
+  m["analysis"]["control"] = {{"type", "load"}, {"path", {0.3, 0.6}}};
+  const auto end = run(m, model);
+  m["analysis"]["buckling"]["at"] = 2;
+  m["analysis"]["output"] = "last";
+  m["analysis"]["control"] = {{"type", "load"}, {"path", {0.3, 0.6, 0.7}}};
+  const auto at = run(m, model);
+  ASSERT_EQ(at.buckling.modes.size(), end.buckling.modes.size());
+  EXPECT_EQ(at.buckling.step, 2);
+  EXPECT_EQ(at.buckling.base_load_factor, 0.6);
+  for (size_t k = 0; k < at.buckling.modes.size(); ++k)
+    EXPECT_NEAR(at.buckling.modes[k].load_factor, end.buckling.modes[k].load_factor, 1e-12 * end.buckling.modes[k].load_factor);
+  EXPECT_TRUE(at.steps[1].has_state) << "kept for the estimate";
+  EXPECT_FALSE(at.steps[0].has_state) << "the output keeps the last";
+  m["analysis"]["buckling"]["at"] = 9;
+  const auto unreached = run(m, model);
+  EXPECT_TRUE(unreached.buckling.modes.empty());
+  ASSERT_FALSE(unreached.notes.empty());
+  EXPECT_NE(unreached.notes.back().find("asked at step 9, which the run did not reach"), std::string::npos) << unreached.notes.back();
+}
+
+TEST(LinearBuckling, FromStatesNearerThePathsBifurcationItComesNearerIt) {
+  // A fixed-base portal (columns 3 m, beam 4 m in two members, EI = 1e6, EA = 1e8) under P on each
+  // column's top and 4P at mid-span: the beam's bending sways nothing but loads the columns with
+  // moments, so that the path before the sway is not linear. The path under load control passes
+  // the sway bifurcation, which bisection on its tangent's inertia finds; the linearised estimate
+  // from the unloaded state is 11 % below it, and from states nearer it nearer it.
+  const double h = 3.0, b = 4.0, P = 1000.0;
+  json m = {{"materials", {{"m", {{"E", 1e6}}}}},
+            {"sections", {{"s", {{"A", 1e2}, {"I", 1.0}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0}, {"y", 0}}, {{"id", 2}, {"x", 0}, {"y", h}}, {{"id", 3}, {"x", b}, {"y", h}},
+                                   {{"id", 4}, {"x", b}, {"y", 0}}, {{"id", 5}, {"x", b / 2}, {"y", h}}})},
+            {"members", json::array({{{"from", 1}, {"to", 2}, {"material", "m"}, {"section", "s"}, {"divisions", 20}},
+                                     {{"from", 2}, {"to", 5}, {"material", "m"}, {"section", "s"}, {"divisions", 10}},
+                                     {{"from", 5}, {"to", 3}, {"material", "m"}, {"section", "s"}, {"divisions", 10}},
+                                     {{"from", 3}, {"to", 4}, {"material", "m"}, {"section", "s"}, {"divisions", 20}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 4}, {"type", "fixed"}}})},
+            {"loads", json::array({{{"node", 2}, {"fy", -P}}, {{"node", 3}, {"fy", -P}}, {{"node", 5}, {"fy", -4 * P}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"path", {100, 200, 250, 275, 300}}}}, {"buckling", {{"modes", 1}}}}}};
+  tsm::Model model;
+  const auto path = run(m, model);
+  ASSERT_EQ(path.status, tsm::solver::Status::converged) << path.message;
+  ASSERT_EQ(path.critical_points.size(), 1u);
+  const double bifurcation = path.critical_points[0].load_factor;
+  ASSERT_EQ(path.buckling.modes.size(), 1u);
+  double error = bifurcation - path.buckling.modes[0].load_factor;
+  EXPECT_GT(error, 0.1 * bifurcation) << "the unloaded estimate, well below";
+  m["analysis"]["buckling"]["at"] = "end";
+  for (const double base : {100.0, 200.0, 250.0, 270.0, 278.0}) {
+    m["analysis"]["control"] = {{"type", "load"}, {"path", {base}}};
+    const auto r = run(m, model);
+    ASSERT_EQ(r.buckling.modes.size(), 1u) << base;
+    const double nearer = bifurcation - r.buckling.modes[0].load_factor;
+    EXPECT_GT(nearer, 0.0) << base;
+    EXPECT_LT(nearer, error) << base;
+    error = nearer;
+    // A sway: both tops move along x alike.
+    const Eigen::VectorXd& shape = r.buckling.modes[0].shape;
+    EXPECT_NEAR(shape[3 * 1], shape[3 * 2], 1e-3) << base;
+  }
+  EXPECT_LT(error, 5e-3 * bifurcation) << "from 278, within 0.5 % of the path's";
+}
+
 TEST(LinearBuckling, AModeBelowTheFactorisationsRoundOffIsLeftOutAndSaidSo) {
   // A column 1,000 m long and 0.035 m deep (r = 0.01) in 20,000 elements: its first mode's
   // stiffness, EI (π/L)⁴ h, is 2e-17 of an element's axial EA/h — below double precision's
@@ -167,6 +262,13 @@ TEST(LinearBuckling, TheReaderRefusesWhatTheLinearSolutionLeavesOut) {
   EXPECT_NE(refusal(m).find("analysis.buckling.modes"), std::string::npos) << refusal(m);
   m["analysis"]["buckling"] = {{"mode", 2}};
   EXPECT_NE(refusal(m).find("analysis.buckling.mode: unknown key \"mode\""), std::string::npos) << refusal(m);
+  m["analysis"]["buckling"] = {{"modes", 2}, {"at", "middle"}};
+  EXPECT_NE(refusal(m).find("analysis.buckling.at: expected \"unloaded\", \"end\" or a step number, got \"middle\""), std::string::npos)
+      << refusal(m);
+  m["analysis"]["buckling"]["at"] = 0;
+  EXPECT_NE(refusal(m).find("analysis.buckling.at"), std::string::npos) << refusal(m);
+  m["analysis"]["buckling"]["at"] = true;
+  EXPECT_NE(refusal(m).find("analysis.buckling.at: expected"), std::string::npos) << refusal(m);
   m["analysis"]["buckling"] = {{"modes", 2}};
   m["loads"][0]["follower"] = true;
   EXPECT_NE(refusal(m).find("analysis.buckling: linearised buckling is not available with follower loads"), std::string::npos)

@@ -122,6 +122,20 @@ void read_output(const json& o, const std::string& path, OutputSelection& out) {
   out.every = static_cast<int>(bounded_integer(o, path, 1, max_steps));
 }
 
+/// Where buckling is estimated: "unloaded", "end" (the last converged state) or a step number.
+void read_buckling_at(const json& at, const std::string& path, AnalysisSettings& a) {
+  const std::string expected = "expected \"unloaded\", \"end\" or a step number";
+  if (at.is_number()) {
+    a.buckling_at = AnalysisSettings::BucklingAt::step;
+    a.buckling_step = static_cast<int>(bounded_integer(at, path, 1, max_steps));
+    return;
+  }
+  if (!at.is_string()) fail(path, expected);
+  const std::string where = at.get<std::string>();
+  if (where == "end") a.buckling_at = AnalysisSettings::BucklingAt::end;
+  else if (where != "unloaded") fail(path, expected + ", got " + quote_text(where));
+}
+
 void read_analysis_settings(const json& an, Model& model, const NodeResolver& node) {
   AnalysisSettings& a = model.analysis;
   expect_object(an, "analysis");
@@ -140,8 +154,9 @@ void read_analysis_settings(const json& an, Model& model, const NodeResolver& no
   if (an.contains("buckling")) {
     const json& b = an["buckling"];
     expect_object(b, "analysis.buckling");
-    check_keys(b, "analysis.buckling", {"modes"});
+    check_keys(b, "analysis.buckling", {"modes", "at"});
     a.buckling_modes = b.contains("modes") ? static_cast<int>(bounded_integer(b["modes"], "analysis.buckling.modes", 1, 50)) : 3;
+    if (b.contains("at")) read_buckling_at(b["at"], "analysis.buckling.at", a);
   }
   if (an.contains("monitor")) {
     expect_array(an["monitor"], "analysis.monitor");

@@ -206,8 +206,11 @@ void write_results_json(std::ostream& out, const Model& model, const solver::Run
     w.end_object();
   }
   w.end_array();
-  // Linearised buckling at the unloaded state (analysis.buckling): each mode's λ and shape.
+  // Linearised buckling (analysis.buckling): each mode's λ and shape, and the converged step it
+  // was estimated from where not the unloaded state.
   if (model.analysis.buckling_modes > 0) {
+    if (result.buckling.step > 0)
+      w.newline().key("buckling_from").begin_object().key("step").value(result.buckling.step).key("load_factor").value(result.buckling.base_load_factor).end_object();
     w.newline().key("buckling").begin_array();
     for (const solver::BucklingMode& mode : result.buckling.modes) {
       w.newline().begin_object().key("load_factor").value(mode.load_factor).key("shape");

@@ -160,8 +160,11 @@ struct AnalysisSettings {
   int max_cutbacks = 10;  ///< halvings in a row before the run gives up (docs/format.md)
   OutputSelection output;
   std::vector<int> monitor;  ///< node indices written to steps.csv
-  /// Linearised buckling modes asked for at the unloaded state (solver/buckling; 0: none).
+  /// Linearised buckling modes asked for (solver/buckling; 0: none), and where: at the unloaded
+  /// state, at the run's last converged state, or at the converged step `buckling_step`.
   int buckling_modes = 0;
+  enum class BucklingAt { unloaded, end, step } buckling_at = BucklingAt::unloaded;
+  int buckling_step = 0;
   /// The number of the run's first step and the stage its steps belong to: 1 and 0, but for a
   /// staged run's later stages (stage.hpp) and a restart (solver/restart.hpp), numbered on.
   int first_step = 1;

@@ -28,9 +28,11 @@ constexpr double linear_move = 1e-7;
 
 using Sparse = Eigen::SparseMatrix<double>;
 
-/// K_G over the free equations (nodal frames), the elements' geometric stiffness at the drawn
-/// geometry under element forces `forces` (N, M_i, M_j per element).
-Sparse geometric_stiffness(const Model& model, const assembly::GlobalSystem& system, const Eigen::VectorXd& forces) {
+/// K_G over the free equations (nodal frames), the elements' geometric stiffness at the chords of
+/// `displacements` (global; `rotations` the chords' previous turns) under element forces
+/// `forces` (N, M_i, M_j per element).
+Sparse geometric_stiffness(const Model& model, const assembly::GlobalSystem& system, const Eigen::VectorXd& forces,
+                           const Eigen::VectorXd& displacements, const std::vector<double>& rotations) {
   const assembly::DofMap& dofs = system.dofs();
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(36 * model.elements.size());
@@ -38,7 +40,9 @@ Sparse geometric_stiffness(const Model& model, const assembly::GlobalSystem& sys
     const Element& element = model.elements[e];
     const element::InitialChord initial =
         element::initial_chord(model.nodes[element.start].position, model.nodes[element.end].position);
-    const element::Chord chord = element::current_chord(initial, element::Vector6::Zero(), 0.0);
+    element::Vector6 ends;
+    ends << displacements.segment<3>(dofs_per_node * element.start), displacements.segment<3>(dofs_per_node * element.end);
+    const element::Chord chord = element::current_chord(initial, ends, rotations[e]);
     const element::Matrix6 k = element::geometric_stiffness(chord, forces.segment<3>(3 * e));
     const int node[2] = {element.start, element.end};
     for (int a = 0; a < 2; ++a)
@@ -164,18 +168,18 @@ Eigen::VectorXd times(const BlockMatrix& K, const assembly::DofMap& dofs, const 
 
 }  // namespace
 
-Buckling linear_buckling(const Model& model, int count) {
+Buckling linear_buckling(const Model& model, int count, const BucklingState* at) {
   if (count <= 0) return {};
   assembly::DofMap dofs(model);
   assembly::GlobalSystem system(model, dofs);
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.dof_count());
-  const std::vector<double> rotations(model.elements.size(), 0.0);
+  const Eigen::VectorXd start = at ? at->displacements : Eigen::VectorXd::Zero(model.dof_count());
+  const std::vector<double> rotations = at ? at->chord_rotations : std::vector<double>(model.elements.size(), 0.0);
   assembly::Evaluation evaluation;
-  system.evaluate(zero, rotations, true, evaluation);
+  system.evaluate(start, rotations, true, evaluation);
   LinearSolver solver;
   solver.analyze(dofs, system.tangent());
   if (dofs.free_count() == 0 || !solver.factorize(system.tangent_for_factorisation())) return {};  // a mechanism
-  // The linear solution for the reference load, and its element forces.
+  // The linear response to the reference load, and its element forces' increment.
   Eigen::VectorXd load = model.reference_load;
   system.frames().to_nodal(load);
   Eigen::VectorXd free(dofs.free_count());
@@ -184,14 +188,16 @@ Buckling linear_buckling(const Model& model, int count) {
   const double largest = largest_translation(linear);
   if (!(largest > 0.0) || !std::isfinite(largest)) return {};
   const double scale = linear_move * model.size / largest;
-  const Eigen::VectorXd forces = system.element_forces(scale * linear, rotations, {}) / scale;
-  const Sparse B = -geometric_stiffness(model, system, forces);
+  const Eigen::VectorXd forces =
+      (system.element_forces(start + scale * linear, rotations, {}) - system.element_forces(start, rotations, {})) / scale;
+  const Sparse B = -geometric_stiffness(model, system, forces, start, rotations);
   const auto found = subspace_iteration(solver, B, count);
   // Each mode checked against K_M itself (evaluated again: the factor took its place): a mode
   // whose stiffness lies below the factorisation's round-off (a member hundreds of thousands of
   // times longer than deep, in short elements) is not resolved in double precision and is left out.
-  system.evaluate(zero, rotations, true, evaluation);
+  system.evaluate(start, rotations, true, evaluation);
   Buckling buckling;
+  if (at) buckling.step = at->step, buckling.base_load_factor = at->load_factor;
   for (const auto& [mu, vector] : found) {  // by |μ| descending: the positive ones by λ ascending
     const Eigen::VectorXd elastic = times(system.tangent(), dofs, vector);
     if ((mu * elastic - B * vector).norm() > resolved_within * std::abs(mu) * elastic.norm()) {
@@ -199,7 +205,7 @@ Buckling linear_buckling(const Model& model, int count) {
       break;
     }
     if (mu <= 0.0) continue;  // buckling under the reversed load
-    BucklingMode mode{1.0 / mu, all_dofs(model, system, vector)};
+    BucklingMode mode{buckling.base_load_factor + 1.0 / mu, all_dofs(model, system, vector)};
     int at = 0;
     const double size = largest_translation(mode.shape, &at);
     if (size > 0.0) mode.shape /= (mode.shape[at] > 0.0 ? size : -size);

@@ -328,6 +328,11 @@ std::string unresolved_buckling_note(int asked, size_t found) {
   return os.str();
 }
 
+std::string unreached_buckling_note(int step) {
+  if (step == 0) return "linearised buckling was asked at the run's last converged state, and no step converged";
+  return "linearised buckling was asked at step " + std::to_string(step) + ", which the run did not reach converged";
+}
+
 /// What the result says about its path besides the steps: the limit points, and the notes.
 void close_path(const Model& model, RunResult& result, ControlType control) {
   result.limit_points = limit_points(result.steps, result.refined_limits);

@@ -21,6 +21,10 @@ std::vector<LimitPoint> limit_points(const std::vector<StepRecord>& steps, const
 /// round-off (solver/buckling).
 std::string unresolved_buckling_note(int asked, size_t found);
 
+/// The note for linearised buckling asked at converged step `step` (0: the last) that the run
+/// did not reach.
+std::string unreached_buckling_note(int step);
+
 /// Sets result.limit_points and result.notes from its steps (and its critical points).
 void close_path(const Model& model, RunResult& result, ControlType control);
 

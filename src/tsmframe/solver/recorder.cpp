@@ -8,7 +8,10 @@ namespace tsm::solver {
 namespace {
 
 /// Whether a converged step keeps its full state in the results.
-bool keeps_state(const OutputSelection& output, int step) {
+bool keeps_state(const AnalysisSettings& settings, int step) {
+  if (settings.buckling_modes > 0 && settings.buckling_at == AnalysisSettings::BucklingAt::step && step == settings.buckling_step)
+    return true;  // buckling is estimated from it after the run
+  const OutputSelection& output = settings.output;
   switch (output.kind) {
     case OutputSelection::Kind::all: return true;
     case OutputSelection::Kind::last: return false;
@@ -101,7 +104,7 @@ void Recorder::converged(StepRecord record, const NewtonOutcome& outcome, const 
                                                         : nullptr;
   record.largest_move = largest_move(displacements, before);
   // The previous step's state goes first (unless the output keeps it): the peak memory holds one state, not two.
-  if (last_with_state_ >= 0 && !keeps_state(settings.output, result_.steps[last_with_state_].step)) {
+  if (last_with_state_ >= 0 && !keeps_state(settings, result_.steps[last_with_state_].step)) {
     StepRecord& previous = result_.steps[last_with_state_];
     previous.has_state = false;
     previous.displacements = previous.element_forces = previous.reactions = Eigen::VectorXd();
@@ -113,7 +116,7 @@ void Recorder::converged(StepRecord record, const NewtonOutcome& outcome, const 
   record.chord_rotations = state.chord_rotations;
   record.arc_memory = state.arc_length;
   record.contact_states = kept_contacts(state.contacts);
-  forces_pending_ = defer_forces_ && !keeps_state(settings.output, record.step);
+  forces_pending_ = defer_forces_ && !keeps_state(settings, record.step);
   if (!forces_pending_) {
     record.element_forces = problem_.element_forces(state);
     take_axial_strain(model_, record);
