@@ -34,6 +34,7 @@
 #include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/solver/analysis.hpp"
 #include "tsmframe/solver/unloaded_mechanism.hpp"
+#include "tsmframe/study/study_journal.hpp"
 #include "tsmframe/study/study_runner.hpp"
 #include "tsmframe/study/study_writer.hpp"
 #include "tsmframe/version.hpp"
@@ -278,7 +279,40 @@ struct StudyOptions {
   std::string out = "out-study";  // beside a run's `out`, not in it: a run replaces its directory whole
   bool quiet = false;
   int jobs = 0;  // 0: all cores
+  bool resume = false;  // go on from the rows of an earlier run (study_journal.hpp)
 };
+
+/// Where the study goes on from with --resume (nothing: from the start); without it, a note
+/// where an unfinished run's rows are about to be replaced. Throws io::InputError where the
+/// journal there is another study's (with --resume only).
+std::optional<tsm::study::ResumePoint> resume_point(const StudyOptions& options, const tsm::study::Study& definition) {
+  std::optional<tsm::study::ResumePoint> point;
+  try {
+    point = tsm::study::find_resume_point(options.out, definition);
+  } catch (const tsm::io::InputError&) {
+    if (options.resume) throw;
+    return std::nullopt;  // another study's rows: replaced, as any output is
+  }
+  if (!point || options.resume) return point;
+  if (point->journal.rows.size() < definition.case_count())
+    std::cerr << options.study << ": note: " << point->directory.string() << " holds " << point->journal.rows.size() << " of "
+              << definition.case_count() << " rows of an unfinished run of this study, which this run replaces (--resume goes on from them)\n";
+  return std::nullopt;
+}
+
+/// A resumed study's kept cases (study.keep) from the output directory it goes on from into the
+/// new one, as hard links (a dead run's temporary directory is adopted whole instead).
+void carry_kept_cases(const tsm::study::ResumePoint& from, const std::filesystem::path& to) {
+  namespace fs = std::filesystem;
+  for (const tsm::study::CaseResult& row : from.journal.rows) {
+    const fs::path kept = from.directory / "cases" / std::to_string(row.index + 1);
+    std::error_code error;
+    if (!fs::exists(kept, error)) continue;
+    fs::create_directories(to / "cases", error);
+    fs::copy(kept, to / "cases" / kept.filename(), fs::copy_options::recursive | fs::copy_options::create_hard_links, error);
+    if (error) throw tsm::io::SystemError(kept.string(), error.message());
+  }
+}
 
 /// The study's closing line on stderr; returns the exit code.
 int report_study(const StudyOptions& options, size_t total, const std::vector<tsm::study::CaseResult>& rows) {
@@ -320,15 +354,30 @@ int study(const StudyOptions& options) {
     std::cerr << options.study << ": " << *invalid << '\n';
     return exit_bad_input;
   }
+  std::optional<tsm::study::ResumePoint> from;
+  try {
+    from = resume_point(options, definition);
+  } catch (const tsm::io::InputError& e) {
+    std::cerr << options.study << ": --resume: " << e.what() << '\n';
+    return exit_bad_input;
+  }
   const tsm::solver::StopRequest& stop = tsm::app::install_stop_signals();
-  tsm::io::OutputDirectory output(options.out, {"study.csv", "study.json", "cases"});  // as a run's (run above)
+  tsm::io::OutputDirectory output(options.out, {"study.csv", "study.json", "cases", tsm::study::journal_name},
+                                  from && from->temporary ? from->directory : std::filesystem::path());  // as a run's (run above)
+  if (from && !from->temporary && definition.keep) carry_kept_cases(*from, output.path());
+  std::vector<tsm::study::CaseResult> resumed = from ? std::move(from->journal.rows) : std::vector<tsm::study::CaseResult>{};
+  tsm::study::StudyJournal journal(output.path() / tsm::study::journal_name, definition, resumed);
   const size_t total = definition.case_count();
-  size_t done = 0, not_converged = 0;
+  size_t done = resumed.size(), not_converged = 0;
+  for (const auto& row : resumed) not_converged += row.converged ? 0 : 1;
+  if (from && !options.quiet)
+    std::cerr << options.study << ": resuming: " << done << " of " << total << " cases done (" << from->directory.string() << ")\n";
   // On a terminal a bar with the time left; elsewhere a line per case.
   const bool bar = tsm::app::stderr_is_terminal();
   tsm::app::LiveLine live(std::cerr, bar);
   const auto started = std::chrono::steady_clock::now();
   const auto progress = [&](const tsm::study::CaseResult& row) {
+    journal.append(row);
     ++done;
     not_converged += row.converged ? 0 : 1;
     if (options.quiet) return;
@@ -345,7 +394,7 @@ int study(const StudyOptions& options) {
   };
   // Ctrl-C: no new case starts, the running ones stop at their next step; the rows of the cases run are written.
   const std::vector<tsm::study::CaseResult> rows =
-      tsm::study::run_study(definition, options.jobs, output.path().string(), progress, &stop);
+      tsm::study::run_study(definition, options.jobs, output.path().string(), progress, &stop, std::move(resumed));
   live.finish();
   tsm::study::write_study(output.path().string(), definition, rows);
   output.commit();
@@ -388,6 +437,9 @@ int main(int argc, char** argv) {
   study_command->add_option("-o,--out", study_options.out, "output directory (default: out-study)");
   study_command->add_flag("-q,--quiet", study_options.quiet, "no progress lines");
   study_command->add_option("-j,--jobs", study_options.jobs, "cases run at once (default: all cores)")->check(CLI::Range(1, 1024));
+  study_command->add_flag("--resume", study_options.resume,
+                          "go on from the rows of an earlier run of the same study into the same --out (stopped or killed): "
+                          "only the other cases run");
 
   try {
     app.parse(argc, argv);

@@ -407,6 +407,67 @@ TEST_F(Study, CtrlCStartsNoNewCaseAndWritesTheRowsOfTheCasesRun) {
     EXPECT_EQ(entry.path().filename().string().find(".tsmframe-"), std::string::npos) << "temporary left: " << entry.path();
 }
 
+/// study.json's rows without their timing: what a resumed study must give as the whole one did.
+json rows_but_seconds(const json& study) {
+  json rows = study["cases"];
+  for (json& row : rows) row.erase("seconds");
+  return rows;
+}
+
+TEST_F(Study, AStudyKilledMidWayKeepsItsFinishedRowsAndResumeRunsOnlyTheOthers) {
+  // SIGKILL (no clean-up at all) once the journal holds 3 rows; --resume goes on from the dead
+  // run's temporary directory: the rows and kept cases of the whole run, no case run twice.
+  const std::string file = write("study.json", slow_study(8));
+  const fs::path whole = dir_ / "whole", out = dir_ / "out";
+  ASSERT_EQ(run_cli("study " + file + " -q --jobs 1 --out " + whole.string()).exit_code, 0);
+  const std::string journal = (dir_ / ".out.tsmframe-*" / "study.rows.jsonl").string();
+  const Outcome killed = run_command(std::string(TSMFRAME_CLI) + " study " + file + " -q --jobs 1 --out " + out.string() +
+                                    " & p=$!; for i in $(seq 600); do [ \"$(cat " + journal +
+                                    " 2>/dev/null | wc -l)\" -ge 4 ] && break; sleep 0.05; done; kill -9 $p; wait $p 2>/dev/null");
+  EXPECT_EQ(killed.exit_code, 128 + 9) << killed.output;
+  ASSERT_FALSE(fs::exists(out)) << "nothing committed";
+  const Outcome resumed = run_cli("study " + file + " --jobs 1 --resume --out " + out.string());
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
+  const size_t at = resumed.output.find("resuming: ");
+  ASSERT_NE(at, std::string::npos) << resumed.output;
+  const int done = std::stoi(resumed.output.substr(at + 10));
+  EXPECT_GE(done, 3) << resumed.output;
+  EXPECT_LT(done, 8) << resumed.output;
+  for (int k = 1; k <= 8; ++k)  // run again: only the cases not done
+    EXPECT_EQ(resumed.output.find("case " + std::to_string(k) + "/8 ") != std::string::npos, k > done) << k << '\n' << resumed.output;
+  EXPECT_EQ(rows_but_seconds(read_json(out / "study.json")), rows_but_seconds(read_json(whole / "study.json")));
+  for (int k = 1; k <= 8; ++k) EXPECT_TRUE(fs::exists(out / "cases" / std::to_string(k) / "results.json")) << k;
+  for (const auto& entry : fs::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().filename().string().find(".tsmframe-"), std::string::npos) << "temporary left: " << entry.path();
+}
+
+TEST_F(Study, AStudyStoppedByCtrlCResumesFromItsOutputsAndAnotherStudysRowsAreRefused) {
+  const std::string file = write("study.json", slow_study(6));
+  const fs::path out = dir_ / "out";
+  run_command("timeout --preserve-status -s INT 1.0 " + std::string(TSMFRAME_CLI) + " study " + file + " -q --jobs 1 --out " + out.string() + " 2>&1");
+  const size_t stopped = read_json(out / "study.json")["cases"].size();
+  ASSERT_LT(stopped, 6u);
+  // Changed since: refused, one line, the outputs as they were.
+  json changed = slow_study(6);
+  changed["model"]["loads"][0]["mz"] = 1e6;
+  const std::string other = write("other.json", changed);
+  const Outcome refused = run_cli("study " + other + " -q --resume --out " + out.string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_EQ(refused.output.rfind(other + ": --resume: " + (out / "study.rows.jsonl").string() + ": holds the rows of another study", 0), 0u)
+      << refused.output;
+  EXPECT_EQ(std::count(refused.output.begin(), refused.output.end(), '\n'), 1) << refused.output;
+  EXPECT_EQ(read_json(out / "study.json")["cases"].size(), stopped);
+  const Outcome resumed = run_cli("study " + file + " -q --jobs 1 --resume --out " + out.string());
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
+  const json rows = read_json(out / "study.json")["cases"];
+  ASSERT_EQ(rows.size(), 6u);
+  for (size_t k = 0; k < 6; ++k) {
+    EXPECT_EQ(rows[k]["case"], k + 1);
+    EXPECT_EQ(rows[k]["status"], "converged") << "the stopped case ran again";
+    EXPECT_TRUE(fs::exists(out / "cases" / std::to_string(k + 1) / "results.json")) << k;
+  }
+}
+
 TEST_F(Study, ACaseWhoseResultsCannotBeKeptEndsTheStudyWithExitThree) {
   // The size limit (RLIMIT_FSIZE) below a kept case's results.json: the system fails us, no
   // case's fault — exit 3 with the OS's reason, not a row, and no output directory.

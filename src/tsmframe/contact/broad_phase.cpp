@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "tsmframe/element/chord.hpp"
+#include "tsmframe/util/fnv.hpp"
 
 namespace tsm::contact {
 namespace {
@@ -26,11 +27,11 @@ constexpr double allowance_in_elements = 8.0;
 }  // namespace
 
 std::uint64_t displacement_stamp(const Eigen::VectorXd& D) {
-  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a over the values' bits
+  std::uint64_t hash = util::fnv_offset;  // FNV-1a over the values' bits
   for (Eigen::Index i = 0; i < D.size(); ++i) {
     std::uint64_t bits = 0;
     std::memcpy(&bits, &D[i], sizeof bits);
-    hash = (hash ^ bits) * 1099511628211ull;
+    hash = util::fnv1a(hash, bits);
   }
   return hash;
 }

@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
+#include <fstream>
 #include <system_error>
 
 #include "tsmframe/io/input_error.hpp"
@@ -47,7 +48,15 @@ const std::string& host_name() {
   return name;
 }
 
-bool process_alive(long pid) { return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM; }
+/// Whether process `pid` runs: it exists and is no zombie (killed, not yet reaped by its parent).
+bool process_alive(long pid) {
+  if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM) return false;
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return true;  // no /proc: as kill says
+  const size_t name_end = line.rfind(')');  // "pid (name) state …", the name may hold anything
+  return !(name_end != std::string::npos && name_end + 2 < line.size() && line[name_end + 2] == 'Z');
+}
 
 /// The entries of the existing directory `final` that the command does not write there (a
 /// previous version's `results.json.tmp-PID` leftovers aside).
@@ -118,14 +127,29 @@ std::vector<fs::path> make_parents(const fs::path& parent) {
   return made;
 }
 
-/// Removes the temporaries beside `final` of dead runs on this host; outputs a dead run had moved
+/// `directory` as a final output directory: absolute, without symbolic links where it exists,
+/// its name last ("out/" where out does not exist yet: "out").
+fs::path final_path(const std::string& directory) {
+  std::error_code error;
+  fs::path final = fs::weakly_canonical(fs::absolute(directory, error), error);
+  if (error) throw SystemError(directory, error.message());
+  if (!final.has_filename()) final = final.parent_path();
+  return final;
+}
+
+/// Whether `entry` (a name beside an output directory) is the temporary of a dead run on this host.
+bool dead_temporary(const std::string& entry) {
+  const long owner = temporary_owner(entry);
+  return owner >= 0 && !(owner != ::getpid() && process_alive(owner));
+}
+
+/// Removes the temporaries beside `final` of dead runs on this host (but `keep`); outputs a dead run had moved
 /// aside go back to their place where it is empty (a kill between the two renames).
-void remove_dead_temporaries(const fs::path& parent) {
+void remove_dead_temporaries(const fs::path& parent, const fs::path& keep) {
   std::error_code error;
   for (fs::directory_iterator it(parent, error), end; !error && it != end; it.increment(error)) {
     const std::string name = it->path().filename().string();
-    const long owner = temporary_owner(name);
-    if (owner < 0 || (owner != ::getpid() && process_alive(owner))) continue;
+    if (!dead_temporary(name) || it->path() == keep) continue;
     const size_t aside = name.rfind(std::string(previous_marker) + marker);
     std::error_code ignored;
     if (aside != std::string::npos && ::rename(it->path().c_str(), (parent / name.substr(1, aside - 1)).c_str()) == 0)
@@ -197,11 +221,28 @@ long temporary_owner(const std::string& entry) {
   return std::stol(digits);
 }
 
-OutputDirectory::OutputDirectory(const std::string& directory, const std::vector<std::string>& own) {
+std::vector<fs::path> dead_temporaries(const std::string& directory) {
+  const fs::path final = final_path(directory);
+  std::string prefix = ".";  // (appended, not concatenated: g++ 12 warns falsely of overlapping copies)
+  prefix += final.filename().string();
+  prefix += marker;
+  std::vector<std::pair<fs::file_time_type, fs::path>> found;
   std::error_code error;
-  final_ = fs::weakly_canonical(fs::absolute(directory, error), error);
-  if (error) throw SystemError(directory, error.message());
-  if (!final_.has_filename()) final_ = final_.parent_path();  // "out/" where out does not exist yet
+  for (fs::directory_iterator it(final.parent_path(), error), end; !error && it != end; it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    std::error_code ignored;
+    if (name.compare(0, prefix.size(), prefix) == 0 && dead_temporary(name) && it->is_directory(ignored))
+      found.emplace_back(fs::last_write_time(it->path(), ignored), it->path());
+  }
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<fs::path> paths;
+  for (auto& [time, path] : found) paths.push_back(std::move(path));
+  return paths;
+}
+
+OutputDirectory::OutputDirectory(const std::string& directory, const std::vector<std::string>& own, const fs::path& adopt) {
+  std::error_code error;
+  final_ = final_path(directory);
   const fs::path working = fs::current_path(error);
   const auto [inside, rest] = std::mismatch(final_.begin(), final_.end(), working.begin(), working.end());
   if (final_ == final_.root_path() || (!error && inside == final_.end()))
@@ -209,9 +250,11 @@ OutputDirectory::OutputDirectory(const std::string& directory, const std::vector
   check_replaceable(final_, directory, own);
   const fs::path parent = final_.parent_path();
   made_parents_ = make_parents(parent);
-  remove_dead_temporaries(parent);
   temporary_ = parent / temporary_name(final_.filename().string(), ::getpid());
-  if (::mkdir(temporary_.c_str(), 0777) != 0) {
+  const bool adopted = !adopt.empty() && adopt.parent_path() == parent && dead_temporary(adopt.filename().string()) &&
+                       ::rename(adopt.c_str(), temporary_.c_str()) == 0;
+  remove_dead_temporaries(parent, adopted ? temporary_ : fs::path());
+  if (!adopted && ::mkdir(temporary_.c_str(), 0777) != 0) {
     const int failure = errno;
     for (auto p = made_parents_.rbegin(); p != made_parents_.rend(); ++p) ::rmdir(p->c_str());
     throw SystemError(directory, "cannot make its temporary directory " + temporary_.string() + ": " + reason(failure));

@@ -21,7 +21,9 @@ class OutputDirectory {
   /// lost. Throws
   /// SystemError (the OS's reason) where the directory cannot be made, InputError (path: the
   /// directory) where an existing one may not be replaced.
-  OutputDirectory(const std::string& directory, const std::vector<std::string>& own);
+  /// `adopt`: a dead run's temporary directory beside `directory` (dead_temporaries) to go on
+  /// from: it becomes this run's temporary, with what it holds, in one rename.
+  OutputDirectory(const std::string& directory, const std::vector<std::string>& own, const std::filesystem::path& adopt = {});
   /// Removes the temporary directory (and the parents it made) unless committed.
   ~OutputDirectory();
   OutputDirectory(const OutputDirectory&) = delete;
@@ -38,6 +40,10 @@ class OutputDirectory {
   std::vector<std::filesystem::path> made_parents_;  ///< parents this run created, outermost first
   bool committed_ = false;
 };
+
+/// The temporary directories beside `directory` of dead runs on this host, the newest first:
+/// what they hold is what those runs had written when they died.
+std::vector<std::filesystem::path> dead_temporaries(const std::string& directory);
 
 /// The name of the temporary directory a run with process id `pid` on this host writes `name`'s
 /// outputs into.

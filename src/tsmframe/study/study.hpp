@@ -63,6 +63,10 @@ struct Study {
   std::vector<Parameter> parameters;
   std::vector<Record> records;
   bool keep = false;
+  /// What the rows depend on, as 16 hex digits: tsmframe's version, the study document and its
+  /// model (FNV-1a over their canonical JSON). A journal's rows (study_journal.hpp) are this
+  /// study's only where its fingerprint is this.
+  std::string fingerprint;
   /// The number of cases, the product of the parameters' value counts; throws
   /// std::length_error past max_cases (read_study refuses such a study first).
   size_t case_count() const;

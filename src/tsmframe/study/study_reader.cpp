@@ -1,6 +1,7 @@
 // Reading a study file (study.hpp): the sweep's parameters and the records, strictly, with the
 // model reader's JSON paths and helpers (io/json_input.hpp).
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iomanip>
 #include <set>
@@ -11,6 +12,8 @@
 #include "tsmframe/io/json_input.hpp"
 #include "tsmframe/study/study.hpp"
 #include "tsmframe/study/study_writer.hpp"
+#include "tsmframe/util/fnv.hpp"
+#include "tsmframe/version.hpp"
 
 namespace tsm::study {
 namespace {
@@ -204,6 +207,20 @@ size_t Study::case_count() const {
   return n;
 }
 
+namespace {
+
+/// Study::fingerprint of a study document and its base model.
+std::string study_fingerprint(const json& doc, const json& model) {
+  std::uint64_t hash = util::fnv1a(version);
+  hash = util::fnv1a(doc.dump(), util::fnv1a(hash, 0));  // object keys sorted: the canonical text
+  hash = util::fnv1a(model.dump(), util::fnv1a(hash, 0));
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  return hex;
+}
+
+}  // namespace
+
 Study read_study(const json& doc, const std::string& directory) {
   if (!doc.is_object()) fail("", "a study file is a JSON object");
   check_keys(doc, "", {"$schema", "format", "title", "model", "model_file", "sweep", "record", "keep"});
@@ -239,6 +256,7 @@ Study read_study(const json& doc, const std::string& directory) {
     }
   }
   if (doc.contains("keep")) s.keep = io::boolean(doc["keep"], "keep");
+  s.fingerprint = study_fingerprint(doc, s.model);
   return s;
 }
 

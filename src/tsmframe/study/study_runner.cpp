@@ -236,10 +236,13 @@ int thread_count(int threads, size_t cases) {
 }  // namespace
 
 std::vector<CaseResult> run_study(const Study& study, int threads, const std::string& keep_directory,
-                                  const std::function<void(const CaseResult&)>& progress, const solver::StopRequest* stop) {
+                                  const std::function<void(const CaseResult&)>& progress, const solver::StopRequest* stop,
+                                  std::vector<CaseResult> done) {
   const size_t n = study.case_count();
   std::vector<CaseResult> rows(n);
   std::vector<char> ran(n, 0);
+  for (CaseResult& row : done)
+    if (row.index < n) ran[row.index] = 1, rows[row.index] = std::move(row);
   const std::string keep = study.keep ? keep_directory : std::string();
   // The machine's memory as the study starts, shared by the cases run at once.
   const io::MemoryBudget budget = io::memory_budget(thread_count(threads, n));
@@ -253,6 +256,7 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
     omp_set_num_threads(1);
     try {
       for (size_t k; !solver::stop_requested(stop) && (k = next.fetch_add(1)) < n;) {
+        if (ran[k]) continue;  // done before
         rows[k] = run_case_caught(study, k, keep, stop, budget);
         ran[k] = 1;
         if (!progress) continue;
@@ -273,10 +277,10 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
   if (std::find(ran.begin(), ran.end(), 0) == ran.end()) return rows;
-  std::vector<CaseResult> done;  // stopped on request: the rows of the cases run
+  std::vector<CaseResult> kept;  // stopped on request: the rows of the cases run and done
   for (size_t k = 0; k < n; ++k)
-    if (ran[k]) done.push_back(std::move(rows[k]));
-  return done;
+    if (ran[k]) kept.push_back(std::move(rows[k]));
+  return kept;
 }
 
 }  // namespace tsm::study

@@ -48,11 +48,12 @@ struct CaseResult {
 /// share of the machine's memory as the study starts (io::memory_budget(cases run at once)): a
 /// case beyond it is a row too, refused before its memory is spent. With study.keep, each case's
 /// results.json and steps.csv go to `keep_directory`/cases/<case>/. A requested `stop` starts
-/// no new case and ends the running ones at their next step (status "interrupted"). Returns
-/// the rows of the cases run, in case order.
+/// no new case and ends the running ones at their next step (status "interrupted"). The cases
+/// of `done` (rows of an earlier run of the study, study_journal.hpp) are not run again, nor told
+/// to `progress`. Returns the rows of the cases run and done, in case order.
 std::vector<CaseResult> run_study(const Study& study, int threads, const std::string& keep_directory,
                                   const std::function<void(const CaseResult&)>& progress = {},
-                                  const solver::StopRequest* stop = nullptr);
+                                  const solver::StopRequest* stop = nullptr, std::vector<CaseResult> done = {});
 
 /// The value index per parameter of case `index` (from 0), the first parameter varying slowest.
 std::vector<size_t> case_choice(const Study& study, size_t index);
