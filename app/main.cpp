@@ -34,19 +34,18 @@
 #include "tsmframe/model/mechanism.hpp"
 #include "tsmframe/solver/analysis.hpp"
 #include "tsmframe/solver/unloaded_mechanism.hpp"
-#include "tsmframe/study/study_journal.hpp"
-#include "tsmframe/study/study_runner.hpp"
-#include "tsmframe/study/study_writer.hpp"
 #include "tsmframe/version.hpp"
+#include "exit_codes.hpp"
 #include "progress.hpp"
 #include "stop_signals.hpp"
+#include "study_command.hpp"
 
 namespace {
 
-constexpr int exit_converged = 0;
-constexpr int exit_not_converged = 1;
-constexpr int exit_bad_input = 2;
-constexpr int exit_system = 3;
+using tsm::app::exit_bad_input;
+using tsm::app::exit_converged;
+using tsm::app::exit_not_converged;
+using tsm::app::exit_system;
 
 struct RunOptions {
   std::string model;
@@ -274,133 +273,6 @@ int plot(const PlotOptions& options) {
   return exit_converged;
 }
 
-struct StudyOptions {
-  std::string study;
-  std::string out = "out-study";  // beside a run's `out`, not in it: a run replaces its directory whole
-  bool quiet = false;
-  int jobs = 0;  // 0: all cores
-  bool resume = false;  // go on from the rows of an earlier run (study_journal.hpp)
-};
-
-/// Where the study goes on from with --resume (nothing: from the start); without it, a note
-/// where an unfinished run's rows are about to be replaced. Throws io::InputError where the
-/// journal there is another study's (with --resume only).
-std::optional<tsm::study::ResumePoint> resume_point(const StudyOptions& options, const tsm::study::Study& definition) {
-  std::optional<tsm::study::ResumePoint> point;
-  try {
-    point = tsm::study::find_resume_point(options.out, definition);
-  } catch (const tsm::io::InputError&) {
-    if (options.resume) throw;
-    return std::nullopt;  // another study's rows: replaced, as any output is
-  }
-  if (!point || options.resume) return point;
-  if (point->journal.rows.size() < definition.case_count())
-    std::cerr << options.study << ": note: " << point->directory.string() << " holds " << point->journal.rows.size() << " of "
-              << definition.case_count() << " rows of an unfinished run of this study, which this run replaces (--resume goes on from them)\n";
-  return std::nullopt;
-}
-
-/// A resumed study's kept cases (study.keep) from the output directory it goes on from into the
-/// new one, as hard links (a dead run's temporary directory is adopted whole instead).
-void carry_kept_cases(const tsm::study::ResumePoint& from, const std::filesystem::path& to) {
-  namespace fs = std::filesystem;
-  for (const tsm::study::CaseResult& row : from.journal.rows) {
-    const fs::path kept = from.directory / "cases" / std::to_string(row.index + 1);
-    std::error_code error;
-    if (!fs::exists(kept, error)) continue;
-    fs::create_directories(to / "cases", error);
-    fs::copy(kept, to / "cases" / kept.filename(), fs::copy_options::recursive | fs::copy_options::create_hard_links, error);
-    if (error) throw tsm::io::SystemError(kept.string(), error.message());
-  }
-}
-
-/// The study's closing line on stderr; returns the exit code.
-int report_study(const StudyOptions& options, size_t total, const std::vector<tsm::study::CaseResult>& rows) {
-  const auto bad = [](const tsm::study::CaseResult& r) { return r.status == "bad-input"; };
-  const auto stopped = [](const tsm::study::CaseResult& r) { return r.status == "interrupted"; };
-  const size_t failed = std::count_if(rows.begin(), rows.end(), [](const auto& r) { return !r.converged; });
-  const size_t invalid = std::count_if(rows.begin(), rows.end(), bad);
-  const size_t interrupted = std::count_if(rows.begin(), rows.end(), stopped);
-  std::cerr << options.study << ": ";
-  if (rows.size() < total || interrupted > 0) {
-    const char* signal = tsm::app::stop_signal_name();
-    std::cerr << (signal ? signal : "stop request") << ": interrupted after " << rows.size() << " of " << total
-              << " cases (" << interrupted << " of them stopped at a step boundary, status interrupted), ";
-  } else {
-    std::cerr << rows.size() << " cases, ";
-  }
-  std::cerr << failed - invalid - interrupted << " did not converge";
-  // A model the sweep made invalid is most often a typo in the study (a path to a key the model
-  // does not have): the first such case's reason, on the terminal, not only in the rows.
-  if (invalid > 0) {
-    const auto first = std::find_if(rows.begin(), rows.end(), bad);
-    std::cerr << ", " << invalid << " had a model the sweep made invalid (bad-input; case " << first->index + 1 << ": "
-              << first->message << ")";
-  }
-  std::cerr << "; rows in " << options.out << "/study.csv and study.json\n";
-  return failed == 0 && rows.size() == total ? exit_converged : exit_not_converged;
-}
-
-int study(const StudyOptions& options) {
-  omp_set_num_threads(1);  // the cases run in parallel; each one on one thread
-  tsm::study::Study definition;
-  try {
-    definition = tsm::study::read_study_file(options.study);
-  } catch (const tsm::io::InputError& e) {
-    std::cerr << options.study << ": " << e.what() << '\n';
-    return exit_bad_input;
-  }
-  if (const std::optional<std::string> invalid = tsm::study::invalid_in_every_case(definition)) {
-    std::cerr << options.study << ": " << *invalid << '\n';
-    return exit_bad_input;
-  }
-  std::optional<tsm::study::ResumePoint> from;
-  try {
-    from = resume_point(options, definition);
-  } catch (const tsm::io::InputError& e) {
-    std::cerr << options.study << ": --resume: " << e.what() << '\n';
-    return exit_bad_input;
-  }
-  const tsm::solver::StopRequest& stop = tsm::app::install_stop_signals();
-  tsm::io::OutputDirectory output(options.out, {"study.csv", "study.json", "cases", tsm::study::journal_name},
-                                  from && from->temporary ? from->directory : std::filesystem::path());  // as a run's (run above)
-  if (from && !from->temporary && definition.keep) carry_kept_cases(*from, output.path());
-  std::vector<tsm::study::CaseResult> resumed = from ? std::move(from->journal.rows) : std::vector<tsm::study::CaseResult>{};
-  tsm::study::StudyJournal journal(output.path() / tsm::study::journal_name, definition, resumed);
-  const size_t total = definition.case_count();
-  size_t done = resumed.size(), not_converged = 0;
-  for (const auto& row : resumed) not_converged += row.converged ? 0 : 1;
-  if (from && !options.quiet)
-    std::cerr << options.study << ": resuming: " << done << " of " << total << " cases done (" << from->directory.string() << ")\n";
-  // On a terminal a bar with the time left; elsewhere a line per case.
-  const bool bar = tsm::app::stderr_is_terminal();
-  tsm::app::LiveLine live(std::cerr, bar);
-  const auto started = std::chrono::steady_clock::now();
-  const auto progress = [&](const tsm::study::CaseResult& row) {
-    journal.append(row);
-    ++done;
-    not_converged += row.converged ? 0 : 1;
-    if (options.quiet) return;
-    if (bar) {
-      const auto elapsed = std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() - started);
-      live.passing(tsm::app::progress_bar(done, total, not_converged, elapsed));
-      return;
-    }
-    std::cerr << "case " << row.index + 1 << '/' << total;
-    for (size_t p = 0; p < definition.parameters.size(); ++p)
-      std::cerr << "  " << definition.parameters[p].name << ' ' << definition.parameters[p].labels[row.choice[p]];
-    std::cerr << "  " << row.status << "  " << row.steps << " steps, " << row.iterations << " iterations  [" << done
-              << " done]\n";
-  };
-  // Ctrl-C: no new case starts, the running ones stop at their next step; the rows of the cases run are written.
-  const std::vector<tsm::study::CaseResult> rows =
-      tsm::study::run_study(definition, options.jobs, output.path().string(), progress, &stop, std::move(resumed));
-  live.finish();
-  tsm::study::write_study(output.path().string(), definition, rows);
-  output.commit();
-  return report_study(options, total, rows);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -431,7 +303,7 @@ int main(int argc, char** argv) {
   plot_command->add_option("model", plot_options.model, "model file (docs/format.md, tsmframe-model/1)")->required();
   plot_command->add_option("-o,--out", plot_options.out, "the picture: .png, .svg or .pdf (default: the model's name with .png, here)");
 
-  StudyOptions study_options;
+  tsm::app::StudyOptions study_options;
   CLI::App* study_command = app.add_subcommand("study", "Run a parameter study: one row per case in study.csv and study.json");
   study_command->add_option("study", study_options.study, "study file (tsmframe-study/1, see README)")->required();
   study_command->add_option("-o,--out", study_options.out, "output directory (default: out-study)");
@@ -440,6 +312,16 @@ int main(int argc, char** argv) {
   study_command->add_flag("--resume", study_options.resume,
                           "go on from the rows of an earlier run of the same study into the same --out (stopped or killed): "
                           "only the other cases run");
+  study_command->add_option("--shard", study_options.shard,
+                            "run this share of the cases only, I of N (a job array's task; case k where (k - 1) mod N = I - 1); "
+                            "tsmframe study-merge joins the shards");
+
+  tsm::app::MergeOptions merge_options;
+  CLI::App* merge_command = app.add_subcommand("study-merge", "Join the output directories of a study's shards into the whole study's");
+  merge_command->add_option("study", merge_options.study, "the study file the shards ran")->required();
+  merge_command->add_option("shards", merge_options.shards, "the shards' output directories (tsmframe study --shard I/N --out DIR)")
+      ->required();
+  merge_command->add_option("-o,--out", merge_options.out, "output directory (default: out-study)");
 
   try {
     app.parse(argc, argv);
@@ -450,7 +332,8 @@ int main(int argc, char** argv) {
   }
   try {
     if (run_command->parsed()) return run(options);
-    if (study_command->parsed()) return study(study_options);
+    if (study_command->parsed()) return tsm::app::study(study_options);
+    if (merge_command->parsed()) return tsm::app::study_merge(merge_options);
     if (plot_command->parsed()) return plot(plot_options);
   } catch (const tsm::io::SystemError& e) {
     std::cerr << "tsmframe: " << e.what() << '\n';

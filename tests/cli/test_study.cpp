@@ -468,6 +468,72 @@ TEST_F(Study, AStudyStoppedByCtrlCResumesFromItsOutputsAndAnotherStudysRowsAreRe
   }
 }
 
+TEST_F(Study, ShardsOfAStudyMergeIntoTheWholeStudyRowForRow) {
+  // 7 cases in 3 shards (cases 1, 4, 7 | 2, 5 | 3, 6): merged, the whole study's rows and kept
+  // cases; a shard missing is said and exit 1; a shard of another study or no shard, exit 2.
+  json s = study(R"([{"name": "n", "path": "/members/0/divisions", "values": [2, 3, 4, 5, 6, 7, 8]}])");
+  s["keep"] = true;
+  const std::string file = write("study.json", s);
+  ASSERT_EQ(run_cli("study " + file + " -q --out " + (dir_ / "whole").string()).exit_code, 0);
+  std::string shards;
+  const std::vector<std::vector<int>> held = {{1, 4, 7}, {2, 5}, {3, 6}};
+  for (int i = 1; i <= 3; ++i) {
+    const fs::path shard = dir_ / ("shard" + std::to_string(i));
+    const Outcome o = run_cli("study " + file + " -q --shard " + std::to_string(i) + "/3 --out " + shard.string());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    std::vector<int> cases;
+    const json rows = read_json(shard / "study.json");
+    for (const json& row : rows["cases"]) cases.push_back(row["case"]);
+    EXPECT_EQ(cases, held[i - 1]) << i;
+    shards += " " + shard.string();
+  }
+  const fs::path merged = dir_ / "merged";
+  const Outcome o = run_cli("study-merge " + file + shards + " --out " + merged.string());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("merged 7 of 7 cases from 3 directories"), std::string::npos) << o.output;
+  EXPECT_EQ(rows_but_seconds(read_json(merged / "study.json")), rows_but_seconds(read_json(dir_ / "whole" / "study.json")));
+  for (int k = 1; k <= 7; ++k) EXPECT_TRUE(fs::exists(merged / "cases" / std::to_string(k) / "results.json")) << k;
+  const Outcome partial = run_cli("study-merge " + file + " " + (dir_ / "shard1").string() + " " + (dir_ / "shard3").string() +
+                                  " --out " + (dir_ / "partial").string());
+  EXPECT_EQ(partial.exit_code, 1) << partial.output;
+  EXPECT_NE(partial.output.find("merged 5 of 7 cases from 2 directories; 2 cases missing (the first: case 2"), std::string::npos)
+      << partial.output;
+  json other = s;
+  other["model"]["loads"][0]["fy"] = 2.0;
+  const std::string other_file = write("other.json", other);
+  const Outcome refused = run_cli("study-merge " + other_file + shards + " --out " + (dir_ / "refused").string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_EQ(refused.output.rfind(other_file + ": " + (dir_ / "shard1" / "study.rows.jsonl").string() + ": holds the rows of another study", 0), 0u)
+      << refused.output;
+  EXPECT_FALSE(fs::exists(dir_ / "refused"));
+  const Outcome none = run_cli("study-merge " + file + " " + dir_.string() + " --out " + (dir_ / "refused").string());
+  EXPECT_EQ(none.exit_code, 2) << none.output;
+  EXPECT_NE(none.output.find("holds no study.rows.jsonl"), std::string::npos) << none.output;
+  for (const char* bad : {"0/3", "4/3", "1/0", "1/x", "2", "-1/3"}) {
+    const Outcome o = run_cli("study " + file + " -q --shard " + bad + " --out " + (dir_ / "refused").string());
+    EXPECT_EQ(o.exit_code, 2) << bad << ": " << o.output;
+    EXPECT_NE(o.output.find("--shard: expected I/N"), std::string::npos) << bad << ": " << o.output;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "refused"));
+}
+
+TEST_F(Study, TheSlurmArrayExampleRunsItsShareAndTheMergeIsTheWholeStudy) {
+  // examples/cluster/study-array.sbatch as two array tasks would run it (Slurm's variables set
+  // by hand, tsmframe on PATH), in the scratch directory; then the merge its comment gives.
+  const std::string file = write("study.json", study(R"([{"name": "n", "path": "/members/0/divisions", "values": [2, 3, 4, 5, 6]}])"));
+  const std::string path = "PATH=" + fs::path(TSMFRAME_CLI).parent_path().string() + ":$PATH";
+  const std::string script = std::string(TSMFRAME_SOURCE_DIR) + "/examples/cluster/study-array.sbatch";
+  for (int task = 1; task <= 2; ++task) {
+    const Outcome o = run_command("cd " + dir_.string() + " && " + path + " SLURM_ARRAY_TASK_ID=" + std::to_string(task) +
+                                  " SLURM_ARRAY_TASK_COUNT=2 SLURM_CPUS_PER_TASK=1 bash " + script + " " + file + " 2>&1");
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+  }
+  ASSERT_EQ(run_cli("study " + file + " -q --out " + (dir_ / "whole").string()).exit_code, 0);
+  const Outcome merged = run_command("cd " + dir_.string() + " && " + path + " tsmframe study-merge " + file + " shards/* --out out-study 2>&1");
+  EXPECT_EQ(merged.exit_code, 0) << merged.output;
+  EXPECT_EQ(rows_but_seconds(read_json(dir_ / "out-study" / "study.json")), rows_but_seconds(read_json(dir_ / "whole" / "study.json")));
+}
+
 TEST_F(Study, ACaseWhoseResultsCannotBeKeptEndsTheStudyWithExitThree) {
   // The size limit (RLIMIT_FSIZE) below a kept case's results.json: the system fails us, no
   // case's fault — exit 3 with the OS's reason, not a row, and no output directory.

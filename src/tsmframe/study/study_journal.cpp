@@ -113,8 +113,7 @@ JournalRows read_journal(const fs::path& path, const Study& study) {
   if (!head.is_object() || head.value("format", "") != journal_format)
     throw io::InputError(path.string(), "is no study journal (" + std::string(journal_format) + ")");
   if (head.value("study", "") != study.fingerprint)
-    throw io::InputError(path.string(), "holds the rows of another study (the study file, its model or tsmframe changed since "
-                                        "it ran): run without --resume to start over");
+    throw io::InputError(path.string(), "holds the rows of another study (the study file, its model or tsmframe changed since it ran)");
   JournalRows journal;
   std::set<size_t> have;
   while (std::getline(in, line)) {

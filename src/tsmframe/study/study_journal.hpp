@@ -34,7 +34,8 @@ struct JournalRows {
 };
 
 /// Reads the journal at `path`. Throws io::InputError (the path) where its header names another
-/// study (the study file, its model or tsmframe changed since it ran) or is no journal's.
+/// study (the study file, its model or tsmframe changed since it ran) or is no journal's; a
+/// file that cannot be read is io::SystemError.
 JournalRows read_journal(const std::filesystem::path& path, const Study& study);
 
 /// Where a study writing `out` may go on from: the journal in the temporary directory of a run

@@ -227,17 +227,18 @@ CaseResult run_case_caught(const Study& study, size_t index, const std::string& 
   }
 }
 
-/// The threads to run `cases` cases on: `threads` (0: all cores), no more than there are cases.
+/// The threads to run `cases` cases on: `threads` (0: all cores), no more than there are cases
+/// (one at least: the caller's).
 int thread_count(int threads, size_t cases) {
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  return static_cast<int>(std::min<size_t>(threads, cases));
+  return static_cast<int>(std::max<size_t>(1, std::min<size_t>(threads, cases)));
 }
 
 }  // namespace
 
 std::vector<CaseResult> run_study(const Study& study, int threads, const std::string& keep_directory,
                                   const std::function<void(const CaseResult&)>& progress, const solver::StopRequest* stop,
-                                  std::vector<CaseResult> done) {
+                                  std::vector<CaseResult> done, const StudyShard& shard) {
   const size_t n = study.case_count();
   std::vector<CaseResult> rows(n);
   std::vector<char> ran(n, 0);
@@ -245,7 +246,7 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
     if (row.index < n) ran[row.index] = 1, rows[row.index] = std::move(row);
   const std::string keep = study.keep ? keep_directory : std::string();
   // The machine's memory as the study starts, shared by the cases run at once.
-  const io::MemoryBudget budget = io::memory_budget(thread_count(threads, n));
+  const io::MemoryBudget budget = io::memory_budget(thread_count(threads, shard.cases(n)));
   // Big cases first would balance better; cases are independent, so a shared counter suffices.
   std::atomic<size_t> next{0};
   std::mutex report;
@@ -256,7 +257,7 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
     omp_set_num_threads(1);
     try {
       for (size_t k; !solver::stop_requested(stop) && (k = next.fetch_add(1)) < n;) {
-        if (ran[k]) continue;  // done before
+        if (ran[k] || !shard.holds(k)) continue;  // done before, or another shard's
         rows[k] = run_case_caught(study, k, keep, stop, budget);
         ran[k] = 1;
         if (!progress) continue;
@@ -270,7 +271,7 @@ std::vector<CaseResult> run_study(const Study& study, int threads, const std::st
     }
   };
   std::vector<std::thread> pool;
-  for (int t = 1; t < thread_count(threads, n); ++t) pool.emplace_back(worker);
+  for (int t = 1; t < thread_count(threads, shard.cases(n)); ++t) pool.emplace_back(worker);
   const int callers = omp_get_max_threads();  // the calling thread works too: its setting back after
   worker();
   omp_set_num_threads(callers);

@@ -41,6 +41,16 @@ struct CaseResult {
   std::vector<double> recorded;
 };
 
+/// The share of a study's cases one run takes (`tsmframe study --shard I/N`, a job array's task):
+/// case k (from 0) where k mod count = index, so that cases alike in cost spread over the shards.
+struct StudyShard {
+  size_t index = 0;
+  size_t count = 1;
+  bool holds(size_t k) const { return k % count == index; }
+  /// How many of `total` cases it holds.
+  size_t cases(size_t total) const { return total / count + (index < total % count ? 1 : 0); }
+};
+
 /// Runs every case on `threads` threads (0: all cores). `progress` is called after each case.
 /// Whatever a case throws is its row (status "bad-input", the reason in its message) but
 /// io::SystemError (the system failed, not the case); that and what `progress` throws stop the
@@ -50,10 +60,12 @@ struct CaseResult {
 /// results.json and steps.csv go to `keep_directory`/cases/<case>/. A requested `stop` starts
 /// no new case and ends the running ones at their next step (status "interrupted"). The cases
 /// of `done` (rows of an earlier run of the study, study_journal.hpp) are not run again, nor told
-/// to `progress`. Returns the rows of the cases run and done, in case order.
+/// to `progress`. Only the cases `shard` holds run. Returns the rows of the cases run and done,
+/// in case order.
 std::vector<CaseResult> run_study(const Study& study, int threads, const std::string& keep_directory,
                                   const std::function<void(const CaseResult&)>& progress = {},
-                                  const solver::StopRequest* stop = nullptr, std::vector<CaseResult> done = {});
+                                  const solver::StopRequest* stop = nullptr, std::vector<CaseResult> done = {},
+                                  const StudyShard& shard = {});
 
 /// The value index per parameter of case `index` (from 0), the first parameter varying slowest.
 std::vector<size_t> case_choice(const Study& study, size_t index);

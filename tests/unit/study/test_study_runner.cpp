@@ -89,3 +89,31 @@ TEST(StudyRunner, TheCaseCountIsRefusedPastAMillionEvenWhereTheProductWouldWrapT
 }
 
 }  // namespace
+
+namespace {
+
+TEST(StudyShard, EveryCaseIsInExactlyOneShardAndEachCountsItsOwn) {
+  for (const size_t total : {1u, 7u, 20u})
+    for (const size_t count : {1u, 3u, 8u, 25u}) {
+      std::vector<int> holders(total, 0);
+      for (size_t index = 0; index < count; ++index) {
+        const StudyShard shard{index, count};
+        size_t held = 0;
+        for (size_t k = 0; k < total; ++k)
+          if (shard.holds(k)) ++holders[k], ++held;
+        EXPECT_EQ(shard.cases(total), held) << index << '/' << count << " of " << total;
+      }
+      for (size_t k = 0; k < total; ++k) EXPECT_EQ(holders[k], 1) << "case " << k << ", " << count << " shards";
+    }
+}
+
+TEST(StudyShard, AStudyRunsOnlyItsShardsCases) {
+  const Study s = study_of(json::parse(R"([{"name": "n", "path": "/members/0/divisions", "values": [2, 3, 4, 5, 6]}])"));
+  const std::vector<CaseResult> rows = run_study(s, 2, "", {}, nullptr, {}, StudyShard{1, 2});
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].index, 1u);
+  EXPECT_EQ(rows[1].index, 3u);
+  EXPECT_TRUE(run_study(s, 2, "", {}, nullptr, {}, StudyShard{6, 7}).empty()) << "a shard beyond the cases holds none";
+}
+
+}  // namespace
