@@ -37,6 +37,7 @@
 #include "tsmframe/version.hpp"
 #include "exit_codes.hpp"
 #include "progress.hpp"
+#include "python_script.hpp"
 #include "stop_signals.hpp"
 #include "study_command.hpp"
 
@@ -97,31 +98,11 @@ std::string progress_line(const tsm::Model& model, const tsm::solver::StepRecord
   return os.str();
 }
 
-/// Runs one of scripts/ with Debian's python3 (no shell: paths pass as they are); its exit
-/// status (−1 where it could not be started or did not exit). `quiet`: its standard output goes
-/// to /dev/null.
-int run_script(const char* script, const std::vector<std::string>& arguments, bool quiet = false) {
-  std::vector<std::string> words = {"/usr/bin/python3", std::string(TSMFRAME_SCRIPTS_DIR) + "/" + script};
-  words.insert(words.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (std::string& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  if (quiet) posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  std::cout.flush();
-  pid_t child = 0;
-  const int failed = posix_spawn(&child, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  int status = 0;
-  if (failed != 0 || waitpid(child, &status, 0) < 0 || !WIFEXITED(status)) return -1;
-  return WEXITSTATUS(status);
-}
 
 /// --plot: the drawings into `directory`/plots (named as the user named the directory); false,
 /// said on stderr, where they fail (then no plots/: none half drawn).
 bool draw_plots(const std::filesystem::path& directory, const RunOptions& options) {
-  if (run_script("plot_run.py", {directory.string(), options.out}, options.quiet) == 0) return true;
+  if (tsm::app::run_script("plot_run.py", {directory.string(), options.out}, options.quiet) == 0) return true;
   std::error_code ignored;
   std::filesystem::remove_all(directory / "plots", ignored);
   std::cerr << "tsmframe: --plot failed (it needs Debian's python3-matplotlib: bash scripts/setup.sh)\n";
@@ -130,7 +111,7 @@ bool draw_plots(const std::filesystem::path& directory, const RunOptions& option
 
 /// --report: `directory`/report.html; false, said on stderr, where it fails (then no report.html).
 bool write_report(const std::filesystem::path& directory, const RunOptions& options) {
-  if (run_script("report_run.py", {TSMFRAME_PYTHON_DIR, directory.string(), options.model, options.out}, options.quiet) == 0)
+  if (tsm::app::run_script("report_run.py", {TSMFRAME_PYTHON_DIR, directory.string(), options.model, options.out}, options.quiet) == 0)
     return true;
   std::error_code ignored;
   std::filesystem::remove(directory / "report.html", ignored);
@@ -256,7 +237,7 @@ int plot(const PlotOptions& options) {
       std::filesystem::temp_directory_path() / ("tsmframe-drawing-" + std::to_string(::getpid()) + ".json");
   const std::optional<std::string> named = mechanism ? std::optional<std::string>(mechanism->text) : std::nullopt;
   tsm::io::write_output_file(drawing.string(), [&](std::ostream& os) { tsm::io::write_model_drawing(os, model, named); });
-  const int drawn = run_script("plot_model.py", {drawing.string(), out.string()});
+  const int drawn = tsm::app::run_script("plot_model.py", {drawing.string(), out.string()});
   std::error_code ignored;
   std::filesystem::remove(drawing, ignored);
   if (drawn == exit_system) return exit_system;  // the picture could not be written: the script said why
@@ -315,6 +296,9 @@ int main(int argc, char** argv) {
   study_command->add_option("--shard", study_options.shard,
                             "run this share of the cases only, I of N (a job array's task; case k where (k - 1) mod N = I - 1); "
                             "tsmframe study-merge joins the shards");
+  study_command->add_option("--scheduler", study_options.scheduler,
+                            "run the cases on a Dask cluster: its scheduler's address, tcp://HOST:8786 (python3-distributed; "
+                            "tsmframe importable on the workers)");
 
   tsm::app::MergeOptions merge_options;
   CLI::App* merge_command = app.add_subcommand("study-merge", "Join the output directories of a study's shards into the whole study's");

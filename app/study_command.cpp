@@ -12,6 +12,7 @@
 
 #include "exit_codes.hpp"
 #include "progress.hpp"
+#include "python_script.hpp"
 #include "stop_signals.hpp"
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/io/output_directory.hpp"
@@ -97,6 +98,32 @@ int report_study(const StudyOptions& options, size_t total, const std::vector<ts
   return failed == 0 && rows.size() == total ? exit_converged : exit_not_converged;
 }
 
+/// The study's cases on the Dask cluster at options.scheduler (scripts/study_cluster.py appends
+/// their rows to the journal as shards end); the outputs from the journal. Returns the exit status.
+int study_on_cluster(const StudyOptions& options, const tsm::study::Study& definition) {
+  if (options.resume || !options.shard.empty()) {
+    std::cerr << options.study << ": --scheduler: not with --resume or --shard (the cluster's run is one run: a worker "
+              << "lost has its cases run again elsewhere)\n";
+    return exit_bad_input;
+  }
+  tsm::app::install_stop_signals();  // Ctrl-C reaches the script too: the rows of the shards ended are written
+  tsm::io::OutputDirectory output(options.out, {"study.csv", "study.json", "cases", tsm::study::journal_name});
+  const std::filesystem::path journal = output.path() / tsm::study::journal_name;
+  { tsm::study::StudyJournal header(journal, definition, {}); }
+  const int status = run_script("study_cluster.py", {python_package_directory(), options.study, options.scheduler, journal.string(),
+                                                     options.quiet ? "quiet" : "progress"});
+  if (status == exit_bad_input) return exit_bad_input;  // the script said why
+  if (status < 0 || status > exit_not_converged) {
+    std::cerr << options.study << ": --scheduler: the cluster's script (scripts/study_cluster.py) failed\n";
+    return exit_system;
+  }
+  std::vector<tsm::study::CaseResult> rows = tsm::study::read_journal(journal, definition).rows;
+  { tsm::study::StudyJournal rewritten(journal, definition, rows); }  // in case order
+  tsm::study::write_study(output.path().string(), definition, rows);
+  output.commit();
+  return report_study(options, definition.case_count(), rows);
+}
+
 }  // namespace
 
 int study(const StudyOptions& options) {
@@ -113,6 +140,7 @@ int study(const StudyOptions& options) {
     return exit_bad_input;
   }
   tsm::study::StudyShard shard;
+  if (!options.scheduler.empty()) return study_on_cluster(options, definition);
   std::optional<tsm::study::ResumePoint> from;
   try {
     if (!options.shard.empty()) shard = parse_shard(options.shard);

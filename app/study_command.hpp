@@ -15,6 +15,7 @@ struct StudyOptions {
   int jobs = 0;         // 0: all cores
   bool resume = false;  // go on from the rows of an earlier run (study_journal.hpp)
   std::string shard;    // "I/N": the cases k (from 1) with (k − 1) mod N = I − 1; empty: all
+  std::string scheduler;  // a Dask scheduler's address: the cases run on its workers; empty: here
 };
 
 /// Runs the study as `options` say; returns the exit status (exit_codes.hpp).

@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 
 packages=(g++ make cmake libeigen3-dev nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev python3-matplotlib
           python3-dev pybind11-dev python3-numpy python3-pytest python3-venv python3-pip python3-setuptools python3-wheel
-          python3-jsonschema universal-ctags clang libclang-rt-14-dev libomp-dev)
+          python3-jsonschema python3-distributed universal-ctags clang libclang-rt-14-dev libomp-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

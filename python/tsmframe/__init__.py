@@ -295,9 +295,13 @@ def _ref(node):
     return list(node) if isinstance(node, (tuple, list)) else node
 
 
-def study(definition, jobs=0):
+def study(definition, jobs=0, client=None, scheduler=None, progress=None):
     """Run a parameter study (a tsmframe-study/1 document: a dict, or a path to one; README
-    "Parameter studies") with its cases in parallel on `jobs` threads (0: all cores). Returns one
+    "Parameter studies") with its cases in parallel on `jobs` threads (0: all cores) — or on a
+    Dask cluster: `client` (a distributed.Client: a LocalCluster's, or one connected anywhere) or
+    `scheduler` (its address, "tcp://HOST:8786"), the cases in shards over the workers' threads
+    (tsmframe.distributed; the workers import tsmframe), `progress(done, total)` called as shards
+    end; the same rows, the seconds aside. Returns one
     dict per case in case order, with study.csv's columns: the parameters' values, status,
     converged, steps, iterations, last_iterations, load_factor, negative_eigenvalues (None where
     unknown), seconds, the first contact's story where the model has contacts, each `record`
@@ -308,6 +312,9 @@ def study(definition, jobs=0):
         text, directory = _read_text(path), _os.path.dirname(_os.path.abspath(path))
     else:
         text, directory = _dumps(definition), _os.getcwd()
+    if client is not None or scheduler is not None:
+        from .distributed import study_on_cluster
+        return study_on_cluster(text, directory, client=client, scheduler=scheduler, progress=progress)
     return _json.loads(_study_json(text, directory, jobs))["cases"]  # study.json's rows, as the CLI writes them
 
 

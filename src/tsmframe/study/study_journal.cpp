@@ -72,6 +72,13 @@ json row_json(const CaseResult& row) {
           {"recorded", recorded}};
 }
 
+std::string journal_lines(const std::vector<CaseResult>& rows) {
+  std::string text;
+  for (const CaseResult& row : rows)
+    if (row.status != "interrupted") text += line_text(row_json(row));
+  return text;
+}
+
 std::optional<CaseResult> row_from_json(const json& line, const Study& study) {
   try {
     CaseResult row;
@@ -144,8 +151,7 @@ StudyJournal::StudyJournal(const fs::path& path, const Study& study, const std::
   const fs::path fresh = path.string() + ".new";
   fd_ = ::open(fresh.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd_ < 0) throw io::SystemError(fresh.string(), reason(errno));
-  std::string text = line_text(header(study));
-  for (const CaseResult& row : rows) text += line_text(row_json(row));
+  const std::string text = line_text(header(study)) + journal_lines(rows);
   write_all(fd_, text, fresh);
   if (::fdatasync(fd_) != 0 || ::rename(fresh.c_str(), path.c_str()) != 0) {
     const int failure = errno;
@@ -160,8 +166,9 @@ StudyJournal::~StudyJournal() {
 }
 
 void StudyJournal::append(const CaseResult& row) {
-  if (row.status == "interrupted") return;
-  write_all(fd_, line_text(row_json(row)), path_);
+  const std::string line = journal_lines({row});
+  if (line.empty()) return;  // a stopped case
+  write_all(fd_, line, path_);
   if (now_ms() - last_sync_ < 1000) return;
   ::fdatasync(fd_);  // the disk: a lost machine loses a second's rows at most
   last_sync_ = now_ms();

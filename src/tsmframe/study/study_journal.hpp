@@ -23,6 +23,9 @@ inline constexpr const char* journal_name = "study.rows.jsonl";
 
 /// One row as a journal line holds it (every field of CaseResult; a number that is not finite as null).
 nlohmann::json row_json(const CaseResult& row);
+/// The journal's lines for `rows` (each ended by a newline), as a journal appends them: what a
+/// shard run elsewhere sends back to be appended to a journal of the study (a Dask task's).
+std::string journal_lines(const std::vector<CaseResult>& rows);
 /// The row a journal line holds, for `study`; nothing where the line is not one of its rows (a
 /// case number out of range, a field missing or of the wrong type).
 std::optional<CaseResult> row_from_json(const nlohmann::json& line, const Study& study);
