@@ -7,13 +7,19 @@
 #
 #     bash scripts/fuzz.sh [SECONDS] [model|study …]
 #     FUZZ_RUNS=10000000 bash scripts/fuzz.sh 0 model     # by executions instead of by time
+#     FUZZ_OPT=-O0 bash scripts/fuzz.sh 30                # CI's short runs: in build-fuzz-O0/
+#
+# FUZZ_OPT (default -O1) sets the optimisation: -O0 compiles in less than half the time and runs
+# each input slower, what a short run wants; a long run wants -O1.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-120}
 shift || true
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(model study)
+opt=${FUZZ_OPT:--O1}
 build=build-fuzz
+[ "$opt" = -O1 ] || build="build-fuzz$opt"
 
 if ! command -v clang++ >/dev/null; then
   echo "fuzz: clang++ is missing (bash scripts/setup.sh installs it)" >&2
@@ -21,8 +27,11 @@ if ! command -v clang++ >/dev/null; then
 fi
 # -O1 with line tables only (AddressSanitizer's advice): a finding's stack still names file and
 # line, and the targets compile in much less time than at -O2 with full debug information.
-CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
-  -DTSMFRAME_FUZZ=ON -DTSMFRAME_TESTS=OFF -DTSMFRAME_BENCH=OFF -DTSMFRAME_PYTHON=OFF >/dev/null
+if [ -f "$build/CMakeCache.txt" ] && ! grep -q "^CMAKE_GENERATOR:INTERNAL=Ninja$" "$build/CMakeCache.txt"; then
+  rm -rf "$build/CMakeCache.txt" "$build/CMakeFiles"  # made with Makefiles by an earlier version of this script
+fi
+CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$opt -gline-tables-only -DNDEBUG" -DTSMFRAME_FUZZ=ON -DTSMFRAME_TESTS=OFF -DTSMFRAME_BENCH=OFF -DTSMFRAME_PYTHON=OFF >/dev/null
 nice cmake --build "$build" -j"$(nproc)" --target "${targets[@]/#/tsmframe_fuzz_}" >/dev/null
 
 limits=(-max_len=16384 -timeout=30 -rss_limit_mb=2048 -print_final_stats=1)

@@ -19,6 +19,13 @@
 
 namespace tsm::contact {
 
+/// How far beyond an element's ends (in α) a node still counts as on it: a node on a beam node
+/// counts for both elements.
+constexpr double alpha_tolerance = 1e-12;
+
+/// The side (+1, −1) a signed gap puts a node on; 0 on the centre line.
+inline int side_of_gap(double gap) { return gap > 0.0 ? 1 : (gap < 0.0 ? -1 : 0); }
+
 /// The elements some contacts may touch (model/candidate_groups: one table per group).
 struct CandidateTable {
   std::vector<int> elements;                ///< element indices, ascending

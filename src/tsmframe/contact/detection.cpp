@@ -6,10 +6,6 @@
 namespace tsm::contact {
 namespace {
 
-constexpr double alpha_tolerance = 1e-12;  // a node on a beam node counts for both elements
-
-int sign(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
-
 /// Calls `visit(ci)` for the broad phase's candidates (`near`), or for every one (null).
 template <class Visit>
 void for_each_candidate(const ContactCandidates& contact, const std::vector<int>* near, Visit&& visit) {
@@ -19,7 +15,6 @@ void for_each_candidate(const ContactCandidates& contact, const std::vector<int>
   }
   for (size_t ci = 0; ci < contact.candidates.size(); ++ci) visit(static_cast<int>(ci));
 }
-
 
 }  // namespace
 
@@ -122,7 +117,7 @@ std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCan
     } else if (reference != 0) {
       if (reference * where.gap <= contact.gap) side = reference;
     } else if (std::abs(where.gap) > geometry.touch_tolerance()) {
-      side = -sign(where.gap);  // it left the centre line: it pushes the way it moves
+      side = -side_of_gap(where.gap);  // it left the centre line: it pushes the way it moves
     }
     if (side != 0 && pair_in_contact(geometry, contact, f, D, occupancy)) return;
     if (side != 0 && !occupancy.may_join(f, contact.frame)) {  // points of the other frame hold it

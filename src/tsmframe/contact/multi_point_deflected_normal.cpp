@@ -23,16 +23,16 @@ std::array<int, 9> point_dofs(int point) {
 
 /// The law as multi_point_response evaluates it (connected where the ends are hinged or sprung,
 /// floored), its forces' α-rates, and the beam's own H and ∂H/∂α (what θ_e needs, N9).
-struct Law {
+struct ElementLaw {
   Eigen::Matrix2Xd h_raw, dh_raw;
   MultiPointLaw connected;
   Eigen::Matrix2d k_plain;
   MultiPointForces forces;
 };
-Law element_law(const MultiPointElementData& data, const MultiPointResponse& r) {
+ElementLaw element_law(const MultiPointElementData& data, const MultiPointResponse& r) {
   const int k = data.size();
   MultiPointLaw law = multi_point_law(data.section, data.initial.length, r.alpha, data.edge, data.min_compliance);
-  Law out{law.h, law.dh, {}, data.k0.bottomRightCorner<2, 2>(), {}};
+  ElementLaw out{law.h, law.dh, {}, data.k0.bottomRightCorner<2, 2>(), {}};
   if (data.connected()) {
     ConnectedMultiPointLaw c = connected_multi_point_law(law, out.k_plain, data.flexibility_i, data.flexibility_j);
     law = std::move(c.law);
@@ -45,14 +45,14 @@ Law element_law(const MultiPointElementData& data, const MultiPointResponse& r) 
 
 /// The element's own end rotations θ_e and their rates in d = (δl, θ, δy) and α (N9, N19): the
 /// nodes' θ where the ends are rigid; else θ_e = k⁻¹ (M − H Y), the beam's own k and H.
-struct OwnRotations {
+struct OwnEndRotations {
   Vector2d theta;
   Eigen::Matrix2Xd d, d_alpha;
 };
-OwnRotations own_rotations(const MultiPointElementData& data, const Law& law, const MultiPointResponse& r,
+OwnEndRotations own_rotations(const MultiPointElementData& data, const ElementLaw& law, const MultiPointResponse& r,
                            const MatrixXd& dY) {
   const int k = data.size();
-  OwnRotations own{r.deformations.segment<2>(1), Eigen::Matrix2Xd::Zero(2, 3 + k), Eigen::Matrix2Xd::Zero(2, k)};
+  OwnEndRotations own{r.deformations.segment<2>(1), Eigen::Matrix2Xd::Zero(2, 3 + k), Eigen::Matrix2Xd::Zero(2, k)};
   if (!data.connected()) {
     own.d.middleCols<2>(1).setIdentity();
     return own;
@@ -73,7 +73,7 @@ struct Slopes {
   VectorXd value;
   MatrixXd d, d_alpha;
 };
-Slopes shape_slopes(const MultiPointElementData& data, const MultiPointResponse& r, const Law& law, bool with_rates) {
+Slopes shape_slopes(const MultiPointElementData& data, const MultiPointResponse& r, const ElementLaw& law, bool with_rates) {
   const int k = data.size();
   const double l0 = data.initial.length;
   const VectorXd Y = r.forces.tail(k);
@@ -81,7 +81,7 @@ Slopes shape_slopes(const MultiPointElementData& data, const MultiPointResponse&
   MatrixXd dY = MatrixXd::Zero(k, 3 + k);
   dY.middleCols(1, 2) = r.point_stiffness * law.connected.h.transpose();
   dY.rightCols(k) = r.point_stiffness;
-  const OwnRotations own = own_rotations(data, law, r, dY);
+  const OwnEndRotations own = own_rotations(data, law, r, dY);
   // w = −Dhᵀ θ_e + S Y: Dh the free shape's slopes, S_pp = ½ c_α(α_p), S_pq = l0 ∂C/∂x(a_p, a_q).
   Eigen::Matrix2Xd Dh(2, k), DDh(2, k);
   MatrixXd S(k, k), own_rate = MatrixXd::Zero(k, k);  // own_rate: ∂S/∂α with Y held, times Y
@@ -132,7 +132,7 @@ MultiPointResponse multi_point_deflected_response(const MultiPointElementData& d
   MultiPointResponse r = multi_point_response(data, d, previous_rotation, with_tangent);
   const int k = data.size(), size = 3 * (2 + k);
   if (k == 0) return r;
-  const Law law = element_law(data, r);
+  const ElementLaw law = element_law(data, r);
   const Slopes w = shape_slopes(data, r, law, with_tangent);
   const VectorXd Y = r.forces.tail(k);
   const double l = r.chord.length;

@@ -8,8 +8,6 @@
 namespace tsm::contact {
 namespace {
 
-constexpr double alpha_tolerance = 1e-12;  // a node on a beam node counts for both elements
-
 /// The element of the beam nearest the node across its span (candidate index; −1: none), and
 /// the node's gap from it.
 std::pair<int, double> nearest_across(const ContactGeometry& geometry, const ContactCandidates& contact,

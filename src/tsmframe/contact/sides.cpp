@@ -12,8 +12,6 @@ namespace {
 // its side flipping there (a beam swinging around) must not start a contact later.
 constexpr double side_reach = 1.0;
 
-int sign(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
-
 }  // namespace
 
 std::pair<int, int> across(const ContactGeometry& geometry, const ContactCandidates& spec, int element, int side,
@@ -121,7 +119,7 @@ void reset_sides(const ContactGeometry& geometry, const ContactCandidates& spec,
     } else if (where.alpha < -side_reach || where.alpha > 1.0 + side_reach) {
       state.reference.side[ci] = no_side;
     } else if (std::abs(where.gap) > geometry.touch_tolerance()) {
-      state.reference.side[ci] = static_cast<signed char>(sign(where.gap));
+      state.reference.side[ci] = static_cast<signed char>(side_of_gap(where.gap));
     } else if (fallback != 0 || state.reference.side[ci] == no_side) {
       const Eigen::Vector2d n = geometry.chord_normal(f, D, rotations);
       state.reference.side[ci] = fallback == 0 ? 0 : static_cast<signed char>(n.dot(released_normal) >= 0.0 ? fallback : -fallback);

@@ -34,8 +34,6 @@ namespace {
 constexpr const char* marker = ".tsmframe-";
 constexpr const char* previous_marker = ".previous";  ///< before `marker`: outputs moved aside
 
-std::string reason(int error) { return std::error_code(error, std::generic_category()).message(); }
-
 /// This host's name, as a temporary directory's name carries it (process ids are per host).
 const std::string& host_name() {
   static const std::string name = [] {
@@ -97,7 +95,7 @@ void check_replaceable(const fs::path& final, const std::string& shown, const st
   struct stat status;
   if (::lstat(final.c_str(), &status) != 0) {
     if (errno == ENOENT) return;
-    throw SystemError(shown, reason(errno));
+    throw SystemError(shown, os_reason(errno));
   }
   if (!S_ISDIR(status.st_mode)) throw InputError(shown, "exists and is not a directory: the outputs need a directory of their own");
   if (mount_root(final))
@@ -121,7 +119,7 @@ std::vector<fs::path> make_parents(const fs::path& parent) {
     if (::mkdir(p->c_str(), 0777) == 0) made.push_back(*p);
     else if (errno != EEXIST) {
       for (auto q = made.rbegin(); q != made.rend(); ++q) ::rmdir(q->c_str());
-      throw SystemError(p->string(), reason(errno));
+      throw SystemError(p->string(), os_reason(errno));
     }
   }
   return made;
@@ -160,10 +158,10 @@ void remove_dead_temporaries(const fs::path& parent, const fs::path& keep) {
 
 void sync_path(const fs::path& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw SystemError(path.string(), reason(errno));
+  if (fd < 0) throw SystemError(path.string(), os_reason(errno));
   const int error = ::fsync(fd) == 0 ? 0 : errno;
   ::close(fd);
-  if (error != 0 && error != EINVAL) throw SystemError(path.string(), reason(error));  // EINVAL: cannot be synced
+  if (error != 0 && error != EINVAL) throw SystemError(path.string(), os_reason(error));  // EINVAL: cannot be synced
 }
 
 /// Every file and directory under `directory` and itself on the disk (what another program wrote
@@ -180,11 +178,11 @@ void sync_tree(const fs::path& directory) {
 /// returns where the previous outputs are.
 fs::path rename_twice(const fs::path& temporary, const fs::path& final) {
   const fs::path aside = final.parent_path() / temporary_name(final.filename().string() + previous_marker, ::getpid());
-  if (::rename(final.c_str(), aside.c_str()) != 0) throw SystemError(final.string(), reason(errno));
+  if (::rename(final.c_str(), aside.c_str()) != 0) throw SystemError(final.string(), os_reason(errno));
   if (::rename(temporary.c_str(), final.c_str()) == 0) return aside;
   const int failure = errno;
   ::rename(aside.c_str(), final.c_str());
-  throw SystemError(final.string(), reason(failure));
+  throw SystemError(final.string(), os_reason(failure));
 }
 
 /// Puts `temporary` in place of `final` in one step: exchanged with an existing `final`, renamed
@@ -194,12 +192,12 @@ fs::path put_in_place(const fs::path& temporary, const fs::path& final) {
   for (int attempt = 0; attempt < 8; ++attempt) {
     if (::renameat2(AT_FDCWD, temporary.c_str(), AT_FDCWD, final.c_str(), RENAME_EXCHANGE) == 0) return temporary;
     if (errno == EINVAL || errno == ENOSYS) return rename_twice(temporary, final);
-    if (errno != ENOENT || !fs::exists(temporary)) throw SystemError(final.string(), reason(errno));
+    if (errno != ENOENT || !fs::exists(temporary)) throw SystemError(final.string(), os_reason(errno));
     if (::renameat2(AT_FDCWD, temporary.c_str(), AT_FDCWD, final.c_str(), RENAME_NOREPLACE) == 0) return {};
     if (errno == EINVAL || errno == ENOSYS) {
       if (::rename(temporary.c_str(), final.c_str()) == 0) return {};
     }
-    if (errno != EEXIST && errno != ENOTEMPTY) throw SystemError(final.string(), reason(errno));
+    if (errno != EEXIST && errno != ENOTEMPTY) throw SystemError(final.string(), os_reason(errno));
   }
   throw SystemError(final.string(), "another process keeps replacing it");
 }
@@ -257,7 +255,7 @@ OutputDirectory::OutputDirectory(const std::string& directory, const std::vector
   if (!adopted && ::mkdir(temporary_.c_str(), 0777) != 0) {
     const int failure = errno;
     for (auto p = made_parents_.rbegin(); p != made_parents_.rend(); ++p) ::rmdir(p->c_str());
-    throw SystemError(directory, "cannot make its temporary directory " + temporary_.string() + ": " + reason(failure));
+    throw SystemError(directory, "cannot make its temporary directory " + temporary_.string() + ": " + os_reason(failure));
   }
 }
 

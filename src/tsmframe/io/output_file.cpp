@@ -14,8 +14,6 @@
 namespace tsm::io {
 namespace {
 
-std::string reason(int error) { return std::error_code(error, std::generic_category()).message(); }
-
 /// A stream buffer over a file descriptor that keeps the errno of the first failed write.
 class DescriptorBuffer : public std::streambuf {
  public:
@@ -68,7 +66,7 @@ int write_synced(int fd, const std::function<void(std::ostream&)>& write) {
 
 void write_output_file(const std::string& path, const std::function<void(std::ostream&)>& write) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd < 0) throw SystemError(path, reason(errno));
+  if (fd < 0) throw SystemError(path, os_reason(errno));
   int error = 0;
   try {
     error = write_synced(fd, write);
@@ -80,7 +78,7 @@ void write_output_file(const std::string& path, const std::function<void(std::os
   if (::close(fd) != 0 && error == 0) error = errno;
   if (error == 0) return;
   ::unlink(path.c_str());
-  throw SystemError(path, reason(error));
+  throw SystemError(path, os_reason(error));
 }
 
 void make_directories(const std::string& directory) {

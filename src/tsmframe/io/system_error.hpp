@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 namespace tsm::io {
 
@@ -13,6 +14,9 @@ class SystemError : public std::runtime_error {
   /// `what`: the path or the resource; `reason`: the OS's words (strerror), or what ran out.
   SystemError(const std::string& what, const std::string& reason) : std::runtime_error(what + ": " + reason) {}
 };
+
+/// The OS's words for an errno value ("No space left on device").
+inline std::string os_reason(int error) { return std::error_code(error, std::generic_category()).message(); }
 
 /// The memory a run needs and the machine does not have (io/memory_budget): Python's MemoryError.
 class MemoryShortage : public SystemError {

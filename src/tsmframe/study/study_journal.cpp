@@ -29,8 +29,6 @@ json number(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 
 double number_from(const json& x) { return x.is_null() ? std::numeric_limits<double>::quiet_NaN() : x.get<double>(); }
 
-std::string reason(int error) { return std::error_code(error, std::generic_category()).message(); }
-
 std::int64_t now_ms() {
   return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
@@ -40,7 +38,7 @@ void write_all(int fd, const std::string& text, const fs::path& path) {
   for (size_t done = 0; done < text.size();) {
     const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw io::SystemError(path.string(), reason(errno));
+    if (n < 0) throw io::SystemError(path.string(), io::os_reason(errno));
     done += static_cast<size_t>(n);
   }
 }
@@ -150,13 +148,13 @@ std::optional<ResumePoint> find_resume_point(const std::string& out, const Study
 StudyJournal::StudyJournal(const fs::path& path, const Study& study, const std::vector<CaseResult>& rows) : path_(path) {
   const fs::path fresh = path.string() + ".new";
   fd_ = ::open(fresh.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd_ < 0) throw io::SystemError(fresh.string(), reason(errno));
+  if (fd_ < 0) throw io::SystemError(fresh.string(), io::os_reason(errno));
   const std::string text = line_text(header(study)) + journal_lines(rows);
   write_all(fd_, text, fresh);
   if (::fdatasync(fd_) != 0 || ::rename(fresh.c_str(), path.c_str()) != 0) {
     const int failure = errno;
     ::close(fd_), fd_ = -1;
-    throw io::SystemError(path.string(), reason(failure));
+    throw io::SystemError(path.string(), io::os_reason(failure));
   }
   last_sync_ = now_ms();
 }
