@@ -13,7 +13,7 @@
 namespace {
 
 using namespace tsm::test;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 /// A column along x (L = 4, EI = 1e6, EA 1e4 times stiffer over L²) under P = 1,000 at its top
 /// (node 2), its ends held as given, 20 Euler–Bernoulli elements.

@@ -11,7 +11,7 @@
 namespace {
 
 using namespace tsm::test;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // L/h = 100 steel-like square section: E = 2.05e11, h = 0.1, L = 10.
 BeamSpec steel_beam(int divisions, const char* element) {

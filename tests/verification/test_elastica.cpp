@@ -9,6 +9,7 @@
 #include "support/models.hpp"
 #include "support/rk4.hpp"
 
+namespace test_elastica {
 namespace {
 
 using namespace tsm::test;
@@ -119,3 +120,5 @@ TEST(Elastica, ScaledModelGivesTheSameNormalisedAnswer) {
 }
 
 }  // namespace
+
+}  // namespace test_elastica

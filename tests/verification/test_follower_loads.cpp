@@ -18,7 +18,7 @@
 namespace {
 
 using namespace tsm::test;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 /// n elements on a circle of radius R (counter-clockwise, or an arc of `sweep` radians), every
 /// element with pressure q (positive: from the inside, the members' left), EA = A, EI = 1. The

@@ -17,6 +17,7 @@
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/assembly/global_system.hpp"
 
+namespace test_follower_point_load {
 namespace {
 
 using namespace tsm::test;
@@ -165,3 +166,5 @@ TEST(FollowerPointLoad, TheReaderRefusesWhatCannotTurn) {
 }
 
 }  // namespace
+
+}  // namespace test_follower_point_load

@@ -11,7 +11,7 @@
 namespace {
 
 using namespace tsm::test;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 class TimoshenkoCantilever : public ::testing::TestWithParam<int> {};
 

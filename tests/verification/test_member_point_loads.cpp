@@ -9,6 +9,7 @@
 
 #include "support/models.hpp"
 
+namespace test_member_point_loads {
 namespace {
 
 using namespace tsm::test;
@@ -124,3 +125,5 @@ TEST(MemberPointLoads, TheReaderRefusesAStationThatIsNone) {
 }
 
 }  // namespace
+
+}  // namespace test_member_point_loads

@@ -13,6 +13,7 @@
 #include "support/unbalanced_jacobian.hpp"
 #include "tsmframe/model/stage.hpp"
 
+namespace test_nodal_springs {
 namespace {
 
 using namespace tsm::test;
@@ -216,3 +217,5 @@ TEST(DeadFollowerLoads, TheirTangentIsTheJacobian) {
 }
 
 }  // namespace
+
+}  // namespace test_nodal_springs

@@ -9,6 +9,7 @@
 
 #include "support/models.hpp"
 
+namespace test_recorded_results {
 namespace {
 
 using namespace tsm::test;
@@ -81,3 +82,5 @@ TEST(RecordedResults, AFailedRunKeepsTheNewestConvergedStepWhole) {
 }
 
 }  // namespace
+
+}  // namespace test_recorded_results

@@ -16,6 +16,7 @@
 #include "tsmframe/io/restart_reader.hpp"
 #include "tsmframe/io/results_writer.hpp"
 
+namespace test_restart {
 namespace {
 
 using namespace tsm::test;
@@ -162,3 +163,5 @@ TEST(Restart, WhatCannotGoOnIsRefusedWithItsPath) {
 }
 
 }  // namespace
+
+}  // namespace test_restart

@@ -11,13 +11,14 @@
 #include "support/models.hpp"
 #include "support/rk4.hpp"
 
+namespace test_ring_squeeze {
 namespace {
 
 using namespace tsm::test;
 using tsm::solver::RunResult;
 using tsm::solver::StepRecord;
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 constexpr double E = 2e11, ring_I = 1e-7, R = 1.0, gap = 0.01;
 
 /// A steel ring (radius 1, centre at the origin, two half-circle members of `n` elements from
@@ -203,3 +204,5 @@ TEST(StackedRings, PressedTogetherTheyCarryTwoLinearRingsInSeries) {
 }
 
 }  // namespace
+
+}  // namespace test_ring_squeeze

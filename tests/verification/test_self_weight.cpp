@@ -9,6 +9,7 @@
 
 #include "support/models.hpp"
 
+namespace test_self_weight {
 namespace {
 
 using namespace tsm::test;
@@ -88,3 +89,5 @@ TEST(SelfWeight, TheReaderRefusesWhatCannotWeigh) {
 }
 
 }  // namespace
+
+}  // namespace test_self_weight

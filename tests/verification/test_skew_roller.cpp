@@ -21,6 +21,7 @@
 #include "tsmframe/io/results_writer.hpp"
 #include "tsmframe/model/nodal_frames.hpp"
 
+namespace test_skew_roller {
 namespace {
 
 using namespace tsm::test;
@@ -348,3 +349,5 @@ TEST(SkewRoller, MechanismsAndBadInputAreNamed) {
 }
 
 }  // namespace
+
+}  // namespace test_skew_roller

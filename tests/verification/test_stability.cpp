@@ -18,7 +18,7 @@
 namespace {
 
 using namespace tsm::test;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 class PerfectColumn : public ::testing::TestWithParam<const char*> {};
 

@@ -13,6 +13,7 @@
 #include "support/contact_models.hpp"
 #include "support/models.hpp"
 
+namespace test_stages {
 namespace {
 
 using namespace tsm::test;
@@ -274,3 +275,5 @@ TEST(Stages, DisplacementControlInALaterStageRunsFromWhereTheDofStands) {
 }
 
 }  // namespace
+
+}  // namespace test_stages

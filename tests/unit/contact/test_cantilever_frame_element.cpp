@@ -13,12 +13,13 @@
 #include "tsmframe/contact/cantilever_frame_element.hpp"
 #include "tsmframe/contact/contact_response.hpp"
 
+namespace test_cantilever_frame_element {
 namespace {
 
 using namespace tsm::contact;
 using tsm::element::Matrix3;
 using tsm::element::SectionStiffness;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 TEST(CantileverFrameLaw, SplitIsTheMatrixOfFormulation2b) {
   for (double psi : {0.0, 0.004, 0.05})
@@ -134,3 +135,5 @@ TEST(CantileverFrameElement, SelfEquilibratedAndForceFreeUnderRigidMotion) {
 }
 
 }  // namespace
+
+}  // namespace test_cantilever_frame_element

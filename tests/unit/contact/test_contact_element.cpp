@@ -17,7 +17,7 @@ namespace {
 using namespace tsm::contact;
 using tsm::test::connections;
 using tsm::test::Ends;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 using Trial = tsm::test::ContactTrial;
 using tsm::test::finite_difference_tangent;

@@ -21,6 +21,7 @@
 #include "tsmframe/contact/contact_element.hpp"
 #include "tsmframe/contact/multi_point_element.hpp"
 
+namespace test_multi_point_element {
 namespace {
 
 using namespace tsm::contact;
@@ -212,3 +213,5 @@ TEST(MultiPointElement, ASimplySupportedBeamPressedByKRigidPointsCarriesTheTextb
 }
 
 }  // namespace
+
+}  // namespace test_multi_point_element

@@ -20,6 +20,7 @@
 #include "tsmframe/contact/multi_point_law.hpp"
 #include "tsmframe/element/force_law.hpp"
 
+namespace test_multi_point_law {
 namespace {
 
 using namespace tsm::contact;
@@ -314,3 +315,5 @@ TEST(MultiPointLaw, PairFloorDerivativesMatchFiniteDifferences) {
 }
 
 }  // namespace
+
+}  // namespace test_multi_point_law

@@ -10,10 +10,11 @@
 #include "tsmframe/element/beam_element.hpp"
 #include "tsmframe/element/force_law.hpp"
 
+namespace test_beam_element {
 namespace {
 
 using namespace tsm::element;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 /// Central-difference Jacobian of the nodal forces, tracking β from the same previous rotation.
 Matrix6 finite_difference_tangent(const InitialChord& chord, const Matrix3& s, const Vector6& d,
@@ -165,3 +166,5 @@ TEST(BeamElement, KeptStiffnessTermsGiveTheFullMatrixBitForBit) {
 }
 
 }  // namespace
+
+}  // namespace test_beam_element

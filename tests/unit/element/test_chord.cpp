@@ -11,7 +11,7 @@
 namespace {
 
 using tsm::element::direction_angle;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 TEST(DirectionAngle, AgreesWithAtan2InEveryDirectionToAnUlp) {
   double largest = 0.0;

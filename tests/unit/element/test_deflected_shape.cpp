@@ -22,7 +22,7 @@ using tsm::element::EndConnections;
 using tsm::element::SectionStiffness;
 using tsm::element::Vector2;
 using tsm::element::Vector6;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 constexpr double hinge = std::numeric_limits<double>::infinity();  // a hinge's flexibility
 
 constexpr double EI = 2.6, l0 = 0.8;

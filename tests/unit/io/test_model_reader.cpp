@@ -12,6 +12,7 @@
 #include "tsmframe/io/system_error.hpp"
 #include "tsmframe/model/memory_estimate.hpp"
 
+namespace test_model_reader {
 namespace {
 
 using nlohmann::json;
@@ -83,3 +84,5 @@ TEST(ModelReader, ASchemaKeyIsAccepted) {
 }
 
 }  // namespace
+
+}  // namespace test_model_reader

@@ -15,6 +15,7 @@
 
 #include "tsmframe/linalg/block_ldlt.hpp"
 
+namespace test_block_ldlt {
 namespace {
 
 using tsm::linalg::Block;
@@ -281,3 +282,5 @@ TEST(BlockLDLT, ReportsASingularPivot) {
 }
 
 }  // namespace
+
+}  // namespace test_block_ldlt

@@ -15,7 +15,7 @@ using tsm::MemberInput;
 using tsm::MemberMesh;
 using tsm::MeshError;
 using tsm::Model;
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 Model nodes_only(std::vector<tsm::Node> nodes, double size) {
   Model model;

@@ -7,6 +7,7 @@
 #include "support/models.hpp"
 #include "tsmframe/io/results_writer.hpp"
 
+namespace test_stop_request {
 namespace {
 
 using tsm::test::json;
@@ -54,3 +55,5 @@ TEST(StopRequest, EachControlStopsAfterTheStepThatAskedKeepingEveryConvergedStep
 }
 
 }  // namespace
+
+}  // namespace test_stop_request

@@ -19,6 +19,7 @@
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/study/study_journal.hpp"
 
+namespace test_study_journal {
 namespace {
 
 using nlohmann::json;
@@ -163,3 +164,5 @@ TEST_F(Journal, TheCasesItHoldsAreNotRunAgain) {
 }
 
 }  // namespace
+
+}  // namespace test_study_journal

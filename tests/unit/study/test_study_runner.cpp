@@ -12,6 +12,7 @@
 #include "support/models.hpp"
 #include "tsmframe/study/study_runner.hpp"
 
+namespace test_study_runner {
 namespace {
 
 using nlohmann::json;
@@ -117,3 +118,5 @@ TEST(StudyShard, AStudyRunsOnlyItsShardsCases) {
 }
 
 }  // namespace
+
+}  // namespace test_study_runner

@@ -16,6 +16,7 @@
 
 #include "support/contact_models.hpp"
 
+namespace test_multi_point {
 namespace {
 
 using namespace tsm::test;
@@ -359,3 +360,5 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 }  // namespace
+
+}  // namespace test_multi_point
