@@ -18,9 +18,9 @@ def main(python_dir, study, address, journal, mode):
     with open(study) as f:
         text = f.read()
 
-    def progress(done, total):
+    def progress(done, total, worker):
         if mode != "quiet":
-            print(f"{study}: {done}/{total} cases done on {address}", file=sys.stderr, flush=True)
+            print(f"{study}: {done}/{total} cases done (the last shard on worker {worker})", file=sys.stderr, flush=True)
 
     try:
         distributed.journal_on_cluster(text, os.path.dirname(os.path.abspath(study)), journal, address, progress)

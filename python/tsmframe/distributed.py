@@ -46,9 +46,16 @@ def shard_journal_lines(text, index, count):
     return lines, files
 
 
+def _located(task, text, index, count):
+    """Run on a worker: the task's result and the address of the worker that ran it."""
+    from distributed import get_worker
+    return task(text, index, count), get_worker().address
+
+
 def _on_cluster(text, directory, client, scheduler, task, collect, progress):
     """Runs `task(text, index, count)` for each shard of the study on the cluster; `collect` takes
-    each shard's result as it ends and returns its number of cases; `progress(done, total)`."""
+    each shard's result as it ends and returns its number of cases; `progress(done, total,
+    worker)` with the address of the worker the shard ran on."""
     try:
         import distributed
     except ImportError:
@@ -62,12 +69,13 @@ def _on_cluster(text, directory, client, scheduler, task, collect, progress):
     try:
         threads = max(1, sum(client.nthreads().values()))
         count = max(1, min(total, SHARDS_PER_THREAD * threads))
-        futures = client.map(task, [text] * count, range(count), [count] * count, pure=False)
+        futures = client.map(_located, [task] * count, [text] * count, range(count), [count] * count, pure=False)
         done = 0
         for future in distributed.as_completed(futures):
-            done += collect(future.result())
+            result, worker = future.result()
+            done += collect(result)
             if progress is not None:
-                progress(done, total)
+                progress(done, total, worker)
     finally:
         for future in futures:
             future.cancel()
@@ -78,7 +86,8 @@ def _on_cluster(text, directory, client, scheduler, task, collect, progress):
 def study_on_cluster(text, directory, client=None, scheduler=None, progress=None):
     """The rows of the study in `text` (model_file relative to `directory`) run on the cluster of
     `client` (a distributed.Client) or at `scheduler` (its address, "tcp://HOST:8786"), in case
-    order. `progress(done, total)` (if given) is called as shards end, with the cases done."""
+    order. `progress(done, total, worker)` (if given) is called as each shard ends: the cases done,
+    and the address of the worker the shard ran on."""
     rows = []
 
     def collect(shard):

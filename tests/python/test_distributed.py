@@ -27,7 +27,7 @@ def without_seconds(rows):
 @pytest.fixture
 def cluster():
     """A scheduler and two workers (one thread each, no nanny: a killed worker stays dead); the
-    scheduler's address and the workers' processes."""
+    scheduler's address, the workers' processes and their addresses."""
     directory = tempfile.mkdtemp(prefix="tsmframe-dask-")
     scheduler_file = os.path.join(directory, "scheduler.json")
     env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(os.path.abspath(tf.__file__))))
@@ -46,7 +46,8 @@ def cluster():
         from distributed import Client
         with Client(address, timeout=30) as client:
             client.wait_for_workers(2, timeout=60)
-        yield address, workers
+            worker_addresses = set(client.scheduler_info()["workers"])
+        yield address, workers, worker_addresses
     finally:
         for p in reversed(processes):
             p.kill()
@@ -54,20 +55,22 @@ def cluster():
 
 
 def test_the_fig7_study_through_two_workers_gives_the_local_rows(cluster):
-    address, _ = cluster
+    address, _, worker_addresses = cluster
     local = tf.study(FIG7)
     seen = []
-    remote = tf.study(FIG7, scheduler=address, progress=lambda done, total: seen.append((done, total)))
+    remote = tf.study(FIG7, scheduler=address, progress=lambda done, total, worker: seen.append((done, total, worker)))
     assert without_seconds(remote) == without_seconds(local)
-    assert seen[-1] == (len(local), len(local)) and len(seen) == 8  # 4 shards per worker thread
+    assert len(seen) == 8  # 4 shards per worker thread
+    assert seen[-1][:2] == (len(local), len(local)) and [done for done, _, _ in seen] == sorted(done for done, _, _ in seen)
+    assert {worker for _, _, worker in seen} <= worker_addresses  # where each shard ran
 
 
 def test_a_worker_killed_mid_study_loses_no_case_and_doubles_none(cluster):
-    address, workers = cluster
+    address, workers, _ = cluster
     local = tf.study(FIG7)
     killed = []
 
-    def kill_one(done, total):  # as the first shard ends: the other worker is in the middle of one
+    def kill_one(done, total, worker):  # as the first shard ends: the other worker is in the middle of one
         if not killed:
             workers[0].send_signal(signal.SIGKILL)
             killed.append(done)
@@ -79,7 +82,7 @@ def test_a_worker_killed_mid_study_loses_no_case_and_doubles_none(cluster):
 
 
 def test_a_bad_study_is_refused_before_any_task(cluster):
-    address, _ = cluster
+    address, _, _ = cluster
     with open(FIG7) as f:
         study = json.load(f)
     study["sweep"][0]["path"] = 7
@@ -90,7 +93,7 @@ def test_a_bad_study_is_refused_before_any_task(cluster):
 def test_the_command_line_runs_a_study_on_the_cluster_and_writes_the_local_rows(cluster, tmp_path):
     # tsmframe study --scheduler: study.csv and study.json as a local run writes them (seconds
     # aside); an address where no scheduler listens is one line and exit 2, nothing written.
-    address, _ = cluster
+    address, _, worker_addresses = cluster
     cli = os.environ["TSMFRAME_CLI"]
     local, remote = tmp_path / "local", tmp_path / "remote"
     # Exit 1 for both: rows written, some of Fig. 7's cases do not converge (the same ones).
@@ -99,7 +102,8 @@ def test_the_command_line_runs_a_study_on_the_cluster_and_writes_the_local_rows(
     done = subprocess.run([cli, "study", FIG7, "--scheduler", address, "--out", str(remote)], timeout=300,
                           capture_output=True, text=True)
     assert done.returncode == expected, done.stderr
-    assert f"48/48 cases done on {address}" in done.stderr
+    last = [line for line in done.stderr.splitlines() if "48/48 cases done" in line]
+    assert len(last) == 1 and any(last[0].endswith(f"on worker {worker})") for worker in worker_addresses), done.stderr
     with open(local / "study.json") as a, open(remote / "study.json") as b:
         assert without_seconds(json.load(b)["cases"]) == without_seconds(json.load(a)["cases"])
     # The study keeps its cases: each one's files come back from the workers, the same as local ones.
