@@ -117,3 +117,31 @@ def test_the_command_line_runs_a_study_on_the_cluster_and_writes_the_local_rows(
     assert nowhere.returncode == 2, nowhere.stderr
     assert "cannot reach the Dask scheduler" in nowhere.stderr and nowhere.stderr.count("\n") == 1, nowhere.stderr
     assert not (tmp_path / "none").exists()
+
+
+def test_workers_that_cannot_import_tsmframe_are_named_in_one_line(tmp_path):
+    # A worker started without tsmframe on its path: the command says so (exit 2), writes nothing.
+    scheduler_file = tmp_path / "scheduler.json"
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    common = dict(env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=tmp_path)
+    processes = [subprocess.Popen([os.path.join(BIN, "dask-scheduler"), "--host", "127.0.0.1", "--port", "0",
+                                   "--no-dashboard", "--scheduler-file", str(scheduler_file)], **common)]
+    try:
+        deadline = time.monotonic() + 60
+        while not scheduler_file.exists() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        address = json.loads(scheduler_file.read_text())["address"]
+        processes.append(subprocess.Popen([os.path.join(BIN, "dask-worker"), address, "--nthreads", "1", "--no-nanny",
+                                           "--no-dashboard", "--host", "127.0.0.1"], **common))
+        from distributed import Client
+        with Client(address, timeout=30) as client:
+            client.wait_for_workers(1, timeout=60)
+        done = subprocess.run([os.environ["TSMFRAME_CLI"], "study", FIG7, "-q", "--scheduler", address,
+                               "--out", str(tmp_path / "out")], timeout=300, capture_output=True, text=True)
+        assert done.returncode == 2, done.stderr
+        assert "the workers cannot import tsmframe" in done.stderr and done.stderr.count("\n") == 1, done.stderr
+        assert not (tmp_path / "out").exists()
+    finally:
+        for p in reversed(processes):
+            p.kill()
+            p.wait(timeout=30)
