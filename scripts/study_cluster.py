@@ -24,15 +24,12 @@ def main(python_dir, study, address, journal, mode):
 
     try:
         distributed.journal_on_cluster(text, os.path.dirname(os.path.abspath(study)), journal, address, progress)
-    except ModuleNotFoundError as e:  # raised where a worker reads a task: it cannot import tsmframe
-        if e.name != "tsmframe":
-            print(f"{study}: --scheduler: {e}", file=sys.stderr)
-            return 2
-        print(f"{study}: --scheduler {address}: the workers cannot import tsmframe (install it where they run, "
-              f"or start them with PYTHONPATH={python_dir})", file=sys.stderr)
-        return 2
     except ImportError as e:
-        print(f"{study}: --scheduler: {e}", file=sys.stderr)
+        if e.name == "tsmframe":  # raised where a worker reads a task: it cannot import tsmframe
+            print(f"{study}: --scheduler {address}: the workers cannot import tsmframe (install it where they run, "
+                  f"or start them with PYTHONPATH={python_dir})", file=sys.stderr)
+        else:
+            print(f"{study}: --scheduler: {e}", file=sys.stderr)
         return 2
     except (OSError, TimeoutError) as e:
         print(f"{study}: --scheduler {address}: cannot reach the Dask scheduler ({e})", file=sys.stderr)

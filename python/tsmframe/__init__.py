@@ -301,8 +301,8 @@ def study(definition, jobs=0, client=None, scheduler=None, progress=None):
     Dask cluster: `client` (a distributed.Client: a LocalCluster's, or one connected anywhere) or
     `scheduler` (its address, "tcp://HOST:8786"), the cases in shards over the workers' threads
     (tsmframe.distributed; the workers import tsmframe), `progress(done, total, worker)` called as
-    each shard ends (the cases done, the address of the worker it ran on); the same rows, the seconds aside. Returns one
-    dict per case in case order, with study.csv's columns: the parameters' values, status,
+    each shard ends (the cases done, the address of the worker it ran on); the same rows, the
+    seconds aside. Returns one dict per case in case order, with study.csv's columns: the parameters' values, status,
     converged, steps, iterations, last_iterations, load_factor, negative_eigenvalues (None where
     unknown), seconds, the first contact's story where the model has contacts, each `record`
     (None where the case has no value), notes, message.
