@@ -30,6 +30,7 @@ class ToyProblem final : public solver::Problem {
 
   const solver::Equations& equations() const override { return equations_; }
   bool has_contacts() const override { return false; }
+  double step_fraction(const solver::State&, const Eigen::VectorXd&) override { return 1.0; }
   bool evaluate(solver::State& state) override {
     ++evaluations_;
     internal_[0] = force(state.displacements[0]);

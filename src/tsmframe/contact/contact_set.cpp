@@ -4,6 +4,7 @@
 
 #include "tsmframe/contact/broad_phase.hpp"
 #include "tsmframe/contact/detection.hpp"
+#include "tsmframe/contact/landing.hpp"
 #include "tsmframe/contact/release.hpp"
 #include "tsmframe/contact/sides.hpp"
 #include "tsmframe/contact/sliding.hpp"
@@ -142,6 +143,14 @@ void ContactSet::update_active(const ContactCandidates& contact, const Eigen::Ve
   }
   if (state.alpha >= 0.0 && state.alpha <= 1.0) return;
   add(hand_over(geometry_, contact, D, rotations, at_convergence, state, occupancy), changes);
+}
+
+double ContactSet::landing_fraction(const Eigen::VectorXd& D, const Eigen::VectorXd& trial,
+                                    const std::vector<ContactState>& states) const {
+  double fraction = 1.0;
+  for (int k = 0; k < contact_count(); ++k)
+    fraction = std::min(fraction, contact::landing_fraction(geometry_, geometry_.contact(k), states[k], D, trial));
+  return fraction;
 }
 
 bool ContactSet::passed_through(const Eigen::VectorXd& D, const std::vector<double>& rotations,

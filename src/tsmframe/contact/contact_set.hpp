@@ -67,6 +67,10 @@ class ContactSet {
   ContactChanges update(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                         const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states,
                         bool at_convergence, const StepStart* step_start = nullptr) const;
+  /// The fraction of Newton's step from `displacements` to `trial` that lands no inactive
+  /// contact's node deeper than landing.hpp allows (1: all of it).
+  double landing_fraction(const Eigen::VectorXd& displacements, const Eigen::VectorXd& trial,
+                          const std::vector<ContactState>& states) const;
   /// Whether a contact released during this step has let its node pass through a beam: the
   /// converged state is then not acceptable.
   bool passed_through(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,

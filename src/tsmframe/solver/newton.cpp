@@ -113,12 +113,19 @@ NewtonOutcome NewtonSolver::iterate(const PathConstraint& constraint, State& sta
     if (path.failure != Reason::none) return fail(out, failure_of(path.failure), it);
     if (it == 1) measure_start(constraint, path.dlambda, *correction, state, out);
     out.iterations = it;
+    // Cut short where contacts would land deep (landing.hpp); δλ with it unless the load
+    // increment is already in the residual (load control).
+    PathCorrection taken = path;
+    if (const double fraction = problem_.step_fraction(state, *correction); fraction < 1.0) {
+      *correction *= fraction;
+      if (constraint.kind != PathConstraint::Kind::load_increment) taken.dlambda *= fraction;
+    }
 
     // --- update: applied first, checked after (in the same pass); a failed step's state is
     // restored by the caller
     const AppliedCorrection applied = passes_.apply(*correction, state);
-    if (!std::isfinite(applied.size[0]) || !std::isfinite(path.dlambda)) return fail(out, failure_of(Reason::correction_not_finite), it);
-    state.load_factor += path.dlambda;
+    if (!std::isfinite(applied.size[0]) || !std::isfinite(taken.dlambda)) return fail(out, failure_of(Reason::correction_not_finite), it);
+    state.load_factor += taken.dlambda;
 
     // --- the structure at the iterate (its contacts settled there)
     const bool contacts_changed = problem_.evaluate(state);

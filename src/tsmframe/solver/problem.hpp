@@ -92,6 +92,10 @@ class Problem {
   /// Solves with the last factorisation, in place.
   virtual void solve_in_place(Eigen::VectorXd& x) const = 0;
 
+  /// The fraction (0, 1] of Newton's correction (over the free equations) to apply from `state`:
+  /// less where the structure's own passes ask it (contacts landing deep, landing.hpp).
+  virtual double step_fraction(const State& state, const Eigen::VectorXd& correction) = 0;
+
   // --- hooks
   /// A step starts from `state` (evaluated): its per-step bookkeeping restarts.
   virtual void begin_step(const State& state) = 0;

@@ -141,6 +141,16 @@ Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms
   return attempt(sliding, rhs);
 }
 
+double TsmProblem::step_fraction(const State& state, const Eigen::VectorXd& correction) {
+  if (!contacts_) return 1.0;
+  trial_ = physical(state);
+  Eigen::VectorXd step = Eigen::VectorXd::Zero(trial_.size());
+  for (int eq = 0; eq < equations_.free_count(); ++eq) step[equations_.free_dofs[eq]] = correction[eq];
+  system_.frames().to_global(step);
+  trial_ += step;
+  return contacts_->landing_fraction(physical(state), trial_, state.contacts);
+}
+
 void TsmProblem::begin_step(const State& state) {
   switches_ = reversals_ = 0;
   max_switches_ = 4 + 4 * static_cast<int>(state.contacts.size());

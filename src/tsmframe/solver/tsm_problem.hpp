@@ -37,6 +37,7 @@ class TsmProblem final : public Problem {
   bool has_optional_terms() const override { return !system_.contact_rank_one().empty(); }
   Factorisation factorize(const State& state, bool with_optional_terms, Eigen::VectorXd* rhs, bool stability) override;
   void solve_in_place(Eigen::VectorXd& x) const override { solver_.solve_in_place(x); }
+  double step_fraction(const State& state, const Eigen::VectorXd& correction) override;
   void begin_step(const State& state) override;
   std::optional<StepFailure> after_iterate(const State& state) const override;
   Settlement at_convergence(State& state) override;
@@ -76,6 +77,7 @@ class TsmProblem final : public Problem {
 
  private:
   mutable Eigen::VectorXd physical_;  ///< physical()'s, where frames turn
+  Eigen::VectorXd trial_;  ///< step_fraction()'s: the iterate a whole correction would reach
   bool from_unloaded_ = false;        ///< the step began at the unloaded state (begin_step)
   /// Evaluates at `state` and settles its contacts (detect, release, hand over; re-evaluating
   /// after each change). Returns whether the contact set changed. `contacts_only`: the state is
