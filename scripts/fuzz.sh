@@ -8,6 +8,7 @@
 #     bash scripts/fuzz.sh [SECONDS] [model|study …]
 #     FUZZ_RUNS=10000000 bash scripts/fuzz.sh 0 model     # by executions instead of by time
 #     FUZZ_OPT=-O0 bash scripts/fuzz.sh 30                # in build-fuzz-O0/
+#     FUZZ_TIMEOUT=120 …                                  # an input's limit in s (default 30; the campaign's 120)
 #
 # FUZZ_OPT (default -O1) sets the optimisation: -O0 builds in two thirds of the time and runs each
 # input several times slower (the model target's slowest seed 27 s, near the 30-s limit).
@@ -34,7 +35,7 @@ CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$opt -gline-tables-only -DNDEBUG" -DTSMFRAME_FUZZ=ON -DTSMFRAME_TESTS=OFF -DTSMFRAME_BENCH=OFF -DTSMFRAME_PYTHON=OFF >/dev/null
 nice cmake --build "$build" -j"$(nproc)" --target "${targets[@]/#/tsmframe_fuzz_}" >/dev/null
 
-limits=(-max_len=16384 -timeout=30 -rss_limit_mb=2048 -print_final_stats=1)
+limits=(-max_len=16384 -timeout="${FUZZ_TIMEOUT:-30}" -rss_limit_mb=2048 -print_final_stats=1)
 if [ -n "${FUZZ_RUNS:-}" ]; then limits+=(-runs="$FUZZ_RUNS"); else limits+=(-max_total_time="$seconds"); fi
 found=0
 for target in "${targets[@]}"; do
