@@ -116,14 +116,17 @@ NewtonOutcome NewtonSolver::iterate(const PathConstraint& constraint, State& sta
     // Cut short where contacts would land deep (landing.hpp); δλ with it unless the load
     // increment is already in the residual (load control).
     PathCorrection taken = path;
-    if (const double fraction = problem_.step_fraction(state, *correction); fraction < 1.0) {
+    const double fraction = problem_.step_fraction(state, *correction);
+    if (fraction < 1.0) {
       *correction *= fraction;
       if (constraint.kind != PathConstraint::Kind::load_increment) taken.dlambda *= fraction;
     }
 
     // --- update: applied first, checked after (in the same pass); a failed step's state is
-    // restored by the caller
-    const AppliedCorrection applied = passes_.apply(*correction, state);
+    // restored by the caller. A step cut short is judged by the correction Newton asked for: a
+    // small part of a large one is no correction at round-off.
+    AppliedCorrection applied = passes_.apply(*correction, state);
+    if (fraction < 1.0) applied.size = {applied.size[0] / fraction, applied.size[1] / fraction};
     if (!std::isfinite(applied.size[0]) || !std::isfinite(taken.dlambda)) return fail(out, failure_of(Reason::correction_not_finite), it);
     state.load_factor += taken.dlambda;
 
