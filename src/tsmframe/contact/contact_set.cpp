@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "tsmframe/contact/broad_phase.hpp"
+#include "tsmframe/contact/chord_frames.hpp"
 #include "tsmframe/contact/detection.hpp"
 #include "tsmframe/contact/landing.hpp"
 #include "tsmframe/contact/release.hpp"
@@ -29,10 +30,11 @@ std::vector<ContactState> ContactSet::initial_states() const {
   std::vector<ContactState> states(contact_count());
   Occupancy occupancy(model.elements.size(), model.node_count());
   const std::uint64_t stamp = displacement_stamp(D);
+  ChordFrames frames(geometry_, D);
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
     states[k].reference.side.assign(contact.candidates.size(), 0);
-    reset_sides(geometry_, contact, D, rotations, 0, states[k]);
+    reset_sides(geometry_, contact, D, rotations, 0, states[k], &frames);
     list_near_candidates(geometry_, contact, D, stamp, states[k].reference);
     // Resting on an element as drawn (model/resting_contact): in contact from the start, so a
     // structure held only by its contacts has a tangent to start from (where the element may take
@@ -193,11 +195,12 @@ int ContactSet::release_as_pulling(const std::vector<int>& which, const Eigen::V
 void ContactSet::restore(const StepStart& start, const std::vector<double>& rotations,
                          std::vector<ContactState>& states) const {
   const Eigen::VectorXd& D = start.displacements;
+  ChordFrames frames(geometry_, D);
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
     if (states[k].reference.side.size() == contact.candidates.size()) continue;
     states[k].reference.side.assign(contact.candidates.size(), 0);
-    reset_sides(geometry_, contact, D, rotations, 0, states[k]);
+    reset_sides(geometry_, contact, D, rotations, 0, states[k], &frames);
     list_near_candidates(geometry_, contact, D, start.stamp, states[k].reference);
   }
 }
@@ -205,10 +208,11 @@ void ContactSet::restore(const StepStart& start, const std::vector<double>& rota
 void ContactSet::accept(const StepStart& start, const std::vector<double>& rotations,
                         std::vector<ContactState>& states) const {
   const Eigen::VectorXd& D = start.displacements;
+  ChordFrames frames(geometry_, D);
   for (int k = 0; k < contact_count(); ++k) {
     states[k].step = StepMemory{};
     if (states[k].active) continue;
-    reset_sides(geometry_, geometry_.contact(k), D, rotations, 0, states[k]);
+    reset_sides(geometry_, geometry_.contact(k), D, rotations, 0, states[k], &frames);
     list_near_candidates(geometry_, geometry_.contact(k), D, start.stamp, states[k].reference);
   }
 }

@@ -31,13 +31,6 @@ bool pair_in_contact(const ContactGeometry& geometry, const ContactCandidates& c
   return false;
 }
 
-void ChordFrames::form() {
-  const Model& model = geometry_.model();
-  frames_.resize(model.elements.size());
-  for (const int e : geometry_.candidate_elements())
-    frames_[e] = element::chord_frame(geometry_.initial(e), element_displacements(model.elements[e], displacements_));
-}
-
 int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spec, const ContactState& state,
                    const Eigen::VectorXd& D, const Occupancy& occupancy, const std::vector<int>* near,
                    const StepStart* start) {

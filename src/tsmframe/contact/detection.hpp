@@ -11,31 +11,13 @@
 #include <vector>
 
 #include "tsmframe/contact/broad_phase.hpp"
+#include "tsmframe/contact/chord_frames.hpp"
 #include "tsmframe/contact/contact_geometry.hpp"
 #include "tsmframe/contact/contact_state.hpp"
 #include "tsmframe/contact/occupancy.hpp"
 #include "tsmframe/contact/sliding.hpp"
 
 namespace tsm::contact {
-
-/// Every candidate element's current chord frame, formed once per update when first asked for:
-/// detection takes α of each inactive node on every candidate, and α alone rules out all but the
-/// few whose span holds it.
-class ChordFrames {
- public:
-  ChordFrames(const ContactGeometry& geometry, const Eigen::VectorXd& displacements)
-      : geometry_(geometry), displacements_(displacements) {}
-  const element::ChordFrame& operator()(int element) {
-    if (frames_.empty()) form();
-    return frames_[element];
-  }
-
- private:
-  void form();
-  const ContactGeometry& geometry_;
-  const Eigen::VectorXd& displacements_;
-  std::vector<element::ChordFrame> frames_;
-};
 
 /// The first candidate whose span the node has crossed, from its side, between the last
 /// converged state and now while ending beyond the span, first along the path (−1: none).

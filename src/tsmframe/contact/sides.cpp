@@ -86,7 +86,7 @@ void carry_sides(const ContactGeometry& geometry, const ContactCandidates& spec,
 }
 
 void reset_sides(const ContactGeometry& geometry, const ContactCandidates& spec, const Eigen::VectorXd& D,
-                 const std::vector<double>& rotations, int fallback, ContactState& state) {
+                 const std::vector<double>& rotations, int fallback, ContactState& state, ChordFrames* frames) {
   const Model& model_ = geometry.model();
   // fallback: the side on state.element's frame, used where the node lies on the centre line.
   Eigen::Vector2d released_normal = Eigen::Vector2d::Zero();
@@ -97,8 +97,17 @@ void reset_sides(const ContactGeometry& geometry, const ContactCandidates& spec,
   // through that node below.
   std::vector<signed char> past(spec.candidates.size(), 0);
   std::vector<NodeOnElement> where_all(spec.candidates.size());
-  for (size_t ci = 0; ci < spec.candidates.size(); ++ci)
-    where_all[ci] = geometry.locate(spec, spec.candidates[ci], D, rotations, -side_reach, 1.0 + side_reach);  // gap only there
+  const Eigen::Vector2d node = geometry.position(spec.node, D);
+  for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
+    const int f = spec.candidates[ci];
+    if (frames) {  // locate's α from the shared frame: most candidates end here
+      if (const double alpha = (*frames)(f).alpha(node); alpha < -side_reach || alpha > 1.0 + side_reach) {
+        where_all[ci] = {alpha, std::numeric_limits<double>::quiet_NaN()};
+        continue;
+      }
+    }
+    where_all[ci] = geometry.locate(spec, f, D, rotations, -side_reach, 1.0 + side_reach);  // gap only there
+  }
   // Past an element's end node, its chord's line extended is no guide where the next element's
   // span holds the node: at a kink the line cuts across (just outside a convex arch, the next
   // chords' lines run outside it). There the side is carried from the element that holds it.
@@ -127,7 +136,6 @@ void reset_sides(const ContactGeometry& geometry, const ContactCandidates& spec,
   }
   // Beyond that reach: the side carried along the beam from the nearest element with one.
   carry_sides(geometry, spec, D, past, state.reference.side);
-  const Eigen::Vector2d node = geometry.position(spec.node, D);
   state.reference.position[0] = node.x();
   state.reference.position[1] = node.y();
   std::vector<double>().swap(state.reference.along);  // freed: a release's place is kept by keep_place

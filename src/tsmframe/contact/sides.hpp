@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "tsmframe/contact/chord_frames.hpp"
 #include "tsmframe/contact/contact_geometry.hpp"
 #include "tsmframe/contact/contact_state.hpp"
 
@@ -31,8 +32,10 @@ void carry_sides(const ContactGeometry& geometry, const ContactCandidates& conta
 /// The node's reference at `displacements` (a converged state, or a release): its side of every
 /// candidate and its position; the place it kept at a release let go. Where it lies on a centre
 /// line, `fallback` (±1: the side it pressed from on state.element, 0: none) gives the side.
+/// `frames`: the candidates' chord frames at `displacements`, shared by the contacts of one pass
+/// (null: each formed here).
 void reset_sides(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& displacements,
-                 const std::vector<double>& rotations, int fallback, ContactState& state);
+                 const std::vector<double>& rotations, int fallback, ContactState& state, ChordFrames* frames = nullptr);
 
 /// Keeps in the reference the node's place in each candidate chord's frame at `displacements`
 /// (a release, away from the step's start): α along the chord, the signed distance across it.
