@@ -12,12 +12,17 @@ std::optional<RestingContact> resting_contact(const Model& model, const ContactS
   std::vector<bool> in_set(model.member_count, false);
   for (const int m : contact.members) in_set[m] = true;
   const Eigen::Vector2d x = model.nodes[contact.node].position;
+  const double reach = 2.0 * (contact.gap + tolerance);  // room for rounding beyond the gap
   std::optional<RestingContact> best;
   double best_distance = INFINITY;
   for (int k = 0; k < static_cast<int>(model.elements.size()); ++k) {
     const Element& e = model.elements[k];
     if (!in_set[e.member] || e.start == contact.node || e.end == contact.node) continue;
     const Eigen::Vector2d a = model.nodes[e.start].position, b = model.nodes[e.end].position;
+    // Within the gap of the chord and 0 ≤ α ≤ 1 lies within the chord's box grown by the gap:
+    // most elements of a long beam end at this test, without a division or a square root.
+    const Eigen::Vector2d low = a.cwiseMin(b).array() - reach, high = a.cwiseMax(b).array() + reach;
+    if ((x.array() < low.array()).any() || (x.array() > high.array()).any()) continue;
     const auto [alpha, across] = element::place_on_chord(a, b, x);
     const double distance = std::abs(across);
     if (alpha < 0.0 || alpha > 1.0 || distance <= tolerance || distance > contact.gap + tolerance) continue;
