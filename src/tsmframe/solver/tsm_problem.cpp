@@ -143,12 +143,13 @@ Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms
 
 double TsmProblem::step_fraction(const State& state, const Eigen::VectorXd& correction) {
   if (!contacts_) return 1.0;
-  trial_ = physical(state);
-  Eigen::VectorXd step = Eigen::VectorXd::Zero(trial_.size());
-  for (int eq = 0; eq < equations_.free_count(); ++eq) step[equations_.free_dofs[eq]] = correction[eq];
-  system_.frames().to_global(step);
-  trial_ += step;
-  return contacts_->landing_fraction(physical(state), trial_, state.contacts);
+  // The whole correction over all dofs, global, then the iterate it reaches (one buffer, kept).
+  const Eigen::VectorXd& u = physical(state);
+  trial_.setZero(u.size());
+  for (int eq = 0; eq < equations_.free_count(); ++eq) trial_[equations_.free_dofs[eq]] = correction[eq];
+  system_.frames().to_global(trial_);
+  trial_ += u;
+  return contacts_->landing_fraction(u, trial_, state.contacts);
 }
 
 void TsmProblem::begin_step(const State& state) {
