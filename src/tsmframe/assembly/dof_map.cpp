@@ -8,26 +8,34 @@
 #include "tsmframe/element/chord.hpp"
 #include "tsmframe/model/resting_contact.hpp"
 #include "tsmframe/util/first_touch.hpp"
+#include "tsmframe/util/segment_grid.hpp"
 
 namespace tsm::assembly {
 namespace {
 
 /// The candidate element of `spec` nearest its node as drawn (distance to the chord, less the
-/// contact's gap), if that is at most `reach`; −1 otherwise.
-int nearest_candidate(const Model& model, const ContactSpec& spec, double reach) {
+/// contact's gap), if that is at most `reach`; −1 otherwise; the last of equals. `chords`: a grid
+/// over the elements' chords as drawn. The square searched doubles until it holds every element
+/// nearer than the nearest found (or all within the reach), so the answer is a scan's.
+int nearest_candidate(const Model& model, const ContactSpec& spec, double reach, const util::SegmentGrid& chords,
+                      std::vector<int>& near) {
   const Eigen::Vector2d x = model.nodes[spec.node].position;
-  int nearest = -1;
-  double best = reach;
-  for (size_t k = 0; k < model.elements.size(); ++k) {
-    const Element& e = model.elements[k];
-    if (e.start == spec.node || e.end == spec.node ||
-        std::find(spec.members.begin(), spec.members.end(), e.member) == spec.members.end())
-      continue;
-    const double distance =
-        element::distance_to_segment(model.nodes[e.start].position, model.nodes[e.end].position, x) - spec.gap;
-    if (distance <= best) best = distance, nearest = static_cast<int>(k);
+  for (double r = chords.cell();; r *= 2.0) {
+    chords.near(x, r, near);
+    int nearest = -1;
+    double best = reach;
+    for (const int k : near) {
+      const Element& e = model.elements[k];
+      if (e.start == spec.node || e.end == spec.node ||
+          std::find(spec.members.begin(), spec.members.end(), e.member) == spec.members.end())
+        continue;
+      const double distance =
+          element::distance_to_segment(model.nodes[e.start].position, model.nodes[e.end].position, x) - spec.gap;
+      if (distance <= best) best = distance, nearest = static_cast<int>(k);
+    }
+    const double margin = 1e-9 * (r + x.cwiseAbs().maxCoeff());  // the square's edges rounded
+    if (!chords.usable() || best + spec.gap + margin < r || !(reach + spec.gap + margin >= r)) return nearest;
   }
-  return nearest;
 }
 
 }  // namespace
@@ -41,13 +49,20 @@ DofMap::DofMap(const Model& model) {
   // contacts join them (a dense block). The reach is wide: a beam drawn a twentieth of the
   // model's size above another closes its contacts within its first step.
   std::vector<std::pair<int, int>> joined;
-  for (const ContactSpec& spec : model.contacts) {
+  const std::vector<std::optional<RestingContact>> resting = resting_contacts(model);
+  std::vector<util::Segment> segments;
+  if (!model.contacts.empty())
+    for (const Element& e : model.elements) segments.push_back({model.nodes[e.start].position, model.nodes[e.end].position});
+  const util::SegmentGrid chords(segments);
+  std::vector<int> near;
+  for (size_t c = 0; c < model.contacts.size(); ++c) {
+    const ContactSpec& spec = model.contacts[c];
     bool moves = false;  // a node held in every dof (a rigid pusher) is no unknown: nothing to order
     for (int d = 0; d < dofs_per_node; ++d) moves = moves || !model.constrained[dofs_per_node * spec.node + d];
     if (!moves) continue;
     int element = -1;
-    if (const std::optional<RestingContact> rest = resting_contact(model, spec)) element = rest->element;
-    else element = nearest_candidate(model, spec, 0.5 * model.size);
+    if (const std::optional<RestingContact>& rest = resting[c]) element = rest->element;
+    else element = nearest_candidate(model, spec, 0.5 * model.size, chords, near);
     if (element < 0) continue;
     joined.emplace_back(spec.node, model.elements[element].start);
     joined.emplace_back(spec.node, model.elements[element].end);

@@ -11,15 +11,6 @@
 namespace tsm::contact {
 namespace {
 
-/// The longest of the contact's candidate elements as drawn: a bound on how far an element's
-/// deflected centre line (what the gap is measured from) strays from its chord while its ends
-/// turn less than π against it (the cubic's largest offset is 4/27 l (|θ_i| + |θ_j|)).
-double longest_candidate(const ContactGeometry& geometry, const ContactCandidates& contact) {
-  double longest = 0.0;
-  for (const int f : contact.candidates) longest = std::max(longest, geometry.initial(f).length);
-  return longest;
-}
-
 /// How far the node and the candidates may move in a step with the list still holding: eight
 /// elements' lengths (a step along a beam of a few elements keeps its list).
 constexpr double allowance_in_elements = 8.0;
@@ -41,18 +32,48 @@ StepStart step_start(Eigen::VectorXd D) {
   return {std::move(D), stamp};
 }
 
+namespace {
+
+std::vector<util::Segment> candidate_chords(const ContactGeometry& geometry, const Eigen::VectorXd& D) {
+  std::vector<util::Segment> chords;
+  chords.reserve(geometry.candidate_elements().size());
+  for (const int f : geometry.candidate_elements()) {
+    const Element& e = geometry.model().elements[f];
+    chords.push_back({geometry.position(e.start, D), geometry.position(e.end, D)});
+  }
+  return chords;
+}
+
+}  // namespace
+
+CandidateChords::CandidateChords(const ContactGeometry& geometry, const Eigen::VectorXd& D)
+    : elements_(geometry.candidate_elements()), grid_(candidate_chords(geometry, D)) {}
+
+void CandidateChords::near(const Eigen::Vector2d& x, double radius, std::vector<int>& elements) const {
+  grid_.near(x, radius, elements);
+  for (int& s : elements) s = elements_[s];
+}
+
 void list_near_candidates(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& D,
-                          std::uint64_t stamp, ContactReference& reference) {
+                          std::uint64_t stamp, const CandidateChords& chords, ContactReference& reference) {
   const Model& model = geometry.model();
-  const double longest = longest_candidate(geometry, contact);
+  // The longest candidate as drawn bounds how far an element's deflected centre line (what the
+  // gap is measured from) strays from its chord while its ends turn less than π against it (the
+  // cubic's largest offset is 4/27 l (|θ_i| + |θ_j|)).
+  const double longest = contact.longest_candidate;
   reference.allowance = allowance_in_elements * longest;
   const double radius = contact.gap + longest + reference.allowance;
   const Eigen::Vector2d node = geometry.position(contact.node, D);
+  // The grid's square a little wider than the radius: an element whose distance rounds to the
+  // radius is in it.
+  std::vector<int> elements;
+  chords.near(node, radius * (1.0 + 1e-9) + 1e-12 * node.cwiseAbs().maxCoeff(), elements);
   reference.near.clear();
-  for (size_t ci = 0; ci < contact.candidates.size(); ++ci) {
-    const Element& e = model.elements[contact.candidates[ci]];
-    if (element::distance_to_segment(geometry.position(e.start, D), geometry.position(e.end, D), node) <= radius)
-      reference.near.push_back(static_cast<int>(ci));
+  for (const int f : elements) {  // ascending, as the candidates
+    const int ci = contact.candidate_index[f];
+    const Element& e = model.elements[f];
+    if (ci >= 0 && element::distance_to_segment(geometry.position(e.start, D), geometry.position(e.end, D), node) <= radius)
+      reference.near.push_back(ci);
   }
   reference.near.shrink_to_fit();
   reference.stamp = stamp;

@@ -15,6 +15,7 @@
 
 #include "tsmframe/contact/contact_geometry.hpp"
 #include "tsmframe/contact/contact_state.hpp"
+#include "tsmframe/util/segment_grid.hpp"
 
 namespace tsm::contact {
 
@@ -30,10 +31,25 @@ struct StepStart {
 };
 StepStart step_start(Eigen::VectorXd displacements);
 
+/// The chords of the candidate elements at one state on a grid (util/segment_grid), made once
+/// for a pass over the contacts: which lie near a node without a look at every one.
+class CandidateChords {
+ public:
+  CandidateChords(const ContactGeometry& geometry, const Eigen::VectorXd& displacements);
+  /// The candidate elements (model indices, ascending) whose chords' boxes meet the square of
+  /// half-width `radius` about `x`: every one within `radius` of it, and some farther.
+  void near(const Eigen::Vector2d& x, double radius, std::vector<int>& elements) const;
+
+ private:
+  const std::vector<int>& elements_;
+  util::SegmentGrid grid_;
+};
+
 /// Lists in `reference.near` the candidates whose chord at `displacements` (a converged state,
-/// the step's start) lies within the broad phase's radius of the node.
+/// the step's start; `chords` there) lies within the broad phase's radius of the node.
 void list_near_candidates(const ContactGeometry& geometry, const ContactCandidates& contact,
-                          const Eigen::VectorXd& displacements, std::uint64_t stamp, ContactReference& reference);
+                          const Eigen::VectorXd& displacements, std::uint64_t stamp, const CandidateChords& chords,
+                          ContactReference& reference);
 
 /// How far the candidates of every contact have moved since the step's start, for one update.
 class BroadPhase {

@@ -5,15 +5,6 @@ namespace {
 
 using element::Vector6;
 
-/// Translational part of a 9-vector (rows u, v of nodes i, j, c) from three plane vectors.
-Vector9 spread(const Eigen::Vector2d& at_i, const Eigen::Vector2d& at_j, const Eigen::Vector2d& at_c) {
-  Vector9 v = Vector9::Zero();
-  v.segment<2>(0) = at_i;
-  v.segment<2>(3) = at_j;
-  v.segment<2>(6) = at_c;
-  return v;
-}
-
 }  // namespace
 
 ContactEquilibriumMatrix contact_equilibrium_matrix(const element::Chord& chord, double alpha) {

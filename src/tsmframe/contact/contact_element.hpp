@@ -17,6 +17,15 @@ namespace tsm::contact {
 
 using Vector4 = Eigen::Matrix<double, 4, 1>;
 using Vector9 = Eigen::Matrix<double, 9, 1>;
+
+/// The translational part of a 9-vector (rows u, v of nodes i, j, c) from three plane vectors.
+inline Vector9 spread(const Eigen::Vector2d& at_i, const Eigen::Vector2d& at_j, const Eigen::Vector2d& at_c) {
+  Vector9 v = Vector9::Zero();
+  v.segment<2>(0) = at_i;
+  v.segment<2>(3) = at_j;
+  v.segment<2>(6) = at_c;
+  return v;
+}
 using Matrix9 = Eigen::Matrix<double, 9, 9>;
 using ContactEquilibriumMatrix = Eigen::Matrix<double, 9, 4>;  // rows i, j, c × (u, v, θ)
 

@@ -54,8 +54,27 @@ CandidateTable ContactGeometry::table_of(const ContactSpec& c) const {
     if (c.theory == BeamTheory::euler_bernoulli) psi = 0.0;
     if (c.theory == BeamTheory::timoshenko) psi = c.member_shear_flexibility[e.member];
     t.shear_flexibility.push_back(psi);
+    t.longest = std::max(t.longest, initial_[k].length);
   }
+  t.links.reserve(2 * t.elements.size());
+  for (const int f : t.elements)
+    for (const int node : {model_.elements[f].start, model_.elements[f].end}) t.links.push_back(link(t, f, node));
   return t;
+}
+
+CandidateLink ContactGeometry::link(const CandidateTable& table, int element, int node) const {
+  // The side left of each element's direction away from the node (n is e turned +90°) is the
+  // other's right where two meet (sides.hpp, across).
+  const auto left_side = [&](int f) { return model_.elements[f].start == node ? 1 : -1; };
+  int count = 0, other = -1;
+  for (const int g : node_elements(node))
+    if (table.index[g] >= 0) {
+      ++count;
+      if (g != element) other = g;
+    }
+  if (count < 2 || other < 0) return {};
+  if (count > 2) return {CandidateLink::joint, 0};
+  return {table.index[other], left_side(element) * -left_side(other)};
 }
 
 ContactCandidates ContactGeometry::candidates_of(const ContactSpec& c, const CandidateTable& table) const {
@@ -64,6 +83,8 @@ ContactCandidates ContactGeometry::candidates_of(const ContactSpec& c, const Can
   s.candidates = table.elements;
   s.candidate_index = table.index;
   s.shear_flexibility = table.shear_flexibility;
+  s.links = table.links;
+  s.longest_candidate = table.longest;
   s.gap = c.gap;
   s.edge = c.edge;
   s.max_stiffness_ratio = c.max_stiffness_ratio;

@@ -26,11 +26,24 @@ constexpr double alpha_tolerance = 1e-12;
 /// The side (+1, −1) a signed gap puts a node on; 0 on the centre line.
 inline int side_of_gap(double gap) { return gap > 0.0 ? 1 : (gap < 0.0 ? -1 : 0); }
 
+/// Where the beam goes on from a candidate element through one of its nodes, among the
+/// candidates (sides.hpp, across): where exactly two meet, the other one (`to`, its place among
+/// the candidates) and whether a side of the one is the same side of the other (`sign` +1) or
+/// the opposite (−1); `free_end` where no other candidate meets there; `joint` where three or
+/// more do (which one a side goes on to then depends on the geometry).
+struct CandidateLink {
+  static constexpr int free_end = -1, joint = -2;
+  int to = free_end;
+  int sign = 0;
+};
+
 /// The elements some contacts may touch (model/candidate_groups: one table per group).
 struct CandidateTable {
   std::vector<int> elements;                ///< element indices, ascending
   std::vector<int> index;                   ///< per element of the model: its place in elements, −1 if not one
   std::vector<double> shear_flexibility;    ///< per candidate: Ψ of the contact law
+  std::vector<CandidateLink> links;         ///< per candidate: through its start node, through its end node
+  double longest = 0.0;                     ///< the longest candidate's length as drawn
 };
 
 /// A contact's node, its candidate elements and its law's settings (from ContactSpec). The
@@ -40,6 +53,8 @@ struct ContactCandidates {
   std::span<const int> candidates;         ///< element indices the node may touch, ascending
   std::span<const int> candidate_index;    ///< per element: its place in candidates, −1 if not one
   std::span<const double> shear_flexibility;  ///< per candidate: Ψ of the contact law
+  std::span<const CandidateLink> links;    ///< per candidate: through its start node, through its end node
+  double longest_candidate = 0.0;          ///< the longest candidate's length as drawn
   double gap = 0.0;
   double edge = -1.0;                 ///< the compliance floor's edge δ; < 0: the default
   double max_stiffness_ratio = 0.0;   ///< the cap: see ContactGeometry::cap_compliance
@@ -109,6 +124,7 @@ class ContactGeometry {
   /// element holds the node (a rigid pusher: no cap).
   double cap_compliance(const ContactCandidates& contact, int element) const;
   CandidateTable table_of(const ContactSpec& spec) const;
+  CandidateLink link(const CandidateTable& table, int element, int node) const;
   ContactCandidates candidates_of(const ContactSpec& spec, const CandidateTable& table) const;
 
   const Model& model_;

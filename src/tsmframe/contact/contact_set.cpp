@@ -31,15 +31,17 @@ std::vector<ContactState> ContactSet::initial_states() const {
   Occupancy occupancy(model.elements.size(), model.node_count());
   const std::uint64_t stamp = displacement_stamp(D);
   ChordFrames frames(geometry_, D);
+  const CandidateChords chords(geometry_, D);
+  const auto resting = resting_contacts(model);
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
     states[k].reference.side.assign(contact.candidates.size(), 0);
     reset_sides(geometry_, contact, D, rotations, 0, states[k], &frames);
-    list_near_candidates(geometry_, contact, D, stamp, states[k].reference);
+    list_near_candidates(geometry_, contact, D, stamp, chords, states[k].reference);
     // Resting on an element as drawn (model/resting_contact): in contact from the start, so a
     // structure held only by its contacts has a tangent to start from (where the element may take
     // no other point, occupancy.hpp, a second one starts at the first update instead).
-    if (const auto r = resting_contact(model, model.contacts[k]);
+    if (const auto& r = resting[k];
         r && occupancy.may_join(r->element, contact.frame) && !pair_in_contact(geometry_, contact, r->element, D, occupancy)) {
       occupancy.join(r->element, contact.frame);
       occupancy.set_touching(contact.node, r->element);
@@ -196,12 +198,13 @@ void ContactSet::restore(const StepStart& start, const std::vector<double>& rota
                          std::vector<ContactState>& states) const {
   const Eigen::VectorXd& D = start.displacements;
   ChordFrames frames(geometry_, D);
+  const CandidateChords chords(geometry_, D);
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
     if (states[k].reference.side.size() == contact.candidates.size()) continue;
     states[k].reference.side.assign(contact.candidates.size(), 0);
     reset_sides(geometry_, contact, D, rotations, 0, states[k], &frames);
-    list_near_candidates(geometry_, contact, D, start.stamp, states[k].reference);
+    list_near_candidates(geometry_, contact, D, start.stamp, chords, states[k].reference);
   }
 }
 
@@ -209,11 +212,12 @@ void ContactSet::accept(const StepStart& start, const std::vector<double>& rotat
                         std::vector<ContactState>& states) const {
   const Eigen::VectorXd& D = start.displacements;
   ChordFrames frames(geometry_, D);
+  const CandidateChords chords(geometry_, D);
   for (int k = 0; k < contact_count(); ++k) {
     states[k].step = StepMemory{};
     if (states[k].active) continue;
     reset_sides(geometry_, geometry_.contact(k), D, rotations, 0, states[k], &frames);
-    list_near_candidates(geometry_, geometry_.contact(k), D, start.stamp, states[k].reference);
+    list_near_candidates(geometry_, geometry_.contact(k), D, start.stamp, chords, states[k].reference);
   }
 }
 

@@ -13,15 +13,6 @@ using Eigen::Vector2d;
 using Row4 = Eigen::Matrix<double, 1, 4>;
 using Matrix24 = Eigen::Matrix<double, 2, 4>;
 
-/// Translational part of a 9-vector (rows u, v of nodes i, j, c) from three plane vectors.
-Vector9 spread(const Vector2d& at_i, const Vector2d& at_j, const Vector2d& at_c) {
-  Vector9 v = Vector9::Zero();
-  v.segment<2>(0) = at_i;
-  v.segment<2>(3) = at_j;
-  v.segment<2>(6) = at_c;
-  return v;
-}
-
 /// The law at α as chord_frame_response evaluates it: the beam's own (raw) and, where the ends
 /// are hinged or sprung, the connected one (K12), with the bending block that goes with it.
 struct Law {

@@ -17,18 +17,14 @@ constexpr double side_reach = 1.0;
 std::pair<int, int> across(const ContactGeometry& geometry, const ContactCandidates& spec, int element, int side,
                            int node, const Eigen::VectorXd& D) {
   const Model& model_ = geometry.model();
-  // The side of element f left of its direction away from the node (n is e turned +90°).
-  const auto left_side = [&](int f) { return model_.elements[f].start == node ? 1 : -1; };
-  int count = 0, other = -1;
-  for (const int g : geometry.node_elements(node))
-    if (spec.is_candidate(g)) {
-      ++count;
-      if (g != element) other = g;
-    }
-  if (count < 2 || other < 0) return {-1, 0};
-  if (count == 2) return {other, side * left_side(element) * -left_side(other)};
+  // A free end, or two candidates meeting: the link the candidate table holds (contact_geometry).
+  const CandidateLink& link = spec.links[2 * spec.candidate_index[element] + (model_.elements[element].start == node ? 0 : 1)];
+  if (link.to == CandidateLink::free_end) return {-1, 0};
+  if (link.to != CandidateLink::joint) return {spec.candidates[link.to], side * link.sign};
   // Three or more: the elements around the node by the direction they leave it in; the side
   // faces the sector counter-clockwise from the element (its left) or clockwise (its right).
+  // The side of element f left of its direction away from the node (n is e turned +90°).
+  const auto left_side = [&](int f) { return model_.elements[f].start == node ? 1 : -1; };
   const Eigen::Vector2d x = geometry.position(node, D);
   std::vector<std::pair<double, int>> around;
   for (const int g : geometry.node_elements(node)) {
@@ -70,7 +66,8 @@ void carry_sides(const ContactGeometry& geometry, const ContactCandidates& spec,
   for (size_t head = 0; head < queue.size(); ++head) {  // breadth first: from the nearest element with a side
     const int ci = queue[head], f = spec.candidates[ci];
     const Element& a = model_.elements[f];
-    for (const int node : {a.start, a.end}) {
+    for (int end = 0; end < 2; ++end) {
+      const int node = end == 0 ? a.start : a.end;
       if (distance[ci] == 0 && past[ci] == (node == a.end ? 1 : -1)) continue;  // read beyond this node
       const auto [to, to_side] = across(geometry, spec, f, carried[ci], node, D);
       if (to < 0) continue;

@@ -288,8 +288,9 @@ class Reader {
   /// cannot both hold it.
   void check_resting_contacts() {
     std::vector<int> resting_on(model_.elements.size(), -1);
+    const auto resting = resting_contacts(model_);
     for (int k = 0; k < static_cast<int>(model_.contacts.size()); ++k) {
-      const auto r = resting_contact(model_, model_.contacts[k]);
+      const auto& r = resting[k];
       if (!r) continue;
       const int other = resting_on[r->element];
       if (other >= 0 && !shares_element(model_.contacts[k].frame, model_.contacts[other].frame))

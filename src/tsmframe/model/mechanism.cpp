@@ -15,6 +15,9 @@
 namespace tsm {
 namespace {
 
+/// Per contact (model order): what it rests on as drawn; empty where resting contacts do not hold.
+using RestingAsDrawn = std::vector<std::optional<RestingContact>>;
+
 // Along a free motion the loads do no work to second order where it is below this fraction of
 // their scale: round-off and Newton's tolerance leave ~1e-10 of it in a converged state, a load
 // that holds or tips a pendulum its whole size.
@@ -113,21 +116,21 @@ bool held_by_springs(const Model& model, const NodalFrames& frames, int k) {
 /// none. A contact node resting on a beam as drawn is held by it along the normal there: enough
 /// if that is its one free translation's direction, in part (a load riding on a beam: ux
 /// prescribed, uy free).
-std::optional<std::string> unheld_node(const Model& model, const std::vector<bool>& held, bool resting_contacts_hold) {
-  std::vector<const ContactSpec*> contact_of(model.node_count(), nullptr);  // a look-up, not a search per node
-  for (const ContactSpec& c : model.contacts) contact_of[c.node] = &c;
+std::optional<std::string> unheld_node(const Model& model, const std::vector<bool>& held, const RestingAsDrawn& resting) {
+  std::vector<int> contact_of(model.node_count(), -1);  // a look-up, not a search per node
+  for (size_t c = 0; c < model.contacts.size(); ++c) contact_of[model.contacts[c].node] = static_cast<int>(c);
   const NodalFrames frames(model);
   for (int k = 0; k < model.node_count(); ++k) {
     if (held[k]) continue;
-    const ContactSpec* spec = contact_of[k];
-    const bool contact_node = spec != nullptr;
+    const int contact = contact_of[k];
+    const bool contact_node = contact >= 0;
     int free_translations = 0, free_dof = -1;
     for (const int dof : {ux, uy})
       if (!model.constrained[dofs_per_node * k + dof]) ++free_translations, free_dof = dof;
     if (held_by_springs(model, frames, k)) continue;
-    if (resting_contacts_hold && contact_node && free_translations == 1 && model.constrained[dofs_per_node * k + rz]) {
+    if (!resting.empty() && contact_node && free_translations == 1 && model.constrained[dofs_per_node * k + rz]) {
       const Eigen::Vector2d free_direction = frames.frame(k).col(free_dof).head<2>();  // x, y or a skew roller's t
-      if (const auto r = resting_contact(model, *spec); r && std::abs(r->normal.dot(free_direction)) > 1e-6) continue;
+      if (const auto& r = resting[contact]; r && std::abs(r->normal.dot(free_direction)) > 1e-6) continue;
     }
     for (int dof = 0; dof < dofs_per_node; ++dof)
       if (!model.constrained[dofs_per_node * k + dof])
@@ -136,7 +139,7 @@ std::optional<std::string> unheld_node(const Model& model, const std::vector<boo
                (contact_node ? std::string(" (a contact node is held by its contact only if drawn at its \"gap\" from the "
                                            "beam and free in one direction only, across the beam: else prescribe its "
                                            "motion, or make it a node of a beam)") +
-                                   why_not_resting(model, *spec)
+                                   why_not_resting(model, model.contacts[contact])
                              : std::string());
   }
   return std::nullopt;
@@ -151,14 +154,14 @@ struct Touch {
 };
 
 /// The contacts resting as drawn whose node is held, by supports (a knife edge) or as a node of
-/// a part; none unless `resting_contacts_hold`.
-std::vector<Touch> resting_touches(const Model& model, Parts& parts, bool resting_contacts_hold) {
+/// a part; none where `resting` is empty (resting contacts do not hold).
+std::vector<Touch> resting_touches(const Model& model, Parts& parts, const RestingAsDrawn& resting) {
   std::vector<Touch> touches;
-  for (const ContactSpec& c : model.contacts) {
-    if (!resting_contacts_hold) break;
+  for (size_t k = 0; k < resting.size(); ++k) {
+    const ContactSpec& c = model.contacts[k];
     const bool fixed = model.constrained[dofs_per_node * c.node + ux] && model.constrained[dofs_per_node * c.node + uy];
     if (!fixed && !parts.held[c.node]) continue;
-    if (const auto r = resting_contact(model, c))
+    if (const auto& r = resting[k])
       touches.push_back({fixed ? -1 : parts.root(c.node), parts.root(model.elements[r->element].start), r->point, r->normal});
   }
   return touches;
@@ -349,9 +352,10 @@ std::string free_part(const Model& model, Parts& parts, const std::vector<int>& 
 std::optional<std::string> find_mechanism(const Model& model, bool resting_contacts_hold) {
   Parts parts = join_by_elements(model);
   const std::vector<char> hinge = hinge_nodes(model);
-  if (auto message = unheld_node(model, parts.held, resting_contacts_hold)) return message;
+  const RestingAsDrawn resting = resting_contacts_hold ? resting_contacts(model) : RestingAsDrawn{};
+  if (auto message = unheld_node(model, parts.held, resting)) return message;
   members_by_root(parts);
-  const std::vector<Touch> touches = resting_touches(model, parts, resting_contacts_hold);
+  const std::vector<Touch> touches = resting_touches(model, parts, resting);
   const NodalFrames frames(model);
   const Holding holding = hold_parts(model, frames, hinge, parts, touches);
   for (const std::vector<int>& part : parts.members) {

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <vector>
 
 #include "tsmframe/model/model.hpp"
 
@@ -23,5 +24,8 @@ struct RestingContact {
 
 /// The element `contact` rests on in the undeformed model (the nearest, if several), or none.
 std::optional<RestingContact> resting_contact(const Model& model, const ContactSpec& contact);
+/// resting_contact of every contact of the model (model order), in time linear in the model
+/// (the elements near each node, from a grid over the chords).
+std::vector<std::optional<RestingContact>> resting_contacts(const Model& model);
 
 }  // namespace tsm

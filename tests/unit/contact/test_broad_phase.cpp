@@ -21,7 +21,7 @@ using tsm::test::ContactFixture;
 ContactState at_step_start(const ContactGeometry& geometry, const ContactFixture& f) {
   ContactState state = tsm::test::reference_state(geometry, f);
   tsm::contact::list_near_candidates(geometry, geometry.contact(0), f.D, tsm::contact::displacement_stamp(f.D),
-                                     state.reference);
+                                     tsm::contact::CandidateChords(geometry, f.D), state.reference);
   return state;
 }
 

@@ -33,7 +33,7 @@ TEST(Landing, AStepThroughTheBeamIsCutToTheDepthAllowed) {
   // The same with the broad phase's list at the step's start.
   ContactState listed = state;
   tsm::contact::list_near_candidates(geometry, geometry.contact(0), f.D, tsm::contact::displacement_stamp(f.D),
-                                     listed.reference);
+                                     tsm::contact::CandidateChords(geometry, f.D), listed.reference);
   EXPECT_NEAR(landing_fraction(geometry, geometry.contact(0), listed, f.D, trial), expected, 1e-12);
 }
 
