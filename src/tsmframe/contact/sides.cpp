@@ -59,19 +59,33 @@ void carry_sides(const ContactGeometry& geometry, const ContactCandidates& spec,
   // joint, in one step still finds the side it came from where it arrives. Only a side (±1) is
   // carried: a node on the centre line has none yet.
   const size_t m = spec.candidates.size();
-  std::vector<int> distance(m, std::numeric_limits<int>::max()), queue;
-  std::vector<signed char> carried(m, no_side);
+  // Scratch kept per thread: a pass over thousands of contacts does not allocate and free three
+  // candidate-sized arrays for each.
+  thread_local std::vector<int> distance, queue;
+  thread_local std::vector<signed char> carried;
+  distance.assign(m, std::numeric_limits<int>::max());
+  carried.assign(m, no_side);
+  queue.clear();
   for (size_t ci = 0; ci < m; ++ci)
     if (side[ci] == 1 || side[ci] == -1) distance[ci] = 0, carried[ci] = side[ci], queue.push_back(static_cast<int>(ci));
   for (size_t head = 0; head < queue.size(); ++head) {  // breadth first: from the nearest element with a side
-    const int ci = queue[head], f = spec.candidates[ci];
-    const Element& a = model_.elements[f];
+    const int ci = queue[head];
     for (int end = 0; end < 2; ++end) {
-      const int node = end == 0 ? a.start : a.end;
-      if (distance[ci] == 0 && past[ci] == (node == a.end ? 1 : -1)) continue;  // read beyond this node
-      const auto [to, to_side] = across(geometry, spec, f, carried[ci], node, D);
-      if (to < 0) continue;
-      const int cj = spec.candidate_index[to];
+      const CandidateLink& link = spec.links[2 * ci + end];
+      if (link.to == CandidateLink::free_end) continue;
+      const auto node = [&] {
+        const Element& a = model_.elements[spec.candidates[ci]];
+        return end == 0 ? a.start : a.end;
+      };
+      if (distance[ci] == 0 && past[ci] != 0 && past[ci] == (node() == model_.elements[spec.candidates[ci]].end ? 1 : -1))
+        continue;  // read beyond this node
+      int cj = link.to, to_side = carried[ci] * link.sign;  // two candidates meet: the table's link
+      if (link.to == CandidateLink::joint) {                // three or more: by the geometry
+        const auto [to, side_there] = across(geometry, spec, spec.candidates[ci], carried[ci], node(), D);
+        if (to < 0) continue;
+        cj = spec.candidate_index[to];
+        to_side = side_there;
+      }
       if (distance[cj] <= distance[ci] + 1) continue;
       distance[cj] = distance[ci] + 1;
       carried[cj] = static_cast<signed char>(to_side);
@@ -120,9 +134,9 @@ void reset_sides(const ContactGeometry& geometry, const ContactCandidates& spec,
     const int f = spec.candidates[ci];
     const NodeOnElement& where = where_all[ci];
     past[ci] = where.alpha > 1.0 ? 1 : (where.alpha < 0.0 ? -1 : 0);
-    if (past[ci] != 0 && held_beyond(ci, past[ci] > 0 ? model_.elements[f].end : model_.elements[f].start)) {
+    if (where.alpha < -side_reach || where.alpha > 1.0 + side_reach) {  // most candidates: far along
       state.reference.side[ci] = no_side;
-    } else if (where.alpha < -side_reach || where.alpha > 1.0 + side_reach) {
+    } else if (past[ci] != 0 && held_beyond(ci, past[ci] > 0 ? model_.elements[f].end : model_.elements[f].start)) {
       state.reference.side[ci] = no_side;
     } else if (std::abs(where.gap) > geometry.touch_tolerance()) {
       state.reference.side[ci] = static_cast<signed char>(side_of_gap(where.gap));
