@@ -65,9 +65,8 @@ int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spe
   for_each_candidate(spec, near, [&](int ci) {
     const int f = spec.candidates[ci], side = state.reference.side[ci];
     if (!occupancy.may_join(f, spec.frame) || (side != 1 && side != -1)) return;
-    const NodeOnElement then = place_then(ci);
-    const double before = side * then.gap;
-    if (!(before > spec.gap)) return;
+    // The tests on the iterate alone first: most candidates end at one of them, before the
+    // node's place at the reference is read.
     const Element& e = model.elements[f];
     const Eigen::Vector2d a = position(e.start), b = position(e.end);
     if (const double alpha = element::alpha_on_chord(a, b, p1); alpha >= -alpha_tolerance && alpha <= 1.0 + alpha_tolerance)
@@ -77,6 +76,9 @@ int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spe
       const double across = chord.x() * r.y() - chord.y() * r.x(), length2 = chord.squaredNorm();
       if (length2 > 0.0 && side * across > 0.0 && across * across > spec.gap * spec.gap * length2 * (1.0 + 1e-9)) return;
     }
+    const NodeOnElement then = place_then(ci);
+    const double before = side * then.gap;
+    if (!(before > spec.gap)) return;
     const NodeOnElement now = geometry.on_chord(spec, f, D);
     const double after = side * now.gap;
     if (after > spec.gap) return;
