@@ -58,7 +58,7 @@ struct ContactFixture {
 /// displacements: inactive, as at a converged state.
 inline contact::ContactState reference_state(const contact::ContactGeometry& geometry, const ContactFixture& f) {
   contact::ContactState state;
-  state.reference.side.assign(geometry.contact(0).candidates.size(), 0);
+  state.reference.side.set(std::vector<signed char>(geometry.contact(0).candidates.size(), 0));
   contact::reset_sides(geometry, geometry.contact(0), f.D, f.rotations, 0, state);
   contact::keep_place(geometry, geometry.contact(0), f.D, state.reference);  // no step start at hand: its own place
   return state;

@@ -35,8 +35,7 @@ std::vector<ContactState> ContactSet::initial_states() const {
   const auto resting = resting_contacts(model);
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
-    states[k].reference.side.assign(contact.candidates.size(), 0);
-    reset_sides(geometry_, contact, D, rotations, 0, states[k], &frames);
+    reset_sides(geometry_, contact, D, rotations, 0, states[k], &frames);  // no sides before: 0 on a centre line
     list_near_candidates(geometry_, contact, D, stamp, chords, states[k].reference);
     // Resting on an element as drawn (model/resting_contact): in contact from the start, so a
     // structure held only by its contacts has a tangent to start from (where the element may take
@@ -202,7 +201,6 @@ void ContactSet::restore(const StepStart& start, const std::vector<double>& rota
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
     if (states[k].reference.side.size() == contact.candidates.size()) continue;
-    states[k].reference.side.assign(contact.candidates.size(), 0);
     reset_sides(geometry_, contact, D, rotations, 0, states[k], &frames);
     list_near_candidates(geometry_, contact, D, start.stamp, chords, states[k].reference);
   }

@@ -5,6 +5,7 @@
 // converged state (what detection compares with), and what it remembers within the current step.
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -24,12 +25,34 @@ struct Vertex {
   double Y = 0.0;    ///< its contact element's force Y
 };
 
+/// A contact's reference sides, one per candidate, shared by the copies of a state (the step's
+/// start kept for a cutback, the state Newton moves) until they change: a reference is taken
+/// anew for every inactive contact at each converged step, and most come out as they were.
+class SideTable {
+ public:
+  size_t size() const { return values_ ? values_->size() : 0; }
+  signed char operator[](size_t candidate) const { return (*values_)[candidate]; }
+  const std::vector<signed char>& values() const {
+    static const std::vector<signed char> none;
+    return values_ ? *values_ : none;
+  }
+  /// Takes `values`; where they equal the ones held, those stay (and stay shared).
+  void set(const std::vector<signed char>& values) {
+    if (values_ && *values_ == values) return;
+    if (values_ && values_.use_count() == 1) *values_ = values;  // held by this state alone
+    else values_ = std::make_shared<std::vector<signed char>>(values);
+  }
+
+ private:
+  std::shared_ptr<std::vector<signed char>> values_;
+};
+
 /// Where the node was at the last converged state, per candidate element (ContactGeometry
 /// order): detection starts a contact where the node has crossed to the other side since.
 struct ContactReference {
   /// The side of the element's deflected centre line the node was on (+1 along n, −1 against),
   /// 0 on it, or no_side beyond the element's reach (sides.hpp).
-  std::vector<signed char> side;
+  SideTable side;
   /// The node in the frame of the element's straight chord then: α along it, the signed
   /// distance across it. An iterate that takes the node across an element's span without ending
   /// within it (a long step along a beam) is caught by interpolating between these and the

@@ -35,9 +35,10 @@ void release(const ContactGeometry& geometry, const ContactCandidates& contact, 
     // It let go on its own side of the beam, wherever the iterate has put things: that side,
     // carried along the beam from the element it left, is the side of every element it may not
     // reach the other side of (passed_through).
-    std::fill(state.reference.side.begin(), state.reference.side.end(), no_side);
-    state.reference.side[contact.candidate_index[state.element]] = static_cast<signed char>(state.side);
-    carry_sides(geometry, contact, D, std::vector<signed char>(contact.candidates.size(), 0), state.reference.side);
+    std::vector<signed char> side(contact.candidates.size(), no_side);
+    side[contact.candidate_index[state.element]] = static_cast<signed char>(state.side);
+    carry_sides(geometry, contact, D, std::vector<signed char>(contact.candidates.size(), 0), side);
+    state.reference.side.set(side);
   } else {
     reset_sides(geometry, contact, D, rotations, state.side, state);
     keep_place(geometry, contact, D, state.reference);

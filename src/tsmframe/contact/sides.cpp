@@ -130,23 +130,29 @@ void reset_sides(const ContactGeometry& geometry, const ContactCandidates& spec,
     }
     return false;
   };
+  // The sides as they were (a node on a centre line keeps its side; none yet: 0), in a scratch
+  // array per thread; the table takes them at the end (and keeps its own where they are equal).
+  thread_local std::vector<signed char> side;
+  side = state.reference.side.values();
+  if (side.size() != spec.candidates.size()) side.assign(spec.candidates.size(), 0);
   for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
     const int f = spec.candidates[ci];
     const NodeOnElement& where = where_all[ci];
     past[ci] = where.alpha > 1.0 ? 1 : (where.alpha < 0.0 ? -1 : 0);
     if (where.alpha < -side_reach || where.alpha > 1.0 + side_reach) {  // most candidates: far along
-      state.reference.side[ci] = no_side;
+      side[ci] = no_side;
     } else if (past[ci] != 0 && held_beyond(ci, past[ci] > 0 ? model_.elements[f].end : model_.elements[f].start)) {
-      state.reference.side[ci] = no_side;
+      side[ci] = no_side;
     } else if (std::abs(where.gap) > geometry.touch_tolerance()) {
-      state.reference.side[ci] = static_cast<signed char>(side_of_gap(where.gap));
-    } else if (fallback != 0 || state.reference.side[ci] == no_side) {
+      side[ci] = static_cast<signed char>(side_of_gap(where.gap));
+    } else if (fallback != 0 || side[ci] == no_side) {
       const Eigen::Vector2d n = geometry.chord_normal(f, D, rotations);
-      state.reference.side[ci] = fallback == 0 ? 0 : static_cast<signed char>(n.dot(released_normal) >= 0.0 ? fallback : -fallback);
+      side[ci] = fallback == 0 ? 0 : static_cast<signed char>(n.dot(released_normal) >= 0.0 ? fallback : -fallback);
     }
   }
   // Beyond that reach: the side carried along the beam from the nearest element with one.
-  carry_sides(geometry, spec, D, past, state.reference.side);
+  carry_sides(geometry, spec, D, past, side);
+  state.reference.side.set(side);
   state.reference.position[0] = node.x();
   state.reference.position[1] = node.y();
   std::vector<double>().swap(state.reference.along);  // freed: a release's place is kept by keep_place

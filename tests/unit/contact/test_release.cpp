@@ -34,7 +34,7 @@ TEST(ContactRelease, ALetGoByPullingRemembersItsSideAlongTheWholeBeam) {
   EXPECT_EQ(state.step.released_side, 1);
   EXPECT_EQ(state.step.released_normal[1], 1.0);
   // The side it let go on, carried from element 1 to every element of the beam.
-  EXPECT_EQ(state.reference.side, (std::vector<signed char>{1, 1, 1, 1}));
+  EXPECT_EQ(state.reference.side.values(), (std::vector<signed char>{1, 1, 1, 1}));
   // Within the span of element 1, and its neighbours across its nodes.
   EXPECT_EQ(state.step.released_within, (std::vector<char>{1, 1, 1, 0}));
 }
