@@ -291,9 +291,10 @@ void TsmProblem::explain(const State& state, StepFailure& failure) {
   };
   for (const int k : holding_contacts_) {
     const contact::ContactState& c = state.contacts[k];
-    // Released, or held at a free end it has gone past (α beyond [0, 1] after the hand-over) or
-    // has reached.
-    if (!c.active || c.alpha < 0.0 || c.alpha > 1.0 || at_free_end(c)) {  // the cause first: what Newton then met follows from it
+    // Released, or held at a free end it has gone past or has reached (α beyond [0, 1] after the
+    // hand-over at a free end; beyond an inner node it is a point that stopped hopping, which
+    // the step's own reason tells).
+    if (!c.active || at_free_end(c)) {  // the cause first: what Newton then met follows from it
       failure.lost_resting_contact = k;
       failure.resting_contact_slid_off = c.active;
       return;
