@@ -73,15 +73,11 @@ void carry_sides(const ContactGeometry& geometry, const ContactCandidates& spec,
     for (int end = 0; end < 2; ++end) {
       const CandidateLink& link = spec.links[2 * ci + end];
       if (link.to == CandidateLink::free_end) continue;
-      const auto node = [&] {
-        const Element& a = model_.elements[spec.candidates[ci]];
-        return end == 0 ? a.start : a.end;
-      };
-      if (distance[ci] == 0 && past[ci] != 0 && past[ci] == (node() == model_.elements[spec.candidates[ci]].end ? 1 : -1))
-        continue;  // read beyond this node
+      if (distance[ci] == 0 && past[ci] == (end == 1 ? 1 : -1)) continue;  // read beyond this node
       int cj = link.to, to_side = carried[ci] * link.sign;  // two candidates meet: the table's link
       if (link.to == CandidateLink::joint) {                // three or more: by the geometry
-        const auto [to, side_there] = across(geometry, spec, spec.candidates[ci], carried[ci], node(), D);
+        const Element& a = model_.elements[spec.candidates[ci]];
+        const auto [to, side_there] = across(geometry, spec, spec.candidates[ci], carried[ci], end == 0 ? a.start : a.end, D);
         if (to < 0) continue;
         cj = spec.candidate_index[to];
         to_side = side_there;
