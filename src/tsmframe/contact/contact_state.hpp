@@ -5,15 +5,12 @@
 // converged state (what detection compares with), and what it remembers within the current step.
 
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <vector>
 
-namespace tsm::contact {
+#include "tsmframe/contact/side_table.hpp"
 
-/// A reference side of a candidate element that is not known: the node was beyond the
-/// element's reach at the last converged state (sides.hpp).
-inline constexpr signed char no_side = 2;
+namespace tsm::contact {
 
 /// The second element of a contact whose node rests on a beam node where two elements meet at an
 /// angle (vertex.hpp): on either element alone, the force normal to its chord pushes the point
@@ -23,28 +20,6 @@ struct Vertex {
   int element = -1;  ///< the other element at the beam node
   int side = 0;      ///< the side of its chord the node is on
   double Y = 0.0;    ///< its contact element's force Y
-};
-
-/// A contact's reference sides, one per candidate, shared by the copies of a state (the step's
-/// start kept for a cutback, the state Newton moves) until they change: a reference is taken
-/// anew for every inactive contact at each converged step, and most come out as they were.
-class SideTable {
- public:
-  size_t size() const { return values_ ? values_->size() : 0; }
-  signed char operator[](size_t candidate) const { return (*values_)[candidate]; }
-  const std::vector<signed char>& values() const {
-    static const std::vector<signed char> none;
-    return values_ ? *values_ : none;
-  }
-  /// Takes `values`; where they equal the ones held, those stay (and stay shared).
-  void set(const std::vector<signed char>& values) {
-    if (values_ && *values_ == values) return;
-    if (values_ && values_.use_count() == 1) *values_ = values;  // held by this state alone
-    else values_ = std::make_shared<std::vector<signed char>>(values);
-  }
-
- private:
-  std::shared_ptr<std::vector<signed char>> values_;
 };
 
 /// Where the node was at the last converged state, per candidate element (ContactGeometry
