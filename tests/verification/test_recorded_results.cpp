@@ -81,6 +81,22 @@ TEST(RecordedResults, AFailedRunKeepsTheNewestConvergedStepWhole) {
   for (int e = 0; e < 20; ++e) EXPECT_NEAR(std::abs(kept.element_forces[3 * e + 1]), 0.01 * M, 1e-9 * M) << e;
 }
 
+TEST(RecordedResults, HowContactsMovedPerIterateGoesToTheObserverAndIsNotKept) {
+  // Contact points per iterate (what --log-iterations prints) for every contact at every iterate
+  // of every step: the observer sees them, the records the run returns do not keep them (they
+  // grew with contacts × iterations × steps: 213 MB of a run of 5,001 contacts).
+  tsm::Model model = tsm::io::read_model(pressed_beams(-2000.0, 4, 60, 20));
+  size_t observed = 0;
+  const RunResult r = tsm::solver::run_analysis(model, [&](const StepRecord& step) {
+    if (step.contact_iterates.size() == static_cast<size_t>(step.iterations) + 1 &&
+        step.contact_iterates.front().size() == model.contacts.size())
+      ++observed;
+  });
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  EXPECT_EQ(observed, r.steps.size());
+  for (const StepRecord& step : r.steps) EXPECT_TRUE(step.contact_iterates.empty()) << "step " << step.step;
+}
+
 }  // namespace
 
 }  // namespace test_recorded_results

@@ -47,6 +47,8 @@ class Recorder {
   void failed(StepRecord record, const std::string& message);
 
  private:
+  /// Hands a record just kept to the observer, then frees what only the observer reads.
+  void observe(StepRecord& record) const;
   /// Whether `record`'s state (`state`, just evaluated) is a neutral equilibrium the supports
   /// allow (model/mechanism's SupportedParts): marks it and keeps its free motion.
   void take_neutral(StepRecord& record, const State& state);
