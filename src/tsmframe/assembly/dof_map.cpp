@@ -1,6 +1,7 @@
 #include "tsmframe/assembly/dof_map.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <utility>
 
@@ -33,7 +34,9 @@ int nearest_candidate(const Model& model, const ContactSpec& spec, double reach,
           element::distance_to_segment(model.nodes[e.start].position, model.nodes[e.end].position, x) - spec.gap;
       if (distance <= best) best = distance, nearest = static_cast<int>(k);
     }
-    const double margin = 1e-9 * (r + x.cwiseAbs().maxCoeff());  // the square's edges rounded
+    // The square's edges rounded, and distance − gap rounded at the gap's scale (where two
+    // distances round to one value, the later element wins: it must be in the square).
+    const double margin = 1e-9 * (r + x.cwiseAbs().maxCoeff() + std::abs(spec.gap));
     if (!chords.usable() || best + spec.gap + margin < r || !(reach + spec.gap + margin >= r)) return nearest;
   }
 }

@@ -31,6 +31,7 @@ SegmentGrid::SegmentGrid(const std::vector<Segment>& segments) {
   while (count(span.x()) * count(span.y()) > 4.0 * static_cast<double>(n) + 64.0) cell_ *= 2.0;
   if (!std::isfinite(cell_)) return;
   origin_ = lo;
+  corner_ = hi;
   columns_ = static_cast<long>(count(span.x()));
   rows_ = static_cast<long>(count(span.y()));
   usable_ = true;
@@ -70,8 +71,8 @@ void SegmentGrid::in_box(const Eigen::Vector2d& low, const Eigen::Vector2d& high
   }
   for (const int s : large_)
     if (meets(s)) found.push_back(s);
-  const Eigen::Vector2d far = origin_ + cell_ * Eigen::Vector2d(static_cast<double>(columns_), static_cast<double>(rows_));
-  if (!(high.array() < origin_.array()).any() && !(low.array() > far.array()).any()) {
+  // Beside the boxes' own bounds (exact, not the cells' rounded ones) no segment is met.
+  if (!(high.array() < origin_.array()).any() && !(low.array() > corner_.array()).any()) {
     const long c0 = cell_index(low.x(), 0), c1 = cell_index(high.x(), 0);
     const long r0 = cell_index(low.y(), 1), r1 = cell_index(high.y(), 1);
     for (long r = r0; r <= r1; ++r)

@@ -42,7 +42,7 @@ class SegmentGrid {
   long cell_index(double v, int axis) const;
 
   std::vector<Eigen::Vector2d> low_, high_;  ///< each segment's box
-  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero(), corner_ = Eigen::Vector2d::Zero();  ///< the boxes' bounds
   double cell_ = 1.0;
   long columns_ = 0, rows_ = 0;
   std::vector<int> cell_start_, cell_segments_;  ///< the segments in each cell (CSR, row by row)

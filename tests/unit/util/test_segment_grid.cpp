@@ -66,6 +66,18 @@ TEST(SegmentGrid, ASquareBesideTheSegmentsFindsNothingAndOneTouchingABoxFindsIt)
   EXPECT_EQ(found, std::vector<int>{1});
 }
 
+TEST(SegmentGrid, ASquareAtTheFarEdgeFindsTheSegmentThere) {
+  // Three cells of 0.33333333333333337 end at 0.9999999999999999 in doubles, below the second
+  // segment's end at 1: a square from x = 1 on still meets it.
+  const std::vector<Segment> segments = {{{-8e-17, 0.0}, {-8e-17, 0.001}}, {{0.33433333333333326, 0.0}, {1.0, 0.0}}};
+  const SegmentGrid grid(segments);
+  std::vector<int> found;
+  grid.in_box({1.0, -1.0}, {2.0, 1.0}, found);
+  EXPECT_EQ(found, std::vector<int>{1});
+  grid.near({1.5, 0.0}, 0.5, found);
+  EXPECT_EQ(found, std::vector<int>{1});
+}
+
 TEST(SegmentGrid, CoordinatesNotFiniteGiveEverySegmentToEveryQuery) {
   const std::vector<Segment> segments = {{{0.0, 0.0}, {1.0, 0.0}}, {{1.0, 0.0}, {NAN, 1.0}}, {{5.0, 5.0}, {6.0, 5.0}}};
   const SegmentGrid grid(segments);
