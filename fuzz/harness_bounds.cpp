@@ -23,10 +23,15 @@ bool small_model(const nlohmann::json& model) {
 
 void shorten_analysis(Model& model) {
   AnalysisSettings& analysis = model.analysis;
-  Control& control = analysis.control;
-  control.steps = std::min(control.steps, most_steps);
-  if (control.path.size() > most_legs) control.path.resize(most_legs);
-  control.max_steps = std::min(control.max_steps, most_steps);
+  // The analysis's control, and each stage's own (a stage of 4·10⁶ steps filled the fuzzer's
+  // 2 GB with step records: the library accepts it within the machine's memory).
+  const auto shorten = [](Control& control) {
+    control.steps = std::min(control.steps, most_steps);
+    if (control.path.size() > most_legs) control.path.resize(most_legs);
+    control.max_steps = std::min(control.max_steps, most_steps);
+  };
+  shorten(analysis.control);
+  for (Stage& stage : model.stages) shorten(stage.control);
   analysis.max_iterations = std::min(analysis.max_iterations, most_iterations);
   analysis.max_cutbacks = std::min(analysis.max_cutbacks, most_cutbacks);
 }

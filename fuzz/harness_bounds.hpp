@@ -22,8 +22,8 @@ inline constexpr int most_cutbacks = 2;
 /// (as far as its JSON says: what the reader would refuse passes, for the reader to refuse).
 bool small_model(const nlohmann::json& model);
 
-/// Cuts the model's analysis to most_steps steps per leg, most_legs legs, most_iterations
-/// iterations and most_cutbacks cutbacks.
+/// Cuts the model's analysis, and each of its stages, to most_steps steps per leg, most_legs
+/// legs, most_iterations iterations and most_cutbacks cutbacks.
 void shorten_analysis(Model& model);
 
 }  // namespace tsm::fuzz
