@@ -52,11 +52,8 @@ DofMap::DofMap(const Model& model) {
   // contacts join them (a dense block). The reach is wide: a beam drawn a twentieth of the
   // model's size above another closes its contacts within its first step.
   std::vector<std::pair<int, int>> joined;
-  const std::vector<std::optional<RestingContact>> resting = resting_contacts(model);
-  std::vector<util::Segment> segments;
-  if (!model.contacts.empty())
-    for (const Element& e : model.elements) segments.push_back({model.nodes[e.start].position, model.nodes[e.end].position});
-  const util::SegmentGrid chords(segments);
+  const util::SegmentGrid chords = model.contacts.empty() ? util::SegmentGrid({}) : drawn_chords(model);
+  const std::vector<std::optional<RestingContact>> resting = resting_contacts(model, chords);
   std::vector<int> near;
   for (size_t c = 0; c < model.contacts.size(); ++c) {
     const ContactSpec& spec = model.contacts[c];

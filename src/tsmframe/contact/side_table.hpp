@@ -23,10 +23,14 @@ class SideTable {
     const unsigned code = (packed_->bytes[candidate / 4] >> (2 * (candidate % 4))) & 3u;
     return code == 3u ? no_side : static_cast<signed char>(static_cast<int>(code) - 1);
   }
-  /// Every side, one per candidate (empty: none taken yet).
-  std::vector<signed char> values() const {
-    std::vector<signed char> all(size());
+  /// Every side, one per candidate, into `all` (empty: none taken yet).
+  void read(std::vector<signed char>& all) const {
+    all.resize(size());
     for (size_t k = 0; k < all.size(); ++k) all[k] = (*this)[k];
+  }
+  std::vector<signed char> values() const {
+    std::vector<signed char> all;
+    read(all);
     return all;
   }
   /// Takes `values` (each +1, −1, 0 or no_side); where they equal the ones held, those stay (and

@@ -129,7 +129,7 @@ void reset_sides(const ContactGeometry& geometry, const ContactCandidates& spec,
   // The sides as they were (a node on a centre line keeps its side; none yet: 0), in a scratch
   // array per thread; the table takes them at the end (and keeps its own where they are equal).
   thread_local std::vector<signed char> side;
-  side = state.reference.side.values();
+  state.reference.side.read(side);
   if (side.size() != spec.candidates.size()) side.assign(spec.candidates.size(), 0);
   for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
     const int f = spec.candidates[ci];

@@ -56,13 +56,20 @@ std::optional<RestingContact> resting_contact(const Model& model, const ContactS
   return nearest_rested_on(model, contact, every);
 }
 
-std::vector<std::optional<RestingContact>> resting_contacts(const Model& model) {
-  std::vector<std::optional<RestingContact>> resting(model.contacts.size());
-  if (model.contacts.empty()) return resting;
+util::SegmentGrid drawn_chords(const Model& model) {
   std::vector<util::Segment> chords;
   chords.reserve(model.elements.size());
   for (const Element& e : model.elements) chords.push_back({model.nodes[e.start].position, model.nodes[e.end].position});
-  const util::SegmentGrid grid(chords);
+  return util::SegmentGrid(chords);
+}
+
+std::vector<std::optional<RestingContact>> resting_contacts(const Model& model) {
+  if (model.contacts.empty()) return {};
+  return resting_contacts(model, drawn_chords(model));
+}
+
+std::vector<std::optional<RestingContact>> resting_contacts(const Model& model, const util::SegmentGrid& grid) {
+  std::vector<std::optional<RestingContact>> resting(model.contacts.size());
   std::vector<int> near;
   for (size_t k = 0; k < model.contacts.size(); ++k) {
     const ContactSpec& contact = model.contacts[k];

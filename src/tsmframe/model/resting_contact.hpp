@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tsmframe/model/model.hpp"
+#include "tsmframe/util/segment_grid.hpp"
 
 namespace tsm {
 
@@ -27,5 +28,9 @@ std::optional<RestingContact> resting_contact(const Model& model, const ContactS
 /// resting_contact of every contact of the model (model order), in time linear in the model
 /// (the elements near each node, from a grid over the chords).
 std::vector<std::optional<RestingContact>> resting_contacts(const Model& model);
+/// The same, `chords` the grid drawn_chords gives.
+std::vector<std::optional<RestingContact>> resting_contacts(const Model& model, const util::SegmentGrid& chords);
+/// A grid over every element's chord as drawn (element indices).
+util::SegmentGrid drawn_chords(const Model& model);
 
 }  // namespace tsm
