@@ -43,10 +43,14 @@ for target in "${targets[@]}"; do
   log="$build/fuzz-$target.log"
   mkdir -p "$corpus" "$build/findings"
   start=$(date +%s)
-  if nice "$build/fuzz/tsmframe_fuzz_$target" "$corpus" "$build/fuzz/corpus/$target" "${limits[@]}" \
-       -artifact_prefix="$build/findings/$target-" >"$log" 2>&1; then
-    runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+  rc=0
+  nice "$build/fuzz/tsmframe_fuzz_$target" "$corpus" "$build/fuzz/corpus/$target" "${limits[@]}" \
+    -artifact_prefix="$build/findings/$target-" >"$log" 2>&1 || rc=$?
+  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+  if [ "$rc" = 0 ]; then
     echo "fuzz: $target: ${runs:-?} executions in $(( $(date +%s) - start )) s, no finding"
+  elif [ "$rc" = 72 ]; then  # libFuzzer's exit code when stopped by SIGINT: no finding
+    echo "fuzz: $target: stopped after ${runs:-?} executions in $(( $(date +%s) - start )) s, no finding"
   else
     found=1
     echo "fuzz: $target: FINDING after $(( $(date +%s) - start )) s (report: $log)" >&2
