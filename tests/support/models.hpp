@@ -56,6 +56,20 @@ inline json pressed_beams(double fy, int steps, int lower = 600, int upper = 200
           {"analysis", {{"control", {{"type", "load"}, {"steps", steps}}}}}};
 }
 
+/// The pressed beams at length: the pinned upper beam (`length` m in 10-cm Timoshenko elements,
+/// EI 2e4, every node a contact node) drawn 1 cm above a lower beam of three elements per upper
+/// one (EI 4e6, pinned and on a roller at its ends) supported every 10 m, under fy (N/m) in
+/// `steps` load steps — the continuous press of bench/contact_scale.py.
+inline json continuous_press(int length, double fy, int steps) {
+  const int upper = 10 * length;
+  json m = pressed_beams(fy, steps, 3 * upper, upper);
+  m["nodes"][1]["x"] = static_cast<double>(length);
+  m["nodes"][3]["x"] = length - 0.005;
+  for (int k = 1; k < length / 10; ++k)
+    m["supports"].push_back({{"node", json::array({10.0 * k, 0.0})}, {"fix", json::array({"uy"})}});
+  return m;
+}
+
 /// A load riding on a simply supported beam (10 m, 20 Timoshenko elements, EI 4e6): node 9
 /// drawn at its contact's gap (5 cm) above x = 1, its ux prescribed by `ride` and its uy free,
 /// pressed down by λ·10 kN, in `steps` load steps.

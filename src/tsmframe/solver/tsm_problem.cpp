@@ -66,8 +66,13 @@ bool TsmProblem::evaluate(State& state, bool contacts_only) {
   // Y at its iterate measures that, not the contact force, and along the bent beam's normal it
   // would turn the normals as much. That iterate pushes along the chords' normals, as a point
   // entering an element does (ContactState::entering).
-  if (std::exchange(predictor_pending_, false))
+  // So does an iterate the landing cut short (step_fraction): the contacts that started on the
+  // way there are still as deep as the cut left them, their Y not yet the beam's.
+  const bool landing_cut = std::exchange(landing_cut_, false);
+  const auto along_chords = [&state] {
     for (contact::ContactState& c : state.contacts) c.entering = c.entering || c.active;
+  };
+  if (std::exchange(predictor_pending_, false) || landing_cut) along_chords();
   for (int pass = 0;; ++pass) {
     const std::vector<contact::ActiveContact> active = active_contacts(state);
     // The rotations are continued in place (one vector, not two): lent to the evaluation.
@@ -80,6 +85,7 @@ bool TsmProblem::evaluate(State& state, bool contacts_only) {
     const contact::ContactChanges changes =
         contacts_->update(u, state.chord_rotations, eval_.contacts, state.contacts, false, &state.contact_references);
     if (!changes.any()) break;
+    if (landing_cut) along_chords();  // through the passes that settle the contacts there too
     changed = true;
     switches_ += changes.activated + changes.released;
     reversals_ += changes.reversed;
@@ -151,7 +157,9 @@ double TsmProblem::step_fraction(const State& state, const Eigen::VectorXd& corr
   for (int eq = 0; eq < equations_.free_count(); ++eq) trial_[equations_.free_dofs[eq]] = correction[eq];
   system_.frames().to_global(trial_);
   trial_ += u;
-  return contacts_->landing_fraction(u, trial_, state.contacts);
+  const double fraction = contacts_->landing_fraction(u, trial_, state.contacts);
+  landing_cut_ = fraction < 1.0;
+  return fraction;
 }
 
 void TsmProblem::begin_step(const State& state) {
@@ -163,6 +171,7 @@ void TsmProblem::begin_step(const State& state) {
   // on in one direction, one element per iterate, is not limited here.
   max_reversals_ = 4 * static_cast<int>(state.contacts.size());
   predictor_pending_ = true;
+  landing_cut_ = false;
   from_unloaded_ = physical(state).isZero() && (dead_load().size() == 0 || dead_load().isZero());
 }
 
@@ -328,9 +337,13 @@ std::vector<int> TsmProblem::look_ahead_releases(State& state, bool& overwrote_t
   // through passed_through).
   overwrote_tangent = false;
   std::vector<int> also;
-  constexpr size_t fewest = 4, most = 2000;  // contacts in touch: below, nothing to gain; above, the solves cost
+  // Below `fewest` contacts in touch there is nothing to gain. Above any number it is worth it: the
+  // forecast costs a factorisation and one solve per contact that lets go (at most its
+  // largest_set), a Newton iterate or a few, where a long beam's two lift-off zones let go a few
+  // nodes per three iterates without it (a 300-m press of 3,001 contact nodes ran out of its 50).
+  constexpr size_t fewest = 4;
   const std::vector<contact::ActiveContact> active = active_contacts(state);
-  if (active.size() < fewest || active.size() > most || !system_.follower_rank_one().empty()) return also;
+  if (active.size() < fewest || !system_.follower_rank_one().empty()) return also;
   // Contact k's entries in `active` (two at a vertex, which stay out of the forecast).
   std::vector<int> owner, side;
   std::vector<char> may_join;

@@ -3,6 +3,8 @@
 // its steps without a cutback and ends where smaller steps end.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "support/contact_models.hpp"
 
 namespace test_landing_end_to_end {
@@ -27,6 +29,39 @@ TEST(ContactLanding, TwoHundredContactNodesPressedInTenStepsLandWithoutCutbackAn
   const Eigen::VectorXd& a = ten.steps.back().displacements;
   const Eigen::VectorXd& b = forty.steps.back().displacements;
   EXPECT_LT((a - b).lpNorm<Eigen::Infinity>(), 1e-9 * a.lpNorm<Eigen::Infinity>());
+}
+
+TEST(ContactLanding, ThreeThousandContactNodesLandOnAContinuousBeamInOneStepAndBendItAsItsSpansBend) {
+  // The 300-m continuous press (3,001 contact nodes on 9,000 lower elements) in one step to
+  // 200 N/m. The landing cuts the first iterates short, and the contacts that start on the way
+  // are left as deep as the cut leaves them: along the bent beam's normal their Y (that depth,
+  // not the beam's force) turned the normals and Newton's next correction ran the lower beam's
+  // roller end metres sideways; the step failed at its fourth iterate with points hopping
+  // (cutback to λ = 2·10⁻⁴ and 22 steps where it was allowed). Those iterates push along the
+  // chords' normals, and the release look-ahead, once only below 2,000 contacts in touch, frees
+  // the lift-off zones at both ends together.
+  // Far from the ends the upper beam, 200 × as flexible, lies on the lower one and hands it its
+  // whole load: an inner span of a continuous beam under q deflects at its middle by q L⁴ /
+  // (384 EI) — with the upper beam's EI alongside and the Timoshenko shear qL²/(8 G A_s), 0.3 %
+  // off that; within 1 %.
+  const double q = 200.0, L = 10.0, EI = 2e11 * 2e-5;
+  json m = continuous_press(300, -q, 1);
+  m["analysis"]["cutback"] = false;
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const tsm::solver::StepRecord& last = r.steps.back();
+  expect_equilibrium(model, last);
+  const auto node_at = [&](double x, double y) {
+    for (size_t i = 0; i < model.nodes.size(); ++i)
+      if ((model.nodes[i].position - Eigen::Vector2d(x, y)).norm() < 1e-9) return static_cast<int>(i);
+    ADD_FAILURE() << "no node at " << x << ", " << y;
+    return 0;
+  };
+  const double w = -last.displacements[3 * node_at(145.0, 0.0) + 1];
+  EXPECT_NEAR(w, q * std::pow(L, 4) / (384.0 * EI), 0.01 * q * std::pow(L, 4) / (384.0 * EI));
+  // the supports' rows stay at rest
+  EXPECT_NEAR(last.displacements[3 * node_at(140.0, 0.0) + 1], 0.0, 1e-12);
 }
 
 }  // namespace
