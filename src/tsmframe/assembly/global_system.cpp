@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 namespace tsm::assembly {
 namespace {
@@ -189,7 +190,29 @@ int GlobalSystem::entry(int r, int c) const {
 }
 
 void GlobalSystem::ensure_contact_pattern(const std::vector<contact::ActiveContact>& contacts) {
-  bool missing = false;
+  // The pairs the contacts join, each contact node with its element's nodes and the other points
+  // on the element (coupled through the beam).
+  const auto for_each_pair = [&contacts, this](const auto& visit) {
+    for (const contact::ActiveContact& a : contacts) {
+      const Element& e = model_.elements[a.element];
+      for (int p = 0; p < a.size(); ++p) {
+        visit(a.points[p].node, e.start);
+        visit(a.points[p].node, e.end);
+        for (int q = 0; q < p; ++q) visit(a.points[p].node, a.points[q].node);
+      }
+    }
+  };
+  bool changed = false;
+  if (std::exchange(forget_contact_pairs_, false) && !contact_pairs_.empty()) {
+    std::vector<std::pair<int, int>> used;
+    for_each_pair([&used](int contact_node, int node) { used.emplace_back(contact_node, node); });
+    std::sort(used.begin(), used.end());
+    const size_t before = contact_pairs_.size();
+    std::erase_if(contact_pairs_, [&used](const std::pair<int, int>& pair) {
+      return !std::binary_search(used.begin(), used.end(), pair);
+    });
+    changed = contact_pairs_.size() != before;
+  }
   const auto ensure = [&](int contact_node, int node) {
     const int bc = dofs_.block(contact_node), bn = dofs_.block(node);
     if (bc < 0 || bn < 0 || bc == bn) return;
@@ -198,17 +221,10 @@ void GlobalSystem::ensure_contact_pattern(const std::vector<contact::ActiveConta
     const int p = entry(std::max(bc, bn), std::min(bc, bn));
     if (p >= 0 && !tangent_.is_fill(p)) return;
     contact_pairs_.emplace_back(contact_node, node);
-    missing = true;
+    changed = true;
   };
-  for (const contact::ActiveContact& a : contacts) {
-    const Element& e = model_.elements[a.element];
-    for (int p = 0; p < a.size(); ++p) {
-      ensure(a.points[p].node, e.start);
-      ensure(a.points[p].node, e.end);
-      for (int q = 0; q < p; ++q) ensure(a.points[p].node, a.points[q].node);  // coupled through the beam
-    }
-  }
-  if (missing) {
+  for_each_pair(ensure);
+  if (changed) {
     build_pattern();
     mark_first_writers();
   }

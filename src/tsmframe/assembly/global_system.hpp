@@ -119,6 +119,13 @@ class GlobalSystem {
   /// Changes whenever the block pattern of tangent() is rebuilt (a contact couples new nodes):
   /// the linear solver must analyse it again.
   int pattern_version() const { return pattern_version_; }
+  /// At the next evaluation with tangent, the pattern keeps only the node pairs that contacts
+  /// in touch there join (ensure_contact_pattern). Without it every pair a contact ever joined
+  /// stays, and a pair Newton's wandering iterates joined far apart in the elimination order
+  /// fills the factor between them for the rest of the run (the 500-m press's factorisation
+  /// grew from 2 to 100 ms). The tangent's values and the elimination order stay; the factor's
+  /// schedule follows the pattern, so its rounding may change.
+  void forget_contact_pairs() { forget_contact_pairs_ = true; }
 
  private:
   /// The element at place q of the loop (element_order_[q]); returns its max |θ_i|, |θ_j| (0 if a
@@ -229,6 +236,7 @@ class GlobalSystem {
   std::vector<char> replaced_;             ///< per element: carries a contact in this evaluation
   std::vector<linalg::RankOne> contact_rank_one_;
   std::vector<std::pair<int, int>> contact_pairs_;  ///< node pairs joined only by contact elements
+  bool forget_contact_pairs_ = false;                ///< see forget_contact_pairs()
   int pattern_version_ = 0;
   std::vector<std::pair<int, int>> turned_entries_;  ///< (entry, block column) touching a skew roller's node
   int turned_version_ = -1;                          ///< pattern version turned_entries_ was listed for

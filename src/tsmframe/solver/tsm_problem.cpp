@@ -172,6 +172,7 @@ void TsmProblem::begin_step(const State& state) {
   max_reversals_ = 4 * static_cast<int>(state.contacts.size());
   predictor_pending_ = true;
   landing_cut_ = false;
+  system_.forget_contact_pairs();  // the pairs the last step's iterates joined and its end no longer uses
   from_unloaded_ = physical(state).isZero() && (dead_load().size() == 0 || dead_load().isZero());
 }
 

@@ -80,6 +80,48 @@ TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
 
 // ---- Several points on one element (issue 27) ----
 
+TEST(ContactAssembly, APairNoLongerInTouchLeavesThePatternWhenForgottenAndTheTangentStaysTheSame) {
+  // The post pressed onto the cantilever joins its node to the element's two in the pattern.
+  // Released, the pair stays (a contact that lets go and comes back would rebuild it) until
+  // the pattern is told to forget it at the next evaluation with tangent: then the entries
+  // and their fill go, and the tangent's values are what they were.
+  const tsm::Model model = tsm::io::read_model(post_on_cantilever("timoshenko", 0.45));
+  tsm::assembly::DofMap dofs(model);
+  tsm::assembly::GlobalSystem system(model, dofs);
+  tsm::contact::ContactSet tracker(model);
+  std::vector<tsm::contact::ContactState> states = tracker.initial_states();
+  Eigen::VectorXd D = bent_and_turned(model);
+  const int c = model.node_index(100);
+  D.segment<2>(3 * c) << -0.05 * 0.45 * 0.45 + 0.01, 0.3 * 0.45 * 0.45 + 0.02;
+  std::vector<double> rotations(model.elements.size(), 0.0);
+  tsm::assembly::Evaluation e;
+  system.evaluate(D, rotations, true, e);
+  const size_t alone = system.tangent().row.size();
+  tracker.update(D, e.chord_rotations, e.contacts, states, false);
+  ASSERT_TRUE(states[0].active);
+  const auto active = tracker.active_contacts(states);
+  system.evaluate(D, e.chord_rotations, true, e, active);
+  const size_t in_touch = system.tangent().row.size();
+  ASSERT_GT(in_touch, alone);
+  tsm::assembly::Evaluation released;
+  system.evaluate(D, e.chord_rotations, true, released);
+  EXPECT_EQ(system.tangent().row.size(), in_touch);
+  const Eigen::MatrixXd kept = dense_tangent(dofs, system.tangent(), {});
+  const int version = system.pattern_version();
+  system.forget_contact_pairs();
+  system.evaluate(D, e.chord_rotations, true, released);
+  EXPECT_EQ(system.tangent().row.size(), alone);
+  EXPECT_NE(system.pattern_version(), version);
+  EXPECT_EQ((dense_tangent(dofs, system.tangent(), {}) - kept).cwiseAbs().maxCoeff(), 0.0);
+  // In touch again, the pair comes back; told to forget, a pair still in touch stays.
+  system.forget_contact_pairs();
+  system.evaluate(D, e.chord_rotations, true, e, active);
+  EXPECT_EQ(system.tangent().row.size(), in_touch);
+  system.forget_contact_pairs();
+  system.evaluate(D, e.chord_rotations, true, e, active);
+  EXPECT_EQ(system.tangent().row.size(), in_touch);
+}
+
 TEST(ContactAssembly, TangentWithSeveralPointsOnOneElementMatchesFiniteDifferences) {
   // Three posts' free bottoms on the cantilever's third element (1/3 … 1/2), pressed into a bent,
   // rotated beam: one contact element with three points, their nodes coupled through the beam —
