@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 #include <utility>
 
 namespace tsm::assembly {
@@ -191,51 +192,54 @@ int GlobalSystem::entry(int r, int c) const {
 
 void GlobalSystem::ensure_contact_pattern(const std::vector<contact::ActiveContact>& contacts) {
   // The pairs the contacts join, each contact node with its element's nodes and the other points
-  // on the element (coupled through the beam).
+  // on the element (coupled through the beam), lower node first: one pair whichever of its two
+  // nodes is the contact's (beams touching each other both ways visit it either way round).
   const auto for_each_pair = [&contacts, this](const auto& visit) {
+    const auto ordered = [&visit](int a, int b) { visit(std::min(a, b), std::max(a, b)); };
     for (const contact::ActiveContact& a : contacts) {
       const Element& e = model_.elements[a.element];
       for (int p = 0; p < a.size(); ++p) {
-        visit(a.points[p].node, e.start);
-        visit(a.points[p].node, e.end);
-        for (int q = 0; q < p; ++q) visit(a.points[p].node, a.points[q].node);
+        ordered(a.points[p].node, e.start);
+        ordered(a.points[p].node, e.end);
+        for (int q = 0; q < p; ++q) ordered(a.points[p].node, a.points[q].node);
       }
     }
   };
-  bool changed = false;
+  bool forgot = false, missing = false;
   if (std::exchange(forget_contact_pairs_, false) && !contact_pairs_.empty()) {
     std::vector<std::pair<int, int>> used;
-    for_each_pair([&used](int contact_node, int node) { used.emplace_back(contact_node, node); });
+    for_each_pair([&used](int a, int b) { used.emplace_back(a, b); });
     std::sort(used.begin(), used.end());
     const size_t before = contact_pairs_.size();
     std::erase_if(contact_pairs_, [&used](const std::pair<int, int>& pair) {
       return !std::binary_search(used.begin(), used.end(), pair);
     });
-    changed = contact_pairs_.size() != before;
+    forgot = contact_pairs_.size() != before;
+    if (forgot) build_pattern();  // what ensure() reads next is the pattern without them
   }
-  const auto ensure = [&](int contact_node, int node) {
-    const int bc = dofs_.block(contact_node), bn = dofs_.block(node);
+  const auto ensure = [&](int a, int b) {
+    const int bc = dofs_.block(a), bn = dofs_.block(b);
     if (bc < 0 || bn < 0 || bc == bn) return;
     // An entry that is fill of the factor is no entry of A: the factorisation starts it at
     // zero, so a contact element's block written there would be lost. The pair is added.
     const int p = entry(std::max(bc, bn), std::min(bc, bn));
     if (p >= 0 && !tangent_.is_fill(p)) return;
-    contact_pairs_.emplace_back(contact_node, node);
-    changed = true;
+    contact_pairs_.emplace_back(a, b);
+    missing = true;
   };
   for_each_pair(ensure);
-  if (changed) {
-    build_pattern();
-    mark_first_writers();
-  }
+  if (missing) build_pattern();
+  if (forgot || missing) mark_first_writers();
 }
 
 void GlobalSystem::add_block(int a, int b, const Eigen::Matrix3d& value) {
   // K(a, b) for nodes a, b (both with blocks); the lower triangle stores K(max, min).
   const int ba = dofs_.block(a), bb = dofs_.block(b);
   if (ba < 0 || bb < 0) return;
-  if (ba >= bb) tangent_.value[entry(ba, bb)] += value;
-  else tangent_.value[entry(bb, ba)] += value.transpose();
+  const int p = ba >= bb ? entry(ba, bb) : entry(bb, ba);
+  if (p < 0) throw std::logic_error("GlobalSystem: a block written where the pattern has no entry");
+  if (ba >= bb) tangent_.value[p] += value;
+  else tangent_.value[p] += value.transpose();
 }
 
 double GlobalSystem::ElementRecord::connected_end_rotation(const element::BeamResponse& r, const Connection& c) const {

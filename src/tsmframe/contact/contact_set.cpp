@@ -53,7 +53,7 @@ std::vector<ContactState> ContactSet::initial_states() const {
   return states;
 }
 
-std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<ContactState>& states) const {
+std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<ContactState>& states, bool along_chords) const {
   std::vector<ActiveContact> active;
   std::vector<int> place;  // per element: its place in `active`, −1 none (made only when needed)
   // `chord`: the point pushes along its chord's normal whatever its contact asks (a vertex's).
@@ -83,7 +83,8 @@ std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<Contact
   // point's Y, read from how far the predictor ran its node through the beam, would turn the
   // others' normals too.
   for (ActiveContact& a : active)
-    if (std::any_of(a.points.begin(), a.points.end(), [&](const ActivePoint& p) { return states[p.contact].entering; }))
+    if (along_chords ||
+        std::any_of(a.points.begin(), a.points.end(), [&](const ActivePoint& p) { return states[p.contact].entering; }))
       for (ContactElementData& d : a.data) d.normal = ContactNormal::chord;
   return active;
 }

@@ -53,8 +53,9 @@ class ContactSet {
   std::vector<ContactState> initial_states() const;
   /// The contact elements of the active contacts: one per element with points on it (a vertex
   /// is a point on each of its two elements), in the order of their first points' contacts; an
-  /// entering point (ContactState::entering) along the chord's normal.
-  std::vector<ActiveContact> active_contacts(const std::vector<ContactState>& states) const;
+  /// entering point (ContactState::entering) along the chord's normal; with `along_chords`,
+  /// every point.
+  std::vector<ActiveContact> active_contacts(const std::vector<ContactState>& states, bool along_chords = false) const;
   /// Reads the evaluations of the active contacts into their states (α, Y, compression, push)
   /// without changing the active set: the evaluation that stands.
   void record(const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states) const;

@@ -66,13 +66,13 @@ bool TsmProblem::evaluate(State& state, bool contacts_only) {
   // Y at its iterate measures that, not the contact force, and along the bent beam's normal it
   // would turn the normals as much. That iterate pushes along the chords' normals, as a point
   // entering an element does (ContactState::entering).
-  // So does an iterate the landing cut short (step_fraction): the contacts that started on the
-  // way there are still as deep as the cut left them, their Y not yet the beam's.
-  const bool landing_cut = std::exchange(landing_cut_, false);
-  const auto along_chords = [&state] {
+  if (std::exchange(predictor_pending_, false))
     for (contact::ContactState& c : state.contacts) c.entering = c.entering || c.active;
-  };
-  if (std::exchange(predictor_pending_, false) || landing_cut) along_chords();
+  // So does an iterate the landing cut short (step_fraction), through every pass that settles
+  // its contacts: those that started on the way there are still as deep as the cut left them,
+  // their Y not yet the beam's. Until the next evaluation (the tangent refilled for the LU is
+  // this one's); no contact's state is marked, so nothing of it outlives the iterate.
+  along_chords_ = std::exchange(landing_cut_, false);
   for (int pass = 0;; ++pass) {
     const std::vector<contact::ActiveContact> active = active_contacts(state);
     // The rotations are continued in place (one vector, not two): lent to the evaluation.
@@ -85,7 +85,6 @@ bool TsmProblem::evaluate(State& state, bool contacts_only) {
     const contact::ContactChanges changes =
         contacts_->update(u, state.chord_rotations, eval_.contacts, state.contacts, false, &state.contact_references);
     if (!changes.any()) break;
-    if (landing_cut) along_chords();  // through the passes that settle the contacts there too
     changed = true;
     switches_ += changes.activated + changes.released;
     reversals_ += changes.reversed;
@@ -96,7 +95,7 @@ bool TsmProblem::evaluate(State& state, bool contacts_only) {
 }
 
 std::vector<contact::ActiveContact> TsmProblem::active_contacts(const State& state) const {
-  return contacts_ ? contacts_->active_contacts(state.contacts) : std::vector<contact::ActiveContact>();
+  return contacts_ ? contacts_->active_contacts(state.contacts, along_chords_) : std::vector<contact::ActiveContact>();
 }
 
 assembly::RoundingFloor TsmProblem::rounding_floor(const State& state, bool with_contacts) const {
@@ -197,6 +196,12 @@ std::optional<StepFailure> TsmProblem::after_iterate(const State& state) const {
 
 Settlement TsmProblem::at_convergence(State& state) {
   Settlement settlement;
+  if (along_chords_) {  // balanced along the chords' normals (a landing iterate): not the model's
+    evaluate(state);
+    settlement.evaluated_again = true;
+    settlement.kind = Settlement::Kind::iterate_on;
+    return settlement;
+  }
   if (release_pulling_contacts(state)) {  // converged with a contact pulling: iterate on without it
     settlement.evaluated_again = true;
     settlement.kind = Settlement::Kind::iterate_on;
@@ -277,6 +282,7 @@ bool TsmProblem::name_unloaded_mechanism(const State& state, StepFailure& failur
 }
 
 void TsmProblem::explain(const State& state, StepFailure& failure) {
+  landing_cut_ = false;  // a step that failed between its cut and the iterate: the retry starts afresh
   failure.hinged = hinged_;
   failure.contacts = contacts_ != nullptr;
   const Model& model = system_.model();

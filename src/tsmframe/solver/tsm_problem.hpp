@@ -110,6 +110,7 @@ class TsmProblem final : public Problem {
   int max_switches_ = 0, max_reversals_ = 0;  ///< the current step's budget
   bool predictor_pending_ = false;  ///< the step's first evaluation (the predictor's iterate) is still to come
   bool landing_cut_ = false;        ///< the next evaluation's iterate is one the landing cut short (step_fraction)
+  bool along_chords_ = false;       ///< the last evaluation's: every point pushes along its chord's normal
   LinearSolver solver_;
   /// The last factorisation's outcome and what it tells of the tangent's inertia (`symmetric`:
   /// no follower load's skew terms in it).
