@@ -65,11 +65,13 @@ std::string progress_line(const tsm::Model& model, const tsm::solver::StepRecord
   std::ostringstream os;
   os << "step " << step.step;
   if (!model.stages.empty()) os << " (stage " << step.stage + 1 << ")";
-  os << "  load factor " << tsm::io::format_number(step.load_factor) << "  iterations "
+  os << (step.cut_back ? "  from load factor " : "  load factor ") << tsm::io::format_number(step.load_factor);
+  os << "  iterations "
      << step.iterations << "  residual "
      << (step.residual_norms.empty() ? std::string("-") : tsm::io::format_number(step.residual_norms.back()));
   if (step.arc_length > 0.0) os << "  arc length " << tsm::io::format_number(step.arc_length);
   if (step.converged) os << " (" << tsm::solver::criterion_name(step.criterion) << ")";
+  else if (step.cut_back) os << "  cut back: " << step.message;
   else os << "  FAILED: " << step.message;
   if (step.cutbacks > 0) os << "  after " << step.cutbacks << " cutbacks";
   if (log_iterations) {

@@ -22,7 +22,7 @@ namespace {
 struct StepReport {
   int step = 0, stage = 0, iterations = 0, cutbacks = 0;
   double load_factor = 0.0;
-  bool converged = false;
+  bool converged = false, cut_back = false;
   std::string message;
 };
 
@@ -30,7 +30,7 @@ class ProgressQueue {
  public:
   void push(const solver::StepRecord& s) {
     std::lock_guard<std::mutex> lock(mutex_);
-    queued_.push_back({s.step, s.stage + 1, s.iterations, s.cutbacks, s.load_factor, s.converged, s.message});
+    queued_.push_back({s.step, s.stage + 1, s.iterations, s.cutbacks, s.load_factor, s.converged, s.cut_back, s.message});
   }
   /// Calls `progress` (GIL held) with each queued step, in order.
   void deliver(const py::object& progress) {
@@ -42,7 +42,7 @@ class ProgressQueue {
     for (const StepReport& r : reports)
       progress(py::dict(py::arg("step") = r.step, py::arg("stage") = r.stage, py::arg("load_factor") = r.load_factor,
                         py::arg("iterations") = r.iterations, py::arg("converged") = r.converged,
-                        py::arg("cutbacks") = r.cutbacks, py::arg("message") = r.message));
+                        py::arg("cutbacks") = r.cutbacks, py::arg("cut_back") = r.cut_back, py::arg("message") = r.message));
   }
 
  private:

@@ -506,7 +506,9 @@ def run(model, threads=0, start=None, step=None, progress=None):
     its results.json — at step `step` (None: its newest step with state); the steps are numbered
     on from it (the CLI's --from).
     progress: called with a dict for each step as it ends (step, stage, load_factor, iterations,
-    converged, cutbacks, message; a step redone to land on an arc-length `until` is heard again),
+    converged, cutbacks, cut_back, message; a step redone to land on an arc-length `until` is
+    heard again; an attempt cut back is heard with cut_back True, its load factor the attempt's
+    start and message why it failed, then the step again smaller),
     in the calling thread, every 50 ms at most behind the solver;
     an exception it raises stops the run at its next step and is raised here (as Ctrl-C does)."""
     start_text = ""

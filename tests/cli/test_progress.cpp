@@ -44,6 +44,22 @@ TEST_F(Progress, ARunsStepsShareOneLineOnATerminal) {
   EXPECT_NE(lines.output.find("\nstep 10  load factor 1 "), std::string::npos) << lines.output;
 }
 
+TEST_F(Progress, AnAttemptCutBackSaysWhyOnALineOfItsOwn) {
+  // The strip on the coarse arch cuts one attempt back: its line says where it started and why
+  // it failed, and stays (on a terminal too), before the step that then converges.
+  const Outcome lines = piped("run " + example("strip-on-coarse-arch.json") + " --out a");
+  EXPECT_EQ(lines.exit_code, 0) << lines.output;
+  const size_t cut = lines.output.find("  cut back: ");
+  ASSERT_NE(cut, std::string::npos) << lines.output;
+  const size_t start = lines.output.rfind('\n', cut) + 1;
+  EXPECT_EQ(lines.output.compare(start, 5, "step "), 0) << lines.output.substr(start, cut - start);
+  EXPECT_NE(lines.output.substr(start, cut - start).find("  from load factor "), std::string::npos);
+  EXPECT_GT(lines.output.find('\n', cut), cut + 12);  // a reason follows
+  const Outcome live = on_terminal("run " + example("strip-on-coarse-arch.json") + " --out b");
+  EXPECT_NE(live.output.find("cut back: "), std::string::npos);
+  EXPECT_EQ(piped("run " + example("strip-on-coarse-arch.json") + " --out c -q").output.find("cut back"), std::string::npos);
+}
+
 TEST_F(Progress, AStudyDrawsABarOnATerminal) {
   const Outcome live = on_terminal("study " + study("fig7-contact-edge.json") + " --out s -j 2");
   EXPECT_EQ(live.exit_code, 1) << live.output;  // some of its cases are meant not to converge

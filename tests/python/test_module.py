@@ -880,6 +880,21 @@ def test_a_progress_callback_hears_every_step_and_may_stop_the_run():
         tf.run(os.path.join(SOURCE, "examples", "lee-frame-arc-length.json"), progress=stop_at_ten)
 
 
+def test_a_progress_callback_hears_an_attempt_cut_back_and_why():
+    # The strip on the coarse arch cuts attempts back: each is heard, marked, with why it failed
+    # and the load factor it started from, then the step that converges says how many it took.
+    seen = []
+    r = tf.run(os.path.join(SOURCE, "examples", "strip-on-coarse-arch.json"), progress=seen.append)
+    cut = [s for s in seen if s["cut_back"]]
+    kept = [s for s in seen if not s["cut_back"]]
+    assert cut and all(not s["converged"] and s["message"] for s in cut)
+    assert len(cut) == sum(s["cutbacks"] for s in kept)
+    assert [s["step"] for s in kept] == list(r.step)
+    started = {s["step"]: s["load_factor"] for s in kept}
+    for s in cut:
+        assert s["load_factor"] == (started[s["step"] - 1] if s["step"] > 1 else 0.0)
+
+
 def test_jupyter_shows_a_model_as_its_drawing_and_a_result_as_its_end():
     m = tf.load(os.path.join(SOURCE, "examples", "williams-toggle-arc-length.json"))
     png = m._repr_png_()

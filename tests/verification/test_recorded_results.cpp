@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "support/models.hpp"
 
@@ -95,6 +96,37 @@ TEST(RecordedResults, HowContactsMovedPerIterateGoesToTheObserverAndIsNotKept) {
   ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
   EXPECT_EQ(observed, r.steps.size());
   for (const StepRecord& step : r.steps) EXPECT_TRUE(step.contact_iterates.empty()) << "step " << step.step;
+}
+
+TEST(RecordedResults, AnAttemptCutBackIsShownToTheObserverWithWhyAndIsNotKept) {
+  // The pressed beams under their whole load in one step: attempts fail and are cut back before
+  // the steps converge. Each goes to the observer — not converged, marked cut back, why in its
+  // message, its load factor the attempt's start — and none is kept: as many as the kept steps'
+  // cutbacks.
+  tsm::Model model = tsm::io::read_model(pressed_beams(-2000.0, 1));
+  std::vector<StepRecord> attempts;
+  std::vector<double> converged_at{0.0};
+  const RunResult r = tsm::solver::run_analysis(model, [&](const StepRecord& step) {
+    if (step.cut_back) {
+      attempts.push_back(step);
+      EXPECT_EQ(step.load_factor, converged_at.back());
+    } else if (step.converged) {
+      converged_at.push_back(step.load_factor);
+    }
+  });
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  int cutbacks = 0;
+  for (const StepRecord& step : r.steps) {
+    cutbacks += step.cutbacks;
+    EXPECT_FALSE(step.cut_back) << "step " << step.step;
+  }
+  EXPECT_GT(cutbacks, 0);
+  EXPECT_EQ(attempts.size(), static_cast<size_t>(cutbacks));
+  for (const StepRecord& a : attempts) {
+    EXPECT_FALSE(a.converged);
+    EXPECT_FALSE(a.message.empty());
+    EXPECT_GT(a.iterations, 0);
+  }
 }
 
 }  // namespace

@@ -118,6 +118,8 @@ RunResult ArcLengthStepping::run(State& state) {
       ++halvings_;
       arc_ /= 2.0;
       newton_.reset(state);
+      record.load_factor = state.load_factor;  // the attempt's start
+      recorder_.cut_back(std::move(record), step_failure_text(outcome.failure, model_));
       continue;
     }
     if (jump_across(state)) continue;

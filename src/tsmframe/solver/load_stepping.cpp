@@ -153,7 +153,11 @@ RunResult LoadStepping::run(State& state) {
       continue;
     }
     saved_.restore(state);
-    if (cut_back(attempt, outcome, state)) continue;
+    if (cut_back(attempt, outcome, state)) {
+      record.load_factor = state.load_factor;  // the attempt's start
+      recorder_.cut_back(std::move(record), step_failure_text(outcome.failure, model_));
+      continue;
+    }
     give_up(attempt, std::move(record), outcome, state);
     return std::move(result_);
   }

@@ -176,6 +176,14 @@ void Recorder::finish(const State& state) {
   forces_pending_ = false;
 }
 
+void Recorder::cut_back(StepRecord record, const std::string& message) const {
+  if (!observer_) return;
+  record.converged = false;
+  record.cut_back = true;
+  record.message = message;
+  observer_(record);
+}
+
 void Recorder::failed(StepRecord record, const std::string& message) {
   record.converged = false;
   record.message = message;

@@ -45,6 +45,9 @@ class Recorder {
   /// At the end of the run, with `state` the newest converged step's: its deferred element forces.
   void finish(const State& state);
   void failed(StepRecord record, const std::string& message);
+  /// An attempt that failed and is tried again smaller: to the observer only (why, in
+  /// `message`), so a long run tells where and why its steps are cut back.
+  void cut_back(StepRecord record, const std::string& message) const;
 
  private:
   /// Hands a record just kept to the observer, then frees what only the observer reads.

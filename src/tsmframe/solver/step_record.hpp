@@ -34,8 +34,11 @@ struct ContactPoint {
 struct StepRecord {
   int step = 0;                        ///< 1-based, numbered through a staged run's stages
   int stage = 0;                       ///< index of its stage (Model::stages; 0 without stages)
-  double load_factor = 0.0;            ///< λ at the end of the step (or of the failed attempt's start)
+  double load_factor = 0.0;            ///< λ at the end of the step (at the start of a failed or cut-back attempt)
   bool converged = false;
+  /// An attempt that failed and is tried again smaller (cutback): shown to the observer, with
+  /// `message` saying why, and never kept in the results.
+  bool cut_back = false;
   int iterations = 0;                  ///< Newton solves, the predictor included
   std::vector<double> residual_norms;  ///< relative ‖R‖ of each iterate, iterate 0 first
   Criterion criterion = Criterion::none;  ///< what ended a converged step (criterion_name: "force", "round-off")
@@ -56,7 +59,7 @@ struct StepRecord {
   bool neutral = false;
   double increment = 0.0;              ///< Δλ (load and arc-length control) or the controlled dof's increment
   double arc_length = 0.0;             ///< Δs of the step (arc-length control; 0 otherwise)
-  std::string message;                 ///< why a failed step failed
+  std::string message;                 ///< why a failed step (or a cut-back attempt) failed
   Eigen::VectorXd monitored;           ///< (u, v, Θ) of each monitored node (converged steps)
   /// The reaction at each dof a prescribed displacement moves (Model::moved_dofs; converged
   /// steps): the force that drives a displacement-driven model, kept for every step.
