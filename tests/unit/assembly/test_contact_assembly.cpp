@@ -3,6 +3,7 @@
 // vertex (two contact elements at one node).
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -120,6 +121,67 @@ TEST(ContactAssembly, APairNoLongerInTouchLeavesThePatternWhenForgottenAndTheTan
   system.forget_contact_pairs();
   system.evaluate(D, e.chord_rotations, true, e, active);
   EXPECT_EQ(system.tangent().row.size(), in_touch);
+}
+
+TEST(ContactAssembly, APairTwoBeamsJoinBothWaysIsKeptWhileInUseTheOtherWayRound) {
+  // Two overlapping cantilevers, each node a contact node on the other beam ("between"). First
+  // the lower beam's tip P is pushed through the upper beam onto an element ending at the upper
+  // beam's node Q; then, from afresh, Q is pushed down through the lower beam onto the element
+  // ending at P: the same pair of nodes, the contact node the other one. The pattern told to
+  // forget what is not in use keeps the pair (it was kept as (contact node, other node), dropped
+  // as unused while in use as (other, contact), and its block written past the pattern).
+  json m = {{"materials", {{"steel", {{"E", 2.05e11}, {"nu", 0.3}}}}},
+            {"sections", {{"bar", {{"A", 1.0e-3}, {"I", 1.0e-6}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 2.0}, {"y", 0.0}},
+                                   {{"id", 3}, {"x", 3.0}, {"y", 0.05}}, {{"id", 4}, {"x", 1.0}, {"y", 0.05}}})},
+            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 4}, {"material", "steel"}, {"section", "bar"}},
+                                     {{"from", 3}, {"to", 4}, {"divisions", 5}, {"material", "steel"}, {"section", "bar"}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 3}, {"type", "fixed"}}})},
+            {"contacts", json::array({{{"between", {{0}, {1}}}}})}};
+  const tsm::Model model = tsm::io::read_model(m);
+  const auto node_at = [&](double x, double y) {
+    for (int k = 0; k < model.node_count(); ++k)
+      if ((model.nodes[k].position - Eigen::Vector2d(x, y)).norm() < 1e-9) return k;
+    ADD_FAILURE() << "no node at " << x << ", " << y;
+    return 0;
+  };
+  const int P = node_at(2.0, 0.0), Q = node_at(1.8, 0.05);
+  tsm::assembly::DofMap dofs(model);
+  tsm::assembly::GlobalSystem system(model, dofs);
+  tsm::contact::ContactSet tracker(model);
+  const std::vector<double> rotations(model.elements.size(), 0.0);
+  // The node `pushed` moved by dy through the other beam, its contact found and in touch.
+  const auto in_touch = [&](int pushed, double dy) {
+    Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
+    D[3 * pushed + 1] = dy;
+    std::vector<tsm::contact::ContactState> states = tracker.initial_states();
+    tsm::assembly::Evaluation e;
+    system.evaluate(D, rotations, true, e);
+    tracker.update(D, e.chord_rotations, e.contacts, states, false);
+    const auto active = tracker.active_contacts(states);
+    EXPECT_EQ(active.size(), 1u);
+    for (const auto& a : active) {
+      const tsm::Element& element = model.elements[a.element];
+      EXPECT_EQ(a.points.at(0).node, pushed);
+      EXPECT_TRUE(element.start == (pushed == P ? Q : P) || element.end == (pushed == P ? Q : P)) << a.element;
+    }
+    return std::make_pair(D, active);
+  };
+  const auto [up, p_on_upper] = in_touch(P, 0.06);
+  system.evaluate(up, rotations, true, *std::make_unique<tsm::assembly::Evaluation>(), p_on_upper);
+  const auto [down, q_on_lower] = in_touch(Q, -0.06);
+  system.forget_contact_pairs();
+  tsm::assembly::Evaluation e;
+  ASSERT_NO_THROW(system.evaluate(down, rotations, true, e, q_on_lower));
+  // The contact element's block between P and Q is in the tangent.
+  const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent(), {});
+  double coupling = 0.0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const int r = dofs.equation(3 * P + i), c = dofs.equation(3 * Q + j);
+      if (r >= 0 && c >= 0) coupling = std::max(coupling, std::abs(K(r, c)));
+    }
+  EXPECT_GT(coupling, 0.0);
 }
 
 TEST(ContactAssembly, TangentWithSeveralPointsOnOneElementMatchesFiniteDifferences) {
