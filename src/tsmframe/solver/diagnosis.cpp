@@ -67,14 +67,31 @@ std::string cable_hint(const Model& model) {
 /// The id of a contact's node.
 int contact_node_id(const Model& model, int contact) { return model.nodes[model.contacts[contact].node].id; }
 
+/// The shortest element at a node, as drawn (∞ at a node no element holds).
+double shortest_element_at(const Model& model, int node) {
+  double shortest = INFINITY;
+  for (const Element& e : model.elements)
+    if (e.start == node || e.end == node)
+      shortest = std::min(shortest, (model.nodes[e.end].position - model.nodes[e.start].position).norm());
+  return shortest;
+}
+
 std::string hopping_text(const StepFailure& f, const Model& model) {
   std::ostringstream os;
   os << "contact points keep hopping between elements";
-  // A point that rests on a beam node where two elements meet at an angle (a symmetric push on
-  // a node) is pushed along one chord's normal, then the other's (README, Contact).
-  if (f.hopping_contact >= 0)
-    os << " (node " << contact_node_id(model, f.hopping_contact) << " back and forth across beam node "
-       << model.nodes[f.hop_node].id << ": if it rests on that node, move it off, e.g. with an odd number of divisions)";
+  if (f.hopping_contact < 0) return os.str();
+  const int node = model.contacts[f.hopping_contact].node;
+  os << " (node " << model.nodes[node].id << " back and forth across beam node " << model.nodes[f.hop_node].id;
+  // A point drawn on a beam node where two elements meet at an angle (a symmetric push on a
+  // node) is pushed along one chord's normal, then the other's (README, Contact). One drawn
+  // farther away got there on the path, or in the step: a load that crushes the beam it presses
+  // on (a plank under 5·10⁹ N/m) sends the points across nodes in every iterate.
+  constexpr double near_node = 0.1;  // of the shortest element there: a point drawn that close may rest on it
+  const double drawn = (model.nodes[node].position - model.nodes[f.hop_node].position).norm();
+  if (drawn <= near_node * shortest_element_at(model, f.hop_node))
+    os << ": if it rests on that node, move it off, e.g. with an odd number of divisions)";
+  else
+    os << ", " << drawn << " from where it was drawn: smaller steps may settle it, unless the load is too large for the structure)";
   return os.str();
 }
 
