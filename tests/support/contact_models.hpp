@@ -59,6 +59,22 @@ struct PushCase {
   const char* frame;  // "chord" (Eq. 6–9) or "cantilever" (FORMULATION §2b)
 };
 
+/// Two overlapping cantilevers (examples/cantilever-on-cantilever-arc-length.json, 2 m, 20
+/// elements each unless said), the upper one's tip pushed down by `load` in 10 steps, with
+/// `contacts`.
+inline json crossing_cantilevers(const json& contacts, double load, int lower = 20, int upper = 20) {
+  return {{"materials", {{"steel", {{"E", 2.05e11}, {"nu", 0.3}}}}},
+          {"sections", {{"bar", {{"A", 1.0e-3}, {"I", 1.0e-6}}}}},
+          {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 2.0}, {"y", 0.0}},
+                                 {{"id", 3}, {"x", 3.0}, {"y", 0.05}}, {{"id", 4}, {"x", 1.0}, {"y", 0.05}}})},
+          {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", lower}, {"material", "steel"}, {"section", "bar"}},
+                                   {{"from", 3}, {"to", 4}, {"divisions", upper}, {"material", "steel"}, {"section", "bar"}}})},
+          {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 3}, {"type", "fixed"}}})},
+          {"loads", json::array({{{"node", 4}, {"fy", -load}}})},
+          {"contacts", contacts},
+          {"analysis", {{"control", {{"type", "load"}, {"steps", 10}}}}}};
+}
+
 /// A cantilever of 6 elements (`element`) and a post clamped at its top whose free bottom, node
 /// 100 at (x, 0), is the contact node: all of the contact element's dofs are unknowns.
 inline json post_on_cantilever(const char* element, double x) {

@@ -93,8 +93,9 @@ struct ContactState {
   /// acts along the chord's normal whatever its `normal` (its Y, read from how far the iterate
   /// took the node through the beam, is not yet the beam's, and would turn a deflected normal by
   /// ½ c_α Y / l, N16, arbitrarily far). Also set for every contact in touch at a step's
-  /// predictor iterate and at an iterate the landing cut short (solver::TsmProblem::evaluate),
-  /// and it turns every point of its element to the chord's normal (ContactSet::active_contacts).
+  /// predictor iterate (solver::TsmProblem::evaluate), and it turns every point of its element
+  /// to the chord's normal (ContactSet::active_contacts; an iterate the landing cut short turns
+  /// every point, without marking them).
   bool entering = false;
   ContactReference reference;
   StepMemory step;

@@ -137,7 +137,7 @@ void MemberMesh::add(const MemberInput& member) {
     e.section = member.section;
     model_.elements.push_back(e);
     if (member.load.x() != 0.0 || member.load.y() != 0.0) {  // per unit length along the drawn element, half to each end
-      const double length = (model_.nodes[e.end].position - model_.nodes[e.start].position).norm();
+      const double length = model_.drawn_length(e);
       element_loads_.push_back({e.start, e.end, member.load.x() * length / 2.0, member.load.y() * length / 2.0});
     }
     if (member.foundation > 0.0) {  // k per unit length along the drawn element, half to each end, along its normal

@@ -242,6 +242,8 @@ struct Model {
 
   int node_count() const { return static_cast<int>(nodes.size()); }
   int dof_count() const { return dofs_per_node * node_count(); }
+  /// An element's length as drawn (between its nodes).
+  double drawn_length(const Element& e) const { return (nodes[e.end].position - nodes[e.start].position).norm(); }
   /// Prescribed displacement of a dof at λ = 1 (0 when reference_prescribed is empty).
   double prescribed(int dof) const { return reference_prescribed.size() > 0 ? reference_prescribed[dof] : 0.0; }
   /// A constrained dof's displacement at load factor λ: its start plus λ times its increment.

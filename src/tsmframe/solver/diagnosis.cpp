@@ -24,7 +24,7 @@ std::string short_element_hint(const Model& model) {
     // Bars (hinged at both ends) do not bend: their depth says nothing.
     if (e.theory != BeamTheory::euler_bernoulli || !(e.section.EA > 0.0) || (e.release_start && e.release_end)) continue;
     const double depth = std::sqrt(12.0 * e.section.EI / e.section.EA);
-    const double ratio = (model.nodes[e.end].position - model.nodes[e.start].position).norm() / depth;
+    const double ratio = model.drawn_length(e) / depth;
     if (ratio < short_element_ratio) {
       ++count;
       shortest = std::min(shortest, ratio);
@@ -51,7 +51,7 @@ std::string cable_hint(const Model& model) {
   double limpest = INFINITY;
   for (const Element& e : model.elements) {
     if (!(e.section.EA > 0.0) || (e.release_start && e.release_end)) continue;
-    const double l0 = (model.nodes[e.end].position - model.nodes[e.start].position).norm();
+    const double l0 = model.drawn_length(e);
     const double ratio = e.section.EI / (e.section.EA * l0 * l0);
     if (ratio < limp) ++count, limpest = std::min(limpest, ratio);
   }
@@ -72,7 +72,7 @@ double shortest_element_at(const Model& model, int node) {
   double shortest = INFINITY;
   for (const Element& e : model.elements)
     if (e.start == node || e.end == node)
-      shortest = std::min(shortest, (model.nodes[e.end].position - model.nodes[e.start].position).norm());
+      shortest = std::min(shortest, model.drawn_length(e));
   return shortest;
 }
 

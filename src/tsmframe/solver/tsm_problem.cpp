@@ -41,7 +41,7 @@ TsmProblem::TsmProblem(assembly::GlobalSystem& system, const contact::ContactSet
   equations_.prescribed_size = model.reference_prescribed.lpNorm<Eigen::Infinity>();
   double shortest = model.elements.empty() ? 0.0 : std::numeric_limits<double>::infinity();
   for (const Element& e : model.elements)
-    shortest = std::min(shortest, (model.nodes[e.end].position - model.nodes[e.start].position).norm());
+    shortest = std::min(shortest, model.drawn_length(e));
   equations_.resolvable_move = resolvable_move(shortest);
   // Hinges can leave a mechanism inside a part (pinned bars in a row) that the supports' check,
   // which looks at parts as rigid bodies, does not see.

@@ -3,7 +3,6 @@
 // vertex (two contact elements at one node).
 #include <gtest/gtest.h>
 
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -49,6 +48,15 @@ Eigen::VectorXd bent_and_turned(const tsm::Model& model) {
   return D;
 }
 
+/// bent_and_turned with the post's free bottom (node 100) pressed 0.02 into the beam at x = 0.45
+/// (near α = 0.7 of its element).
+Eigen::VectorXd post_pressed_in(const tsm::Model& model) {
+  Eigen::VectorXd D = bent_and_turned(model);
+  const double x_c = 0.45;
+  D.segment<2>(3 * model.node_index(100)) << -0.05 * x_c * x_c + 0.01, 0.3 * x_c * x_c + 0.02;
+  return D;
+}
+
 TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
   for (const char* element : {"euler-bernoulli", "timoshenko"}) {
     const tsm::Model model = tsm::io::read_model(post_on_cantilever(element, 0.45));
@@ -57,10 +65,7 @@ TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
     tsm::contact::ContactSet tracker(model);
     std::vector<tsm::contact::ContactState> states = tracker.initial_states();
     // A bent, rotated state with the pusher pressed 0.02 into the beam near α = 0.7.
-    Eigen::VectorXd D = bent_and_turned(model);
-    const int c = model.node_index(100);
-    const double x_c = 0.45;
-    D.segment<2>(3 * c) << -0.05 * x_c * x_c + 0.01, 0.3 * x_c * x_c + 0.02;
+    const Eigen::VectorXd D = post_pressed_in(model);
     std::vector<double> rotations(model.elements.size(), 0.0);
     tsm::assembly::Evaluation e;
     system.evaluate(D, rotations, true, e);
@@ -79,7 +84,7 @@ TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
   }
 }
 
-// ---- Several points on one element (issue 27) ----
+// ---- The pattern's contact pairs ----
 
 TEST(ContactAssembly, APairNoLongerInTouchLeavesThePatternWhenForgottenAndTheTangentStaysTheSame) {
   // The post pressed onto the cantilever joins its node to the element's two in the pattern.
@@ -91,9 +96,7 @@ TEST(ContactAssembly, APairNoLongerInTouchLeavesThePatternWhenForgottenAndTheTan
   tsm::assembly::GlobalSystem system(model, dofs);
   tsm::contact::ContactSet tracker(model);
   std::vector<tsm::contact::ContactState> states = tracker.initial_states();
-  Eigen::VectorXd D = bent_and_turned(model);
-  const int c = model.node_index(100);
-  D.segment<2>(3 * c) << -0.05 * 0.45 * 0.45 + 0.01, 0.3 * 0.45 * 0.45 + 0.02;
+  const Eigen::VectorXd D = post_pressed_in(model);
   std::vector<double> rotations(model.elements.size(), 0.0);
   tsm::assembly::Evaluation e;
   system.evaluate(D, rotations, true, e);
@@ -130,15 +133,7 @@ TEST(ContactAssembly, APairTwoBeamsJoinBothWaysIsKeptWhileInUseTheOtherWayRound)
   // ending at P: the same pair of nodes, the contact node the other one. The pattern told to
   // forget what is not in use keeps the pair (it was kept as (contact node, other node), dropped
   // as unused while in use as (other, contact), and its block written past the pattern).
-  json m = {{"materials", {{"steel", {{"E", 2.05e11}, {"nu", 0.3}}}}},
-            {"sections", {{"bar", {{"A", 1.0e-3}, {"I", 1.0e-6}}}}},
-            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 2.0}, {"y", 0.0}},
-                                   {{"id", 3}, {"x", 3.0}, {"y", 0.05}}, {{"id", 4}, {"x", 1.0}, {"y", 0.05}}})},
-            {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 4}, {"material", "steel"}, {"section", "bar"}},
-                                     {{"from", 3}, {"to", 4}, {"divisions", 5}, {"material", "steel"}, {"section", "bar"}}})},
-            {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 3}, {"type", "fixed"}}})},
-            {"contacts", json::array({{{"between", {{0}, {1}}}}})}};
-  const tsm::Model model = tsm::io::read_model(m);
+  const tsm::Model model = tsm::io::read_model(crossing_cantilevers(json::array({{{"between", {{0}, {1}}}}}), 0.0, 4, 5));
   const auto node_at = [&](double x, double y) {
     for (int k = 0; k < model.node_count(); ++k)
       if ((model.nodes[k].position - Eigen::Vector2d(x, y)).norm() < 1e-9) return k;
@@ -168,10 +163,10 @@ TEST(ContactAssembly, APairTwoBeamsJoinBothWaysIsKeptWhileInUseTheOtherWayRound)
     return std::make_pair(D, active);
   };
   const auto [up, p_on_upper] = in_touch(P, 0.06);
-  system.evaluate(up, rotations, true, *std::make_unique<tsm::assembly::Evaluation>(), p_on_upper);
+  tsm::assembly::Evaluation e;
+  system.evaluate(up, rotations, true, e, p_on_upper);
   const auto [down, q_on_lower] = in_touch(Q, -0.06);
   system.forget_contact_pairs();
-  tsm::assembly::Evaluation e;
   ASSERT_NO_THROW(system.evaluate(down, rotations, true, e, q_on_lower));
   // The contact element's block between P and Q is in the tangent.
   const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent(), {});
@@ -183,6 +178,8 @@ TEST(ContactAssembly, APairTwoBeamsJoinBothWaysIsKeptWhileInUseTheOtherWayRound)
     }
   EXPECT_GT(coupling, 0.0);
 }
+
+// ---- Several points on one element (issue 27) ----
 
 TEST(ContactAssembly, TangentWithSeveralPointsOnOneElementMatchesFiniteDifferences) {
   // Three posts' free bottoms on the cantilever's third element (1/3 … 1/2), pressed into a bent,

@@ -15,21 +15,6 @@ namespace {
 
 using namespace tsm::test;
 
-/// Two overlapping cantilevers (examples/cantilever-on-cantilever-arc-length.json, 2 m, 20
-/// elements each), the upper one's tip pushed down by `load` in 10 steps, with `contacts`.
-json crossing_cantilevers(const json& contacts, double load) {
-  return {{"materials", {{"steel", {{"E", 2.05e11}, {"nu", 0.3}}}}},
-          {"sections", {{"bar", {{"A", 1.0e-3}, {"I", 1.0e-6}}}}},
-          {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", 2.0}, {"y", 0.0}},
-                                 {{"id", 3}, {"x", 3.0}, {"y", 0.05}}, {{"id", 4}, {"x", 1.0}, {"y", 0.05}}})},
-          {"members", json::array({{{"from", 1}, {"to", 2}, {"divisions", 20}, {"material", "steel"}, {"section", "bar"}},
-                                   {{"from", 3}, {"to", 4}, {"divisions", 20}, {"material", "steel"}, {"section", "bar"}}})},
-          {"supports", json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 3}, {"type", "fixed"}}})},
-          {"loads", json::array({{{"node", 4}, {"fy", -load}}})},
-          {"contacts", contacts},
-          {"analysis", {{"control", {{"type", "load"}, {"steps", 10}}}}}};
-}
-
 /// The compression at the contact of node `id` at the last step (0 if it has none or is inactive).
 double force_at(const tsm::Model& model, const tsm::solver::RunResult& r, int id) {
   for (size_t k = 0; k < model.contacts.size(); ++k)
