@@ -25,14 +25,18 @@ class ToyProblem final : public solver::Problem {
   double force(double u) const { return k_ * u + c_ * u * u * u; }
   double stiffness(double u) const { return k_ + 3.0 * c_ * u * u; }
   int evaluations() const { return evaluations_; }
+  /// How far from the solution Newton said each evaluation was, in order.
+  const std::vector<solver::Proximity>& proximities() const { return proximities_; }
   /// The reference load (1 unless set).
   void set_load(double load) { load_[0] = load; }
 
   const solver::Equations& equations() const override { return equations_; }
   bool has_contacts() const override { return false; }
   double step_fraction(const solver::State&, const Eigen::VectorXd&) override { return 1.0; }
-  bool evaluate(solver::State& state) override {
+  using solver::Problem::evaluate;
+  bool evaluate(solver::State& state, solver::Proximity proximity) override {
     ++evaluations_;
+    proximities_.push_back(proximity);
     internal_[0] = force(state.displacements[0]);
     tangent_ = stiffness(state.displacements[0]);
     return false;
@@ -72,6 +76,7 @@ class ToyProblem final : public solver::Problem {
   Eigen::VectorXd internal_ = Eigen::VectorXd::Zero(1), load_ = Eigen::VectorXd::Ones(1), none_;
   double tangent_ = 0.0;
   int evaluations_ = 0;
+  std::vector<solver::Proximity> proximities_;
 };
 
 }  // namespace tsm::test

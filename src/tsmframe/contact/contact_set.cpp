@@ -53,6 +53,14 @@ std::vector<ContactState> ContactSet::initial_states() const {
   return states;
 }
 
+bool ContactSet::bends_normals() const {
+  for (int k = 0; k < contact_count(); ++k) {
+    const ContactCandidates& c = geometry_.contact(k);
+    if (c.frame == ContactFrame::chord && c.normal == ContactNormal::deflected) return true;
+  }
+  return false;
+}
+
 std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<ContactState>& states, bool along_chords) const {
   std::vector<ActiveContact> active;
   std::vector<int> place;  // per element: its place in `active`, −1 none (made only when needed)

@@ -48,6 +48,9 @@ class ContactSet {
   explicit ContactSet(const Model& model) : geometry_(model) {}
 
   int contact_count() const { return geometry_.contact_count(); }
+  /// Whether some contact pushes along the bent beam's normal (`"normal": "deflected"`, the
+  /// chord frame's default): only then does evaluating along the chords' normals change anything.
+  bool bends_normals() const;
   /// States at the undeformed model: sides of every contact node against its candidates, and
   /// in touch where a node rests on an element as drawn (model/resting_contact).
   std::vector<ContactState> initial_states() const;

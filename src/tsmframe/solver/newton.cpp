@@ -15,6 +15,11 @@ namespace {
 // bring back quadratic convergence.
 constexpr double sliding_terms_below = 1e-2;
 
+// Far from the solution by that measure (Problem::evaluate, Proximity).
+Proximity proximity_of(const NewtonOutcome& out) {
+  return out.residual_norms.back() < sliding_terms_below ? Proximity::near : Proximity::far;
+}
+
 StepFailure failure_of(StepFailure::Reason reason) {
   StepFailure failure;
   failure.reason = reason;
@@ -45,7 +50,7 @@ NewtonOutcome NewtonSolver::step(const PathConstraint& constraint, State& state)
 
 PathCorrection NewtonSolver::solve(const PathConstraint& constraint, int iteration, const State& state,
                                    NewtonOutcome& out, Eigen::VectorXd*& correction) {
-  const bool with_optional_terms = iteration == 1 || out.residual_norms.back() < sliding_terms_below;
+  const bool with_optional_terms = iteration == 1 || proximity_of(out) == Proximity::near;
   const auto factorized = [&](const Factorisation f) {
     if (f.ok && iteration == 1) out.start_rounded = f.rounded;
     if (f.ok && f.negative_pivots >= 0) {
@@ -103,6 +108,7 @@ NewtonOutcome NewtonSolver::iterate(const PathConstraint& constraint, State& sta
   test_.begin_step();
   path_.begin_step(constraint, state);
   drive_norms_ = {};
+  been_near_ = false;
   if (problem_.has_contacts()) out.contact_iterates.push_back(problem_.contact_points(state));
   int unsettled = 0;  // iterates that met the criterion but changed the contacts (iterating on)
 
@@ -131,7 +137,11 @@ NewtonOutcome NewtonSolver::iterate(const PathConstraint& constraint, State& sta
     state.load_factor += taken.dlambda;
 
     // --- the structure at the iterate (its contacts settled there)
-    const bool contacts_changed = problem_.evaluate(state);
+    // Near once, near for the rest of the step: the structure's far and near models (contacts
+    // along their chords' normals or the bent beams') differ by Y·w', which on a beam bent at
+    // element scale is above the 10⁻² that tells far from near, and they would take turns.
+    been_near_ = been_near_ || proximity_of(out) == Proximity::near;
+    const bool contacts_changed = problem_.evaluate(state, been_near_ ? Proximity::near : Proximity::far);
     if (problem_.has_contacts()) out.contact_iterates.push_back(problem_.contact_points(state));
     if (const std::optional<StepFailure> failure = problem_.after_iterate(state)) return fail(out, *failure, it);
 
@@ -150,6 +160,7 @@ NewtonOutcome NewtonSolver::iterate(const PathConstraint& constraint, State& sta
       return fail(out, std::move(failure), it);
     }
     if (verdict.criterion != Criterion::none) {
+      been_near_ = true;  // balanced: whatever comes of the contacts, near
       const Settlement settlement = problem_.at_convergence(state);
       if (settlement.evaluated_again) {
         pass_ = passes_.update(state.load_factor, residual_);

@@ -76,6 +76,7 @@ class NewtonSolver {
   ConvergenceTest test_;
   ResidualPass pass_;       ///< the last pass over the unbalanced force
   std::array<double, 2> drive_norms_{};  ///< load control: the norms of iterate 0's drive (its right-hand side)
+  bool been_near_ = false;  ///< the step has had an iterate near the solution: every later one is evaluated near
   // Workspace of step(), kept between iterations and steps: no allocation per iteration. Under
   // load control only residual_ is used (the correction overwrites it).
   Eigen::VectorXd residual_, correction_, along_load_, along_residual_, drive_;

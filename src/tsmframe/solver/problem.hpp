@@ -43,6 +43,12 @@ struct Factorisation {
   std::optional<RoundedInertia> rounded;
 };
 
+/// How far Newton judges an iterate to be from the solution, by the relative residual before
+/// the correction that reached it (newton.cpp: far from 10⁻² up). Far off, Newton leaves the
+/// tangent's optional terms out, and the structure may evaluate a simpler model — one whose
+/// iterates are never accepted as converged (at_convergence evaluates them again, near).
+enum class Proximity { near, far };
+
 /// What the structure's passes at a converged iterate decided.
 struct Settlement {
   enum class Kind {
@@ -66,8 +72,10 @@ class Problem {
   // --- evaluation
   /// Evaluates the structure at `state` (its prescribed dofs set from λ first) and runs the
   /// structure's passes at this iterate (contacts detected, handed over, released). Returns
-  /// whether those changed the state beyond its displacements (the contact set).
-  virtual bool evaluate(State& state) = 0;
+  /// whether those changed the state beyond its displacements (the contact set). `proximity`:
+  /// far, the contacts may push along their chords' normals (tsm_problem.cpp).
+  virtual bool evaluate(State& state, Proximity proximity) = 0;
+  bool evaluate(State& state) { return evaluate(state, Proximity::near); }
   /// F at the last evaluation, all dofs.
   virtual const Eigen::VectorXd& internal_force() const = 0;
   /// F_ref at the last evaluation (follower loads on the current geometry), all dofs.

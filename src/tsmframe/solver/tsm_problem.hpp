@@ -24,7 +24,8 @@ class TsmProblem final : public Problem {
 
   const Equations& equations() const override { return equations_; }
   bool has_contacts() const override { return contacts_ != nullptr; }
-  bool evaluate(State& state) override { return evaluate(state, false); }
+  using Problem::evaluate;
+  bool evaluate(State& state, Proximity proximity) override { return evaluate(state, proximity, false); }
   const Eigen::VectorXd& internal_force() const override { return eval_.internal_force; }
   const Eigen::VectorXd& reference_load() const override {
     return eval_.reference_load.size() > 0 ? eval_.reference_load : system_.model().reference_load;
@@ -82,7 +83,10 @@ class TsmProblem final : public Problem {
   /// Evaluates at `state` and settles its contacts (detect, release, hand over; re-evaluating
   /// after each change). Returns whether the contact set changed. `contacts_only`: the state is
   /// the last evaluation's, only its contacts changed (what they touch is evaluated again).
-  bool evaluate(State& state, bool contacts_only);
+  bool evaluate(State& state, Proximity proximity, bool contacts_only);
+  /// Whether an iterate `proximity` from the solution pushes along the chords' normals: far,
+  /// with many points in touch along bent beams' normals (tsm_problem.cpp).
+  bool far_along_chords(const State& state, Proximity proximity) const;
   /// The contact elements standing in for beam elements at `state` (none without contacts).
   std::vector<contact::ActiveContact> active_contacts(const State& state) const;
   /// Analyses the tangent's pattern again where a contact has joined new nodes.
@@ -110,7 +114,8 @@ class TsmProblem final : public Problem {
   int max_switches_ = 0, max_reversals_ = 0;  ///< the current step's budget
   bool predictor_pending_ = false;  ///< the step's first evaluation (the predictor's iterate) is still to come
   bool landing_cut_ = false;        ///< the next evaluation's iterate is one the landing cut short (step_fraction)
-  bool along_chords_ = false;       ///< the last evaluation's: every point pushes along its chord's normal
+  bool along_chords_ = false;       ///< the last evaluation's: every point pushes along its chord's normal (far, or a landing)
+  bool bends_normals_ = false;      ///< some contact pushes along the bent beam's normal (ContactSet::bends_normals)
   LinearSolver solver_;
   /// The last factorisation's outcome and what it tells of the tangent's inertia (`symmetric`:
   /// no follower load's skew terms in it).

@@ -40,6 +40,32 @@ TEST(Newton, LoadControlFindsTheSpringsEquilibriumInOneStep) {
     if (r[i] < 1e-2 && r[i + 1] > 1e-14) EXPECT_LT(r[i + 1], 10.0 * r[i] * r[i]) << "iterate " << i + 1;
 }
 
+TEST(Newton, IteratesAreFarUntilTheResidualFirstFallsBelowOnePercentAndNearFromThenOn) {
+  // A stiff cubic spring loaded far beyond its linear range: several iterates above 10⁻²
+  // (Problem::evaluate's far, where a structure may evaluate a simpler model), then near for
+  // the rest of the step, whatever the residual does after.
+  tsm::test::ToyProblem spring(1.0, 1e3);
+  NewtonSolver newton(spring, {1e-12, 50});
+  State state = tsm::test::ToyProblem::start();
+  newton.reset(state);
+  PathConstraint load;
+  load.load_increment = 1e3;
+  const NewtonOutcome out = newton.step(load, state);
+  ASSERT_EQ(out.status, Status::converged);
+  const std::vector<tsm::solver::Proximity>& said = spring.proximities();
+  ASSERT_EQ(said.size(), static_cast<size_t>(out.iterations) + 1);  // the reset's, then each iterate's
+  EXPECT_EQ(said.front(), tsm::solver::Proximity::near);
+  bool been_near = false;
+  int far = 0;
+  for (int it = 1; it <= out.iterations; ++it) {
+    been_near = been_near || out.residual_norms[it - 1] < 1e-2;  // the residual its correction came from
+    EXPECT_EQ(said[it], been_near ? tsm::solver::Proximity::near : tsm::solver::Proximity::far) << "iterate " << it;
+    far += said[it] == tsm::solver::Proximity::far;
+  }
+  EXPECT_GE(far, 3);
+  EXPECT_NEAR(state.displacements[0], hardening_root(1.0, 1e3, 1e3), 1e-10);  // Cardano loses digits here
+}
+
 TEST(Newton, DisplacementControlPutsTheDofOnItsTargetAndTheLoadOnTheCurve) {
   tsm::test::ToyProblem spring(2.0, -1.0);  // softening: past its maximum at u = √(2/3)
   NewtonSolver newton(spring, {1e-12, 50});
