@@ -5,6 +5,7 @@
 #include <utility>
 
 #include <Eigen/LU>
+#include <Eigen/SparseCore>
 
 #include "tsmframe/contact/deflected_normal_element.hpp"
 #include "tsmframe/contact/multi_point_law.hpp"
@@ -136,13 +137,18 @@ MultiPointResponse multi_point_deflected_response(const MultiPointElementData& d
   const Slopes w = shape_slopes(data, r, law, with_tangent);
   const VectorXd Y = r.forces.tail(k);
   const double l = r.chord.length;
-  MatrixXd G = MatrixXd::Zero(size, k);  // column p: ∂α_p/∂x (N10 on i, j, c_p)
+  // G and B have nine entries per column (i, j, c_p), J as many: their products are taken
+  // sparse (multi_point_response), O(k²) work for k points where dense ones were O(k³).
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(9 * k);
   for (int p = 0; p < k; ++p) {
     const Vector9 g = alpha_gradient(r.chord, r.alpha[p], r.normal[p]);
     const std::array<int, 9> dofs = point_dofs(p);
-    for (int a = 0; a < 9; ++a) G(dofs[a], p) = g[a];
+    for (int a = 0; a < 9; ++a) entries.emplace_back(dofs[a], p, g[a]);
   }
-  const MatrixXd B = G * w.value.asDiagonal();  // column p: w_α,p ∂α_p/∂x
+  Eigen::SparseMatrix<double> G(size, k);  // column p: ∂α_p/∂x (N10 on i, j, c_p)
+  G.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SparseMatrix<double> B = G * w.value.asDiagonal();  // column p: w_α,p ∂α_p/∂x
   r.nodal_forces -= B * Y;                      // N18: J S − Σ_p T_p ∂α_p/∂x
   const MatrixXd point_chord = r.point_u;
   r.point_u -= B;  // N18: p_ν,p = p_c,p − w_α,p ∂α_p/∂x
@@ -150,12 +156,16 @@ MultiPointResponse multi_point_deflected_response(const MultiPointElementData& d
   if (!with_tangent) return r;
 
   // N20: K = K_chord − Σ_p ∂α_p/∂x (∇T_p)ᵀ − Σ_p T_p ∂²α_p, ∇T_p = w_α,p ∇Y_p + Y_p ∇w_α,p; N21 splits it.
-  const MatrixXd J = multi_point_equilibrium_matrix(r.chord, r.alpha);
+  const Eigen::SparseMatrix<double> J = multi_point_equilibrium_matrix(r.chord, r.alpha).sparseView();
   const MatrixXd dw = J * w.d.transpose() + G * w.d_alpha.transpose();  // column p: ∇w_α,p (N19)
   const MatrixXd& C_inverse = r.point_stiffness;
-  const MatrixXd turning = G * Y.asDiagonal() * dw.transpose();  // Σ_p Y_p ∂α_p/∂x ∇w_α,pᵀ
-  const MatrixXd lever = B * C_inverse * point_chord.transpose();
-  r.symmetric_tangent += -(lever + lever.transpose()) + B * C_inverse * B.transpose() - (turning + turning.transpose());
+  const MatrixXd Y_dw = Y.asDiagonal() * dw.transpose();
+  const MatrixXd turning = G * Y_dw;  // Σ_p Y_p ∂α_p/∂x ∇w_α,pᵀ
+  const MatrixXd C_inverse_chord = C_inverse * point_chord.transpose();
+  const MatrixXd lever = B * C_inverse_chord;
+  const MatrixXd B_C_inverse = B * C_inverse;
+  r.symmetric_tangent += -(lever + lever.transpose()) - (turning + turning.transpose());
+  r.symmetric_tangent += B_C_inverse * B.transpose();
   for (int p = 0; p < k; ++p) {  // −T_p ∂²α_p on i, j, c_p
     const Matrix9 hessian = alpha_hessian(r.chord, r.alpha[p], r.normal[p]);
     const std::array<int, 9> dofs = point_dofs(p);
@@ -164,10 +174,11 @@ MultiPointResponse multi_point_deflected_response(const MultiPointElementData& d
       for (int b = 0; b < 9; ++b) r.symmetric_tangent(dofs[a], dofs[b]) -= T * hessian(a, b);
   }
   if (data.sliding_term) {  // N21: column p gains w_α,p P_ν C⁻¹ e_p − Σ_q w_α,q (∂Y_q/∂α_p) g_q + Y_p ∇w_α,p
-    r.sliding_u += r.point_u * C_inverse * w.value.asDiagonal() - B * law.forces.dpoint_forces + dw * Y.asDiagonal();
-    r.sliding_v = G;
+    r.sliding_u += r.point_u * (C_inverse * w.value.asDiagonal()) - B * law.forces.dpoint_forces + dw * Y.asDiagonal();
+    r.sliding_v = MatrixXd(G);
   }
-  r.tangent = r.symmetric_tangent + r.sliding_u * r.sliding_v.transpose();
+  r.tangent = r.symmetric_tangent;
+  r.tangent += r.sliding_u * (data.sliding_term ? G : Eigen::SparseMatrix<double>(r.sliding_v.sparseView())).transpose();
   return r;
 }
 

@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include <Eigen/SparseCore>
+
 namespace tsm::contact {
 namespace {
 
@@ -80,7 +82,10 @@ MultiPointResponse multi_point_response(const MultiPointElementData& data, const
   r.forces.resize(3 + k);
   r.forces << data.k0(0, 0) * r.chord.elongation, f.moments, f.point_forces;
 
-  const Eigen::MatrixXd J = multi_point_equilibrium_matrix(r.chord, r.alpha);
+  // J has at most nine entries per column (i, j, c_p): products with it are taken sparse, which
+  // keeps an element of k points at O(k²) work there instead of O(k³) (~100 points on one coarse
+  // element of a fine strip spent seconds per iteration).
+  const Eigen::SparseMatrix<double> J = multi_point_equilibrium_matrix(r.chord, r.alpha).sparseView();
   r.nodal_forces = J * r.forces;
   r.force_per_Y = Eigen::VectorXd::Ones(k);
   const PointForceMap map = point_force_map(law);  // K14
@@ -90,7 +95,8 @@ MultiPointResponse multi_point_response(const MultiPointElementData& data, const
   r.sliding_v = Eigen::MatrixXd::Zero(size, k);
   if (!with_tangent) return r;
 
-  r.tangent = J * law_tangent(map, data.k0(0, 0), k_plain) * J.transpose();  // K14
+  const Eigen::MatrixXd JD = J * law_tangent(map, data.k0(0, 0), k_plain);
+  r.tangent = JD * J.transpose();  // K14
   // K_G (K15): N ∂²l + (M_i + M_j) ∂²(−β) on i, j, and Y_p ∂²δy_p on the translations of i, j, c_p.
   r.tangent.topLeftCorner<6, 6>() += element::geometric_stiffness(r.chord, r.forces.head<3>());
   for (int p = 0; p < k; ++p) add_point_hessian(r.tangent, p, r.chord, r.alpha[p], r.normal[p], f.point_forces[p]);
@@ -98,15 +104,16 @@ MultiPointResponse multi_point_response(const MultiPointElementData& data, const
 
   if (data.sliding_term) {
     // a_p, b_p follow the geometry: J (∂S/∂α_p)(∂α_p/∂x)ᵀ for each point (K13, K15).
+    Eigen::MatrixXd dS = Eigen::MatrixXd::Zero(3 + k, k);  // column p: ∂S/∂α_p
+    dS.middleRows(1, 2) = f.dmoments;
+    dS.bottomRows(k) = f.dpoint_forces;
+    r.sliding_u = J * dS;
     for (int p = 0; p < k; ++p) {
-      Eigen::VectorXd dS = Eigen::VectorXd::Zero(3 + k);
-      dS.segment<2>(1) = f.dmoments.col(p);
-      dS.tail(k) = f.dpoint_forces.col(p);
       const double rho = r.normal[p], a = r.alpha[p];
-      r.sliding_u.col(p) = J * dS;
       r.sliding_v.col(p) = spread(size, p, ((a - 1.0) / l) * e - (rho / (l * l)) * n, (rho / (l * l)) * n - (a / l) * e, e / l);
     }
-    r.tangent += r.sliding_u * r.sliding_v.transpose();
+    const Eigen::SparseMatrix<double> v = r.sliding_v.sparseView();
+    r.tangent += r.sliding_u * v.transpose();
   }
   return r;
 }

@@ -64,8 +64,8 @@ void apply_pair_floor(MultiPointLaw& law, double floor) {
     for (int q = p + 1; q < k; ++q) {
       const double d = C(p, p) + C(q, q) - 2.0 * C(p, q);
       if (!(d < floor)) continue;
-      const double dd_p = law.dcompliance[p](p, p) - 2.0 * law.dcompliance[p](p, q);
-      const double dd_q = law.dcompliance[q](q, q) - 2.0 * law.dcompliance[q](p, q);
+      const double dd_p = law.dcompliance.rows(p, p) - 2.0 * law.dcompliance.rows(p, q);
+      const double dd_q = law.dcompliance.rows(q, q) - 2.0 * law.dcompliance.rows(q, p);
       bindings.push_back({p, q, 0.25 * (floor - d), -0.25 * dd_p, -0.25 * dd_q});
     }
   auto add_pair = [](Eigen::MatrixXd& m, int p, int q, double value) {
@@ -74,14 +74,38 @@ void apply_pair_floor(MultiPointLaw& law, double floor) {
     m(p, q) -= value;
     m(q, p) -= value;
   };
+  // ∂C/∂α_p gains the pair's (e_p − e_q)(e_p − e_q)ᵀ ∂ε/∂α_p: in row p, and at C_qq.
+  auto add_rate = [&law](int p, int q, double value) {
+    law.dcompliance.rows(p, p) += value;
+    law.dcompliance.rows(p, q) -= value;
+    law.dcompliance.diagonals.push_back({p, q, value});
+  };
   for (const Binding& b : bindings) {
     add_pair(law.compliance, b.p, b.q, b.epsilon);
-    add_pair(law.dcompliance[b.p], b.p, b.q, b.depsilon_p);
-    add_pair(law.dcompliance[b.q], b.p, b.q, b.depsilon_q);
+    add_rate(b.p, b.q, b.depsilon_p);
+    add_rate(b.q, b.p, b.depsilon_q);
   }
 }
 
 }  // namespace
+
+Eigen::VectorXd ComplianceRates::times(int p, const Eigen::VectorXd& Y) const {
+  Eigen::VectorXd out = rows.row(p).transpose() * Y[p];  // column p
+  out[p] += rows.row(p).dot(Y) - rows(p, p) * Y[p];      // row p, its diagonal once
+  for (const Diagonal& d : diagonals)
+    if (d.p == p) out[d.q] += d.value * Y[d.q];
+  return out;
+}
+
+Eigen::MatrixXd ComplianceRates::dense(int p) const {
+  const Eigen::Index k = rows.rows();
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(k, k);
+  m.row(p) = rows.row(p);
+  m.col(p) = rows.row(p).transpose();
+  for (const Diagonal& d : diagonals)
+    if (d.p == p) m(d.q, d.q) += d.value;
+  return m;
+}
 
 double clamped_influence(const element::SectionStiffness& section, double l0, double x, double xi) {
   const double left = std::clamp(std::min(x, xi), 0.0, l0), right = std::clamp(std::max(x, xi), 0.0, l0);
@@ -133,13 +157,13 @@ MultiPointLaw multi_point_law(const element::SectionStiffness& section, double l
   law.h.setZero(2, k);
   law.dh.setZero(2, k);
   law.compliance.setZero(k, k);
-  law.dcompliance.assign(k, Eigen::MatrixXd::Zero(k, k));
+  law.dcompliance.rows.setZero(k, k);
   for (int p = 0; p < k; ++p) {  // each point alone: point_load_law, its floor included (K4, K10)
     const PointLoadLaw point = point_load_law(section, l0, alpha[p], edge, min_compliance);
     law.h.col(p) << point.h_i, point.h_j;
     law.dh.col(p) << point.dh_i, point.dh_j;
     law.compliance(p, p) = point.compliance;
-    law.dcompliance[p](p, p) = point.dcompliance;
+    law.dcompliance.rows(p, p) = point.dcompliance;
   }
   for (int p = 0; p < k; ++p)  // the points' coupling through the clamped beam (K5, K9)
     for (int q = p + 1; q < k; ++q) {
@@ -147,8 +171,8 @@ MultiPointLaw multi_point_law(const element::SectionStiffness& section, double l
       law.compliance(p, q) = law.compliance(q, p) = clamped_influence(section, l0, x, xi);
       const double dp = inside(alpha[p]) ? l0 * clamped_influence_slope(section, l0, x, xi) : 0.0;
       const double dq = inside(alpha[q]) ? l0 * clamped_influence_slope(section, l0, xi, x) : 0.0;
-      law.dcompliance[p](p, q) = law.dcompliance[p](q, p) = dp;
-      law.dcompliance[q](p, q) = law.dcompliance[q](q, p) = dq;
+      law.dcompliance.rows(p, q) = dp;
+      law.dcompliance.rows(q, p) = dq;
     }
   apply_pair_floor(law, compliance_floor(section, l0, edge, min_compliance));  // K11
   return law;
@@ -171,9 +195,9 @@ ConnectedMultiPointLaw connected_multi_point_law(const MultiPointLaw& law, const
     const double krr = K(r, r);
     const Eigen::RowVectorXd Hr = H.row(r), dHr = dH.row(r);
     C += Hr.transpose() * Hr / krr;
-    for (int p = 0; p < k; ++p) {
-      out.law.dcompliance[p].row(p) += dHr[p] * Hr / krr;
-      out.law.dcompliance[p].col(p) += dHr[p] * Hr.transpose() / krr;
+    for (int p = 0; p < k; ++p) {  // row p and column p: twice on the diagonal
+      out.law.dcompliance.rows.row(p) += dHr[p] * Hr / krr;
+      out.law.dcompliance.rows(p, p) += dHr[p] * Hr[p] / krr;
     }
     H -= column * Hr / krr;
     dH -= column * dHr / krr;
@@ -189,8 +213,8 @@ ConnectedMultiPointLaw connected_multi_point_law(const MultiPointLaw& law, const
   const Eigen::Matrix2Xd G = A * H, FG = F * G;
   for (int p = 0; p < k; ++p) {
     const Eigen::VectorXd w = FG.transpose() * dH.col(p);  // ∂(Hᵀ F A H)/∂α_p = e_p wᵀ + w e_pᵀ
-    out.law.dcompliance[p].row(p) += w.transpose();
-    out.law.dcompliance[p].col(p) += w;
+    out.law.dcompliance.rows.row(p) += w.transpose();
+    out.law.dcompliance.rows(p, p) += w[p];
   }
   Eigen::MatrixXd added = H.transpose() * FG;
   C += 0.5 * (added + added.transpose());  // symmetric up to rounding
@@ -229,12 +253,14 @@ MultiPointForces multi_point_forces(const MultiPointLaw& law, const Eigen::Matri
   if (k > 0) {
     const Eigen::LLT<Eigen::MatrixXd> C(law.compliance);
     f.point_forces = C.solve(deflections + law.h.transpose() * theta);  // K2
-    for (int p = 0; p < k; ++p) {  // K13
-      Eigen::VectorXd rhs = -law.dcompliance[p] * f.point_forces;
-      rhs[p] += law.dh.col(p).dot(theta);
-      f.dpoint_forces.col(p) = C.solve(rhs);
-      f.dmoments.col(p) = law.dh.col(p) * f.point_forces[p] + law.h * f.dpoint_forces.col(p);
+    Eigen::MatrixXd rhs(k, k);  // K13: column p, −∂C/∂α_p Y + e_p ∂h_pᵀθ
+    for (int p = 0; p < k; ++p) {
+      rhs.col(p) = -law.dcompliance.times(p, f.point_forces);
+      rhs(p, p) += law.dh.col(p).dot(theta);
     }
+    f.dpoint_forces = C.solve(rhs);
+    f.dmoments = law.dh * f.point_forces.asDiagonal();
+    f.dmoments += law.h * f.dpoint_forces;
   }
   f.moments = k_plain * theta + law.h * f.point_forces;  // K2
   return f;

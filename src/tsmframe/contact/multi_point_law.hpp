@@ -31,12 +31,30 @@ double clamped_influence_cross_slope(const element::SectionStiffness& section, d
 /// point_load_law clamps c to next to a node (K10), and the pair floor's bound (K11).
 double compliance_floor(const element::SectionStiffness& section, double l0, double edge, double min_compliance);
 
+/// The α-derivatives of C, ∂C/∂α_p for p = 0 … k−1, in O(k²) numbers rather than k dense
+/// matrices: moving point p changes row and column p of C (K9; the hinge and spring terms of
+/// K12 too), and a pair floor binding p with q also C_qq (K11).
+struct ComplianceRates {
+  /// Row p: ∂C_pq/∂α_p for every q (the diagonal ∂C_pp/∂α_p); ∂C/∂α_p is that row and its
+  /// mirror column.
+  Eigen::MatrixXd rows;
+  struct Diagonal {
+    int p = 0, q = 0;      ///< ∂C_qq/∂α_p (q ≠ p), from a pair floor
+    double value = 0.0;
+  };
+  std::vector<Diagonal> diagonals;
+  /// ∂C/∂α_p · Y.
+  Eigen::VectorXd times(int p, const Eigen::VectorXd& Y) const;
+  /// ∂C/∂α_p as a dense k×k matrix (for checks; O(k²) each).
+  Eigen::MatrixXd dense(int p) const;
+};
+
 /// The law at k points: H, C and their α-derivatives.
 struct MultiPointLaw {
   Eigen::Matrix2Xd h;           ///< H (2×k): column p = (h_i, h_j) at α_p (K4)
   Eigen::MatrixXd compliance;   ///< C (k×k) with its floors (K10, K11): symmetric positive definite
   Eigen::Matrix2Xd dh;          ///< column p = ∂h_p/∂α_p; ∂H/∂α_p is that column alone (K8)
-  std::vector<Eigen::MatrixXd> dcompliance;  ///< ∂C/∂α_p, p = 0 … k−1 (K9–K11)
+  ComplianceRates dcompliance;  ///< ∂C/∂α_p, p = 0 … k−1 (K9–K11)
   int size() const { return static_cast<int>(h.cols()); }
 };
 
