@@ -304,6 +304,7 @@ bool TsmProblem::name_unloaded_mechanism(const State& state, StepFailure& failur
 
 void TsmProblem::explain(const State& state, StepFailure& failure) {
   landing_cut_ = false;  // a step that failed between its cut and the iterate: the retry starts afresh
+  along_chords_ = false;  // nor does the failed iterate's model outlive it (element_forces of the restored state)
   failure.hinged = hinged_;
   failure.contacts = contacts_ != nullptr;
   const Model& model = system_.model();
@@ -488,7 +489,11 @@ std::vector<ContactPoint> TsmProblem::contact_points(const State& state) const {
 }
 
 Eigen::VectorXd TsmProblem::element_forces(const State& state) const {
-  return system_.element_forces(physical(state), state.chord_rotations, active_contacts(state));
+  // A converged state's: its points push along their own normals, whatever model the last
+  // evaluation (a failed attempt's far iterate) used.
+  const std::vector<contact::ActiveContact> active =
+      contacts_ ? contacts_->active_contacts(state.contacts, false) : std::vector<contact::ActiveContact>();
+  return system_.element_forces(physical(state), state.chord_rotations, active);
 }
 
 Eigen::VectorXd TsmProblem::reactions(double load_factor) const {
