@@ -150,7 +150,8 @@ MultiPointResponse multi_point_deflected_response(const MultiPointElementData& d
   G.setFromTriplets(entries.begin(), entries.end());
   const Eigen::SparseMatrix<double> B = G * w.value.asDiagonal();  // column p: w_α,p ∂α_p/∂x
   r.nodal_forces -= B * Y;                      // N18: J S − Σ_p T_p ∂α_p/∂x
-  const MatrixXd point_chord = r.point_u;
+  // p_c,p lives on i, j and c_p too (J's columns N, M and Y_p): kept sparse for the products below.
+  const Eigen::SparseMatrix<double> point_chord = r.point_u.sparseView();
   r.point_u -= B;  // N18: p_ν,p = p_c,p − w_α,p ∂α_p/∂x
   r.force_per_Y = (1.0 + (w.value / l).array().square()).sqrt().matrix();  // |ν_p|, N3
   if (!with_tangent) return r;
@@ -161,9 +162,8 @@ MultiPointResponse multi_point_deflected_response(const MultiPointElementData& d
   const MatrixXd& C_inverse = r.point_stiffness;
   const MatrixXd Y_dw = Y.asDiagonal() * dw.transpose();
   const MatrixXd turning = G * Y_dw;  // Σ_p Y_p ∂α_p/∂x ∇w_α,pᵀ
-  const MatrixXd C_inverse_chord = C_inverse * point_chord.transpose();
-  const MatrixXd lever = B * C_inverse_chord;
   const MatrixXd B_C_inverse = B * C_inverse;
+  const MatrixXd lever = B_C_inverse * point_chord.transpose();
   r.symmetric_tangent += -(lever + lever.transpose()) - (turning + turning.transpose());
   r.symmetric_tangent += B_C_inverse * B.transpose();
   for (int p = 0; p < k; ++p) {  // −T_p ∂²α_p on i, j, c_p
@@ -174,11 +174,12 @@ MultiPointResponse multi_point_deflected_response(const MultiPointElementData& d
       for (int b = 0; b < 9; ++b) r.symmetric_tangent(dofs[a], dofs[b]) -= T * hessian(a, b);
   }
   if (data.sliding_term) {  // N21: column p gains w_α,p P_ν C⁻¹ e_p − Σ_q w_α,q (∂Y_q/∂α_p) g_q + Y_p ∇w_α,p
-    r.sliding_u += r.point_u * (C_inverse * w.value.asDiagonal()) - B * law.forces.dpoint_forces + dw * Y.asDiagonal();
+    const Eigen::SparseMatrix<double> point_normal = point_chord - B;  // p_ν, as r.point_u
+    r.sliding_u += point_normal * (C_inverse * w.value.asDiagonal()) - B * law.forces.dpoint_forces + dw * Y.asDiagonal();
     r.sliding_v = MatrixXd(G);
   }
   r.tangent = r.symmetric_tangent;
-  r.tangent += r.sliding_u * (data.sliding_term ? G : Eigen::SparseMatrix<double>(r.sliding_v.sparseView())).transpose();
+  if (data.sliding_term) r.tangent += r.sliding_u * G.transpose();
   return r;
 }
 

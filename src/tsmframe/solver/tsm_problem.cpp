@@ -99,8 +99,9 @@ bool TsmProblem::evaluate(State& state, Proximity proximity, bool contacts_only)
   return changed;
 }
 
-bool TsmProblem::far_along_chords(const State& state, Proximity proximity) const {
+bool TsmProblem::far_along_chords(const State& state, Proximity proximity) {
   if (proximity != Proximity::far || !bends_normals_) return false;
+  if (far_along_chords_) return true;  // for the rest of the step's far iterates: no switching to and fro about the count
   // Far off, the points' Y measure how deep the iterates ran them into their beams, up to the
   // stiffness cap (~10¹⁰ N on a press whose beams carry 10² N per point), not the beams' forces;
   // along the bent beams' normals, which tilt with α, each then pushes sideways by Y·w', and
@@ -111,8 +112,9 @@ bool TsmProblem::far_along_chords(const State& state, Proximity proximity) const
   // costs an iterate (the examples, at most ~100 points in touch: 9 % more iterations; the
   // arc-length cantilever 45 → 69 steps). bench/README "Far off, along the chords".
   constexpr std::ptrdiff_t many_points = 200;
-  return std::count_if(state.contacts.begin(), state.contacts.end(),
-                       [](const contact::ContactState& c) { return c.active; }) >= many_points;
+  far_along_chords_ = std::count_if(state.contacts.begin(), state.contacts.end(),
+                                    [](const contact::ContactState& c) { return c.active; }) >= many_points;
+  return far_along_chords_;
 }
 
 std::vector<contact::ActiveContact> TsmProblem::active_contacts(const State& state) const {
@@ -192,6 +194,7 @@ void TsmProblem::begin_step(const State& state) {
   max_reversals_ = 4 * static_cast<int>(state.contacts.size());
   predictor_pending_ = true;
   landing_cut_ = false;
+  far_along_chords_ = false;
   system_.forget_contact_pairs();  // the pairs the last step's iterates joined and its end no longer uses
   from_unloaded_ = physical(state).isZero() && (dead_load().size() == 0 || dead_load().isZero());
 }

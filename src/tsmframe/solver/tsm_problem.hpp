@@ -86,7 +86,7 @@ class TsmProblem final : public Problem {
   bool evaluate(State& state, Proximity proximity, bool contacts_only);
   /// Whether an iterate `proximity` from the solution pushes along the chords' normals: far,
   /// with many points in touch along bent beams' normals (tsm_problem.cpp).
-  bool far_along_chords(const State& state, Proximity proximity) const;
+  bool far_along_chords(const State& state, Proximity proximity);
   /// The contact elements standing in for beam elements at `state` (none without contacts).
   std::vector<contact::ActiveContact> active_contacts(const State& state) const;
   /// Analyses the tangent's pattern again where a contact has joined new nodes.
@@ -116,6 +116,7 @@ class TsmProblem final : public Problem {
   bool landing_cut_ = false;        ///< the next evaluation's iterate is one the landing cut short (step_fraction)
   bool along_chords_ = false;       ///< the last evaluation's: every point pushes along its chord's normal (far, or a landing)
   bool bends_normals_ = false;      ///< some contact pushes along the bent beam's normal (ContactSet::bends_normals)
+  bool far_along_chords_ = false;   ///< this step's far iterates push along the chords (far_along_chords)
   LinearSolver solver_;
   /// The last factorisation's outcome and what it tells of the tangent's inertia (`symmetric`:
   /// no follower load's skew terms in it).
