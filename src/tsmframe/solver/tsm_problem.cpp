@@ -101,7 +101,7 @@ bool TsmProblem::evaluate(State& state, Proximity proximity, bool contacts_only)
 
 bool TsmProblem::far_along_chords(const State& state, Proximity proximity) {
   if (proximity != Proximity::far || !bends_normals_) return false;
-  if (far_along_chords_) return true;  // for the rest of the step's far iterates: no switching to and fro about the count
+  if (far_along_chords_) return true;  // the step's far iterates stay so: no switching about the count
   // Far off, the points' Y measure how deep the iterates ran them into their beams, up to the
   // stiffness cap (~10¹⁰ N on a press whose beams carry 10² N per point), not the beams' forces;
   // along the bent beams' normals, which tilt with α, each then pushes sideways by Y·w', and

@@ -81,7 +81,8 @@ class TsmProblem final : public Problem {
   Eigen::VectorXd trial_;  ///< step_fraction()'s: the iterate a whole correction would reach
   bool from_unloaded_ = false;        ///< the step began at the unloaded state (begin_step)
   /// Evaluates at `state` and settles its contacts (detect, release, hand over; re-evaluating
-  /// after each change). Returns whether the contact set changed. `contacts_only`: the state is
+  /// after each change). Returns whether the contact set changed, or the points' normals turned
+  /// back from the chords' to the bent beams' (Problem::evaluate). `contacts_only`: the state is
   /// the last evaluation's, only its contacts changed (what they touch is evaluated again).
   bool evaluate(State& state, Proximity proximity, bool contacts_only);
   /// Whether an iterate `proximity` from the solution pushes along the chords' normals: far,
