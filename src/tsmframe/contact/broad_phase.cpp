@@ -27,9 +27,13 @@ std::uint64_t displacement_stamp(const Eigen::VectorXd& D) {
   return hash;
 }
 
-StepStart step_start(Eigen::VectorXd D) {
+StepStart step_start(Eigen::VectorXd D, std::vector<double> rotations) {
   const std::uint64_t stamp = displacement_stamp(D);
-  return {std::move(D), stamp};
+  return {std::move(D), stamp, std::move(rotations)};
+}
+
+StepStart unloaded_start(const Model& model) {
+  return step_start(Eigen::VectorXd::Zero(model.dof_count()), std::vector<double>(model.elements.size(), 0.0));
 }
 
 namespace {

@@ -24,12 +24,15 @@ namespace tsm::contact {
 std::uint64_t displacement_stamp(const Eigen::VectorXd& displacements);
 
 /// The displacements at a step's start, where the near lists were made, with their fingerprint
-/// (taken once per step).
+/// (taken once per step), and the chords' rotations there (the sides not kept are read there).
 struct StepStart {
   Eigen::VectorXd displacements;
   std::uint64_t stamp = 0;
+  std::vector<double> rotations;
 };
-StepStart step_start(Eigen::VectorXd displacements);
+StepStart step_start(Eigen::VectorXd displacements, std::vector<double> rotations);
+/// The unloaded state as a step's start (where ContactSet::initial_states takes the references).
+StepStart unloaded_start(const Model& model);
 
 /// The chords of the candidate elements at one state on a grid (util/segment_grid), made once
 /// for a pass over the contacts: which lie near a node without a look at every one.

@@ -25,18 +25,16 @@ void add(const HandOver& h, ContactChanges& changes) {
 
 std::vector<ContactState> ContactSet::initial_states() const {
   const Model& model = geometry_.model();
-  const Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
-  const std::vector<double> rotations(model.elements.size(), 0.0);
+  const StepStart start = unloaded_start(model);
+  const Eigen::VectorXd& D = start.displacements;
   std::vector<ContactState> states(contact_count());
   Occupancy occupancy(model.elements.size(), model.node_count());
-  const std::uint64_t stamp = displacement_stamp(D);
   ChordFrames frames(geometry_, D);
   const CandidateChords chords(geometry_, D);
   const auto resting = resting_contacts(model);
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
-    reset_sides(geometry_, contact, D, rotations, 0, states[k], &frames);  // no sides before: 0 on a centre line
-    list_near_candidates(geometry_, contact, D, stamp, chords, states[k].reference);
+    reset_near_sides(geometry_, contact, start, chords, frames, states[k]);  // no sides before: 0 on a centre line
     // Resting on an element as drawn (model/resting_contact): in contact from the start, so a
     // structure held only by its contacts has a tangent to start from (where the element may take
     // no other point, occupancy.hpp, a second one starts at the first update instead).
@@ -113,12 +111,13 @@ void ContactSet::record(const std::vector<ContactEvaluation>& evaluated, std::ve
 
 ContactChanges ContactSet::update(const Eigen::VectorXd& D, const std::vector<double>& rotations,
                                   const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states,
-                                  bool at_convergence, const StepStart* step_start) const {
+                                  bool at_convergence, const StepStart& step_start) const {
   record(evaluated, states);
   ContactChanges changes;
   Occupancy occupancy(geometry_, states);
   ChordFrames frames(geometry_, D);
-  const BroadPhase broad_phase(geometry_, D, step_start);
+  std::optional<ChordFrames> start_frames;  // at the step's start, made for the first reference read in full
+  const BroadPhase broad_phase(geometry_, D, &step_start);
   // At a converged iterate a node is detected against the shape the points on an element give it.
   const std::optional<ElementLoads> loads = at_convergence ? std::optional<ElementLoads>(states) : std::nullopt;
   for (int k = 0; k < contact_count(); ++k) {
@@ -127,11 +126,18 @@ ContactChanges ContactSet::update(const Eigen::VectorXd& D, const std::vector<do
     const int before = state.active ? state.element : -1;
     if (state.active) {
       update_active(contact, D, rotations, at_convergence, state, occupancy, changes);
-    } else if (const std::optional<HandOver> touched =
-                   detect(geometry_, contact, D, rotations, frames, state, occupancy, loads ? &*loads : nullptr,
-                          broad_phase.candidates(contact, state.reference), step_start)) {
-      ++changes.activated;
-      add(*touched, changes);
+    } else {
+      const std::vector<int>* near = broad_phase.candidates(contact, state.reference);
+      if (!near && state.reference.sides_of_near && step_start.displacements.size() == D.size()) {
+        // every candidate: every side, read at the step's start
+        if (!start_frames) start_frames.emplace(geometry_, step_start.displacements);
+        take_every_side(geometry_, contact, step_start, *start_frames, state.reference);
+      }
+      if (const std::optional<HandOver> touched =
+              detect(geometry_, contact, D, rotations, frames, state, occupancy, loads ? &*loads : nullptr, near, &step_start)) {
+        ++changes.activated;
+        add(*touched, changes);
+      }
     }
     state.entering = state.active && state.element != before;
     occupancy.set_touching(contact.node, state.active ? state.element : -1);
@@ -202,29 +208,27 @@ int ContactSet::release_as_pulling(const std::vector<int>& which, const Eigen::V
   return released;
 }
 
-void ContactSet::restore(const StepStart& start, const std::vector<double>& rotations,
-                         std::vector<ContactState>& states) const {
+void ContactSet::restore(const StepStart& start, std::vector<ContactState>& states) const {
   const Eigen::VectorXd& D = start.displacements;
   ChordFrames frames(geometry_, D);
   const CandidateChords chords(geometry_, D);
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
-    if (states[k].reference.side.size() == contact.candidates.size()) continue;
-    reset_sides(geometry_, contact, D, rotations, 0, states[k], &frames);
-    list_near_candidates(geometry_, contact, D, start.stamp, chords, states[k].reference);
+    const ContactReference& reference = states[k].reference;
+    if (reference.sides_of_near ? reference.stamp == start.stamp : reference.side.size() == contact.candidates.size())
+      continue;  // taken there already (or at a release)
+    reset_near_sides(geometry_, contact, start, chords, frames, states[k]);
   }
 }
 
-void ContactSet::accept(const StepStart& start, const std::vector<double>& rotations,
-                        std::vector<ContactState>& states) const {
+void ContactSet::accept(const StepStart& start, std::vector<ContactState>& states) const {
   const Eigen::VectorXd& D = start.displacements;
   ChordFrames frames(geometry_, D);
   const CandidateChords chords(geometry_, D);
   for (int k = 0; k < contact_count(); ++k) {
     states[k].step = StepMemory{};
     if (states[k].active) continue;
-    reset_sides(geometry_, geometry_.contact(k), D, rotations, 0, states[k], &frames);
-    list_near_candidates(geometry_, geometry_.contact(k), D, start.stamp, chords, states[k].reference);
+    reset_near_sides(geometry_, geometry_.contact(k), start, chords, frames, states[k]);
   }
 }
 

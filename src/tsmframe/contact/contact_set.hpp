@@ -66,11 +66,12 @@ class ContactSet {
   /// that evaluation). A pull releases a contact only `at_convergence` — Newton asks for it once
   /// the residual has converged: an unconverged iterate's Y is no evidence of pulling (a stiff
   /// contact's Y swings through zero while the beam catches up with the node).
-  /// `step_start`: the step's start, where accept() listed each inactive node's near
-  /// candidates (broad_phase.hpp); null: detection looks at every candidate.
+  /// `step_start`: the step's start, where accept() (initial_states, restore) took each inactive
+  /// node's reference: its near candidates (broad_phase.hpp) and its sides of those; an iterate
+  /// the broad phase cannot bound reads the other sides there.
   ContactChanges update(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                         const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states,
-                        bool at_convergence, const StepStart* step_start = nullptr) const;
+                        bool at_convergence, const StepStart& step_start) const;
   /// The fraction of Newton's step from `displacements` to `trial` that lands no inactive
   /// contact's node deeper than landing.hpp allows (1: all of it).
   double landing_fraction(const Eigen::VectorXd& displacements, const Eigen::VectorXd& trial,
@@ -94,13 +95,11 @@ class ContactSet {
   int release_as_pulling(const std::vector<int>& which, const Eigen::VectorXd& displacements,
                          const std::vector<double>& rotations, std::vector<ContactState>& states) const;
   /// At a converged state: the step's memory is cleared, and inactive contacts take their
-  /// current sides as reference (`start`: this state's displacements, the next step's start).
-  void accept(const StepStart& start, const std::vector<double>& rotations,
-              std::vector<ContactState>& states) const;
+  /// current sides as reference (`start`: this state, the next step's start).
+  void accept(const StepStart& start, std::vector<ContactState>& states) const;
   /// States read back without their references (a restart, solver/restart.hpp): each takes its
   /// sides at this converged state as reference, as accept() gives an inactive contact.
-  void restore(const StepStart& start, const std::vector<double>& rotations,
-               std::vector<ContactState>& states) const;
+  void restore(const StepStart& start, std::vector<ContactState>& states) const;
 
  private:
   /// The life cycle of one active contact at an update.

@@ -4,6 +4,7 @@
 // element of a contact resting on a beam node (a vertex), where its node was at the last
 // converged state (what detection compares with), and what it remembers within the current step.
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -26,8 +27,20 @@ struct Vertex {
 /// order): detection starts a contact where the node has crossed to the other side since.
 struct ContactReference {
   /// The side of the element's deflected centre line the node was on (+1 along n, −1 against),
-  /// 0 on it, or no_side beyond the element's reach (sides.hpp).
+  /// 0 on it, or no_side beyond the element's reach (sides.hpp): one per candidate, or, where
+  /// `sides_of_near`, one per entry of `near` — a reference taken at a step's start holds only
+  /// those (memory and time linear in the contacts), and the others are read when an iterate
+  /// the broad phase cannot bound asks for them (sides.hpp, take_every_side).
   SideTable side;
+  bool sides_of_near = false;
+  /// The side of candidate near[j].
+  signed char near_side(size_t j) const { return sides_of_near ? side[j] : side[static_cast<size_t>(near[j])]; }
+  /// The side of candidate `ci` (one the reference holds no side of: no_side).
+  signed char side_of(int ci) const {
+    if (!sides_of_near) return static_cast<size_t>(ci) < side.size() ? side[static_cast<size_t>(ci)] : no_side;
+    const auto at = std::lower_bound(near.begin(), near.end(), ci);
+    return at != near.end() && *at == ci ? side[static_cast<size_t>(at - near.begin())] : no_side;
+  }
   /// The node in the frame of the element's straight chord then: α along it, the signed
   /// distance across it. An iterate that takes the node across an element's span without ending
   /// within it (a long step along a beam) is caught by interpolating between these and the

@@ -6,14 +6,20 @@
 namespace tsm::contact {
 namespace {
 
-/// Calls `visit(ci)` for the broad phase's candidates (`near`), or for every one (null).
+/// Calls `visit(ci, side)` for the broad phase's candidates (`near`), or for every one (null),
+/// with the node's reference side of each.
 template <class Visit>
-void for_each_candidate(const ContactCandidates& contact, const std::vector<int>* near, Visit&& visit) {
+void for_each_candidate(const ContactCandidates& contact, const ContactReference& reference, const std::vector<int>* near,
+                        Visit&& visit) {
   if (near) {
-    for (const int ci : *near) visit(ci);
+    for (size_t j = 0; j < near->size(); ++j) {
+      const int ci = (*near)[j];
+      visit(ci, near == &reference.near ? reference.near_side(j) : reference.side_of(ci));
+    }
     return;
   }
-  for (size_t ci = 0; ci < contact.candidates.size(); ++ci) visit(static_cast<int>(ci));
+  for (size_t ci = 0; ci < contact.candidates.size(); ++ci)
+    visit(static_cast<int>(ci), reference.side_of(static_cast<int>(ci)));
 }
 
 }  // namespace
@@ -62,8 +68,8 @@ int swept_crossing(const ContactGeometry& geometry, const ContactCandidates& spe
   };
   int first = -1;
   double first_t = INFINITY;
-  for_each_candidate(spec, near, [&](int ci) {
-    const int f = spec.candidates[ci], side = state.reference.side[ci];
+  for_each_candidate(spec, state.reference, near, [&](int ci, int side) {
+    const int f = spec.candidates[ci];
     if (!occupancy.may_join(f, spec.frame) || (side != 1 && side != -1)) return;
     // The tests on the iterate alone first: most candidates end at one of them, before the
     // node's place at the reference is read.
@@ -100,12 +106,11 @@ std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCan
   int best = -1, best_side = 0;
   double best_gap = INFINITY, best_alpha = 0.0;
   const Eigen::Vector2d node = geometry.position(contact.node, D);
-  for_each_candidate(contact, near, [&](int ci) {
+  for_each_candidate(contact, state.reference, near, [&](int ci, int reference) {
     const int f = contact.candidates[ci];
     if (const double alpha = frames(f).alpha(node); alpha < -alpha_tolerance || alpha > 1.0 + alpha_tolerance)
       return;  // the same α as locate's
     const NodeOnElement where = geometry.locate(contact, f, D, rotations, -INFINITY, INFINITY, loads);
-    const int reference = state.reference.side[ci];
     int side = 0;
     if (reference == no_side) {
       return;
@@ -132,7 +137,7 @@ std::optional<HandOver> detect(const ContactGeometry& geometry, const ContactCan
     // beam from there to where the node is — as far as the beam lets it (a column in the way).
     best = swept_crossing(geometry, contact, state, D, occupancy, near, start);
     if (best < 0) return std::nullopt;
-    best_side = state.reference.side[contact.candidate_index[best]];
+    best_side = state.reference.side_of(contact.candidate_index[best]);
     best_alpha = geometry.locate(contact, best, D, rotations).alpha;
   }
   state.step.blocked_element = -1;

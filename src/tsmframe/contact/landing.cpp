@@ -10,8 +10,7 @@ double landing_fraction(const ContactGeometry& geometry, const ContactCandidates
   const double k = landing_depth_in_elements;
   const ContactReference& reference = state.reference;
   double fraction = 1.0;
-  const auto visit = [&](int ci) {
-    const int side = reference.side[ci];
+  const auto visit = [&](int ci, int side) {
     if (side != 1 && side != -1) return;
     const int f = contact.candidates[ci];
     const NodeOnElement now = geometry.on_chord(contact, f, D), then = geometry.on_chord(contact, f, trial);
@@ -24,9 +23,9 @@ double landing_fraction(const ContactGeometry& geometry, const ContactCandidates
     fraction = std::min(fraction, (before - deepest) / (before - after));
   };
   if (reference.listed) {
-    for (const int ci : reference.near) visit(ci);
+    for (size_t j = 0; j < reference.near.size(); ++j) visit(reference.near[j], reference.near_side(j));
   } else {
-    for (size_t ci = 0; ci < contact.candidates.size(); ++ci) visit(static_cast<int>(ci));
+    for (size_t ci = 0; ci < contact.candidates.size(); ++ci) visit(static_cast<int>(ci), reference.side_of(static_cast<int>(ci)));
   }
   return fraction;
 }

@@ -39,6 +39,7 @@ void release(const ContactGeometry& geometry, const ContactCandidates& contact, 
     side[contact.candidate_index[state.element]] = static_cast<signed char>(state.side);
     carry_sides(geometry, contact, D, std::vector<signed char>(contact.candidates.size(), 0), side);
     state.reference.side.set(side);
+    state.reference.sides_of_near = false;
   } else {
     reset_sides(geometry, contact, D, rotations, state.side, state);
     keep_place(geometry, contact, D, state.reference);
@@ -86,7 +87,7 @@ bool passed_through(const ContactGeometry& geometry, const ContactCandidates& co
   // span the node above the ring also lies across (a rope draped over a ring was "through" it).
   const auto [nearest, nearest_gap] = nearest_across(geometry, contact, D, rotations, loads);
   if (nearest < 0) return false;
-  const int expected = state.reference.side[nearest];
+  const int expected = state.reference.side_of(nearest);
   return (expected == 1 || expected == -1) && expected * nearest_gap < contact.gap - geometry.touch_tolerance();
 }
 

@@ -45,9 +45,131 @@ std::pair<int, int> across(const ContactGeometry& geometry, const ContactCandida
   return {to, left_side(to)};
 }
 
+namespace {
+
+/// Candidate ci's place in `members` (ascending), −1: not there; every candidate's own (null).
+int member_index(const std::vector<int>* members, int ci) {
+  if (!members) return ci;
+  const auto at = std::lower_bound(members->begin(), members->end(), ci);
+  return at != members->end() && *at == ci ? static_cast<int>(at - members->begin()) : -1;
+}
+
+/// carry_sides over `members` only (candidate indices, ascending; null: every candidate), with
+/// `past` and `side` one per member.
+void carry_among(const ContactGeometry& geometry, const ContactCandidates& spec, const Eigen::VectorXd& D,
+                 const std::vector<int>* members, const std::vector<signed char>& past, std::vector<signed char>& side) {
+  const Model& model_ = geometry.model();
+  const size_t m = side.size();
+  const auto candidate = [&](int j) { return members ? (*members)[j] : j; };
+  // Scratch kept per thread: a pass over thousands of contacts does not allocate and free three
+  // arrays for each.
+  thread_local std::vector<int> distance, queue;
+  thread_local std::vector<signed char> carried;
+  distance.assign(m, std::numeric_limits<int>::max());
+  carried.assign(m, no_side);
+  queue.clear();
+  for (size_t j = 0; j < m; ++j)
+    if (side[j] == 1 || side[j] == -1) distance[j] = 0, carried[j] = side[j], queue.push_back(static_cast<int>(j));
+  for (size_t head = 0; head < queue.size(); ++head) {  // breadth first: from the nearest element with a side
+    const int j = queue[head], ci = candidate(j);
+    for (int end = 0; end < 2; ++end) {
+      const CandidateLink& link = spec.links[2 * ci + end];
+      if (link.to == CandidateLink::free_end) continue;
+      if (distance[j] == 0 && past[j] == (end == 1 ? 1 : -1)) continue;  // read beyond this node
+      int cj = link.to, to_side = carried[j] * link.sign;  // two candidates meet: the table's link
+      if (link.to == CandidateLink::joint) {               // three or more: by the geometry
+        const Element& a = model_.elements[spec.candidates[ci]];
+        const auto [to, side_there] = across(geometry, spec, spec.candidates[ci], carried[j], end == 0 ? a.start : a.end, D);
+        if (to < 0) continue;
+        cj = spec.candidate_index[to];
+        to_side = side_there;
+      }
+      const int k = member_index(members, cj);
+      if (k < 0 || distance[k] <= distance[j] + 1) continue;
+      distance[k] = distance[j] + 1;
+      carried[k] = static_cast<signed char>(to_side);
+      queue.push_back(k);
+    }
+  }
+  for (size_t j = 0; j < m; ++j)
+    if (side[j] == no_side) side[j] = carried[j];
+}
+
+/// Reads the node's side of candidate elements at one state (D, rotations): the node's place on
+/// each, and the side that place gives before sides are carried.
+struct SideReader {
+  const ContactGeometry& geometry;
+  const ContactCandidates& spec;
+  const Eigen::VectorXd& D;
+  const std::vector<double>& rotations;
+  ChordFrames* frames;  ///< the chord frames at D (null: α from locate)
+  Eigen::Vector2d node;
+  int fallback = 0;  ///< ±1: the side the node pressed from on a released element; 0: none
+  Eigen::Vector2d released_normal = Eigen::Vector2d::Zero();
+
+  /// α along candidate ci's chord, and the gap from its deflected centre line where α is within
+  /// reach (beyond it: NaN).
+  NodeOnElement place(int ci) const {
+    const int f = spec.candidates[ci];
+    if (frames) {  // locate's α from the shared frame: most candidates end here
+      if (const double alpha = (*frames)(f).alpha(node); alpha < -side_reach || alpha > 1.0 + side_reach)
+        return {alpha, std::numeric_limits<double>::quiet_NaN()};
+    }
+    return geometry.locate(spec, f, D, rotations, -side_reach, 1.0 + side_reach);  // gap only there
+  }
+
+  /// Past an element's end node, its chord's line extended is no guide where the next element's
+  /// span holds the node: at a kink the line cuts across (just outside a convex arch, the next
+  /// chords' lines run outside it). `alpha_of(cj)`: the node's α on candidate cj.
+  template <class Alpha>
+  bool held_beyond(int ci, int beam_node, Alpha&& alpha_of) const {
+    for (const int g : geometry.node_elements(beam_node)) {
+      const int cj = spec.candidate_index[g];
+      if (cj < 0 || cj == ci) continue;
+      if (const double alpha = alpha_of(cj); alpha >= 0.0 && alpha <= 1.0) return true;
+    }
+    return false;
+  }
+
+  /// The side candidate ci gives with the node at `where`; `held`: held_beyond the node it lies
+  /// past; `before`: the side held until now (kept on a centre line; no_side: none).
+  signed char side(int ci, const NodeOnElement& where, bool held, signed char before) const {
+    if (where.alpha < -side_reach || where.alpha > 1.0 + side_reach) return no_side;  // most candidates: far along
+    if (held) return no_side;
+    if (std::abs(where.gap) > geometry.touch_tolerance()) return static_cast<signed char>(side_of_gap(where.gap));
+    if (fallback == 0 && before != no_side) return before;  // on the centre line: the side it had
+    if (fallback == 0) return 0;
+    const Eigen::Vector2d n = geometry.chord_normal(spec.candidates[ci], D, rotations);
+    return static_cast<signed char>(n.dot(released_normal) >= 0.0 ? fallback : -fallback);
+  }
+
+  /// Whether the node lies past element ci's end node (+1), before its start node (−1), or
+  /// within (0) — a side read past a node is not carried through it.
+  static signed char past(const NodeOnElement& where) { return where.alpha > 1.0 ? 1 : (where.alpha < 0.0 ? -1 : 0); }
+
+  /// The beam node candidate ci's `past` lies beyond.
+  int node_past(int ci, signed char past) const {
+    const Element& e = geometry.model().elements[spec.candidates[ci]];
+    return past > 0 ? e.end : e.start;
+  }
+};
+
+/// The sides held until now, one per candidate (`near`: the near list they were taken with,
+/// where they are the near ones'); a candidate without one: no_side.
+void sides_before(const ContactReference& reference, const std::vector<int>& near, size_t m,
+                  std::vector<signed char>& before) {
+  before.assign(m, no_side);
+  if (!reference.sides_of_near) {
+    if (reference.side.size() == m) reference.side.read(before);
+    return;
+  }
+  for (size_t j = 0; j < near.size() && j < reference.side.size(); ++j) before[near[j]] = reference.side[j];
+}
+
+}  // namespace
+
 void carry_sides(const ContactGeometry& geometry, const ContactCandidates& spec, const Eigen::VectorXd& D,
                  const std::vector<signed char>& past, std::vector<signed char>& side) {
-  const Model& model_ = geometry.model();
   // An element takes the side of the nearest element that has one, carried along the beam
   // from element to element through their nodes. Where two candidate elements
   // meet (a member's interior, a joint that only continues the beam into the next member) a
@@ -58,101 +180,104 @@ void carry_sides(const ContactGeometry& geometry, const ContactCandidates& spec,
   // below it, into the next span's top). A node that slides over many short elements, or past a
   // joint, in one step still finds the side it came from where it arrives. Only a side (±1) is
   // carried: a node on the centre line has none yet.
-  const size_t m = spec.candidates.size();
-  // Scratch kept per thread: a pass over thousands of contacts does not allocate and free three
-  // candidate-sized arrays for each.
-  thread_local std::vector<int> distance, queue;
-  thread_local std::vector<signed char> carried;
-  distance.assign(m, std::numeric_limits<int>::max());
-  carried.assign(m, no_side);
-  queue.clear();
-  for (size_t ci = 0; ci < m; ++ci)
-    if (side[ci] == 1 || side[ci] == -1) distance[ci] = 0, carried[ci] = side[ci], queue.push_back(static_cast<int>(ci));
-  for (size_t head = 0; head < queue.size(); ++head) {  // breadth first: from the nearest element with a side
-    const int ci = queue[head];
-    for (int end = 0; end < 2; ++end) {
-      const CandidateLink& link = spec.links[2 * ci + end];
-      if (link.to == CandidateLink::free_end) continue;
-      if (distance[ci] == 0 && past[ci] == (end == 1 ? 1 : -1)) continue;  // read beyond this node
-      int cj = link.to, to_side = carried[ci] * link.sign;  // two candidates meet: the table's link
-      if (link.to == CandidateLink::joint) {                // three or more: by the geometry
-        const Element& a = model_.elements[spec.candidates[ci]];
-        const auto [to, side_there] = across(geometry, spec, spec.candidates[ci], carried[ci], end == 0 ? a.start : a.end, D);
-        if (to < 0) continue;
-        cj = spec.candidate_index[to];
-        to_side = side_there;
-      }
-      if (distance[cj] <= distance[ci] + 1) continue;
-      distance[cj] = distance[ci] + 1;
-      carried[cj] = static_cast<signed char>(to_side);
-      queue.push_back(cj);
-    }
-  }
-  for (size_t ci = 0; ci < m; ++ci)
-    if (side[ci] == no_side) side[ci] = carried[ci];
+  carry_among(geometry, spec, D, nullptr, past, side);
 }
 
 void reset_sides(const ContactGeometry& geometry, const ContactCandidates& spec, const Eigen::VectorXd& D,
                  const std::vector<double>& rotations, int fallback, ContactState& state, ChordFrames* frames) {
-  const Model& model_ = geometry.model();
+  const size_t m = spec.candidates.size();
+  SideReader read{geometry, spec, D, rotations, frames, geometry.position(spec.node, D), fallback};
   // fallback: the side on state.element's frame, used where the node lies on the centre line.
-  Eigen::Vector2d released_normal = Eigen::Vector2d::Zero();
-  if (fallback != 0 && state.element >= 0) released_normal = geometry.chord_normal(state.element, D, rotations);
-  // Per candidate: whether the node lies past the element's end node (+1) or before its start
-  // node (−1) where its side was read: a side of the chord's line extended beyond a node is no
-  // side of the beam on the far side of that node (at a kink or a joint), so it is not carried
-  // through that node below.
-  std::vector<signed char> past(spec.candidates.size(), 0);
-  std::vector<NodeOnElement> where_all(spec.candidates.size());
-  const Eigen::Vector2d node = geometry.position(spec.node, D);
-  for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
-    const int f = spec.candidates[ci];
-    if (frames) {  // locate's α from the shared frame: most candidates end here
-      if (const double alpha = (*frames)(f).alpha(node); alpha < -side_reach || alpha > 1.0 + side_reach) {
-        where_all[ci] = {alpha, std::numeric_limits<double>::quiet_NaN()};
-        continue;
-      }
-    }
-    where_all[ci] = geometry.locate(spec, f, D, rotations, -side_reach, 1.0 + side_reach);  // gap only there
-  }
-  // Past an element's end node, its chord's line extended is no guide where the next element's
-  // span holds the node: at a kink the line cuts across (just outside a convex arch, the next
-  // chords' lines run outside it). There the side is carried from the element that holds it.
-  const auto held_beyond = [&](size_t ci, int node) {
-    for (const int g : geometry.node_elements(node)) {
-      const int cj = spec.candidate_index[g];
-      if (cj < 0 || cj == static_cast<int>(ci)) continue;
-      if (where_all[cj].alpha >= 0.0 && where_all[cj].alpha <= 1.0) return true;
-    }
-    return false;
-  };
-  // The sides as they were (a node on a centre line keeps its side; none yet: 0), in a scratch
-  // array per thread; the table takes them at the end (and keeps its own where they are equal).
-  thread_local std::vector<signed char> side;
-  state.reference.side.read(side);
-  if (side.size() != spec.candidates.size()) side.assign(spec.candidates.size(), 0);
-  for (size_t ci = 0; ci < spec.candidates.size(); ++ci) {
-    const int f = spec.candidates[ci];
-    const NodeOnElement& where = where_all[ci];
-    past[ci] = where.alpha > 1.0 ? 1 : (where.alpha < 0.0 ? -1 : 0);
-    if (where.alpha < -side_reach || where.alpha > 1.0 + side_reach) {  // most candidates: far along
-      side[ci] = no_side;
-    } else if (past[ci] != 0 && held_beyond(ci, past[ci] > 0 ? model_.elements[f].end : model_.elements[f].start)) {
-      side[ci] = no_side;
-    } else if (std::abs(where.gap) > geometry.touch_tolerance()) {
-      side[ci] = static_cast<signed char>(side_of_gap(where.gap));
-    } else if (fallback != 0 || side[ci] == no_side) {
-      const Eigen::Vector2d n = geometry.chord_normal(f, D, rotations);
-      side[ci] = fallback == 0 ? 0 : static_cast<signed char>(n.dot(released_normal) >= 0.0 ? fallback : -fallback);
-    }
+  if (fallback != 0 && state.element >= 0) read.released_normal = geometry.chord_normal(state.element, D, rotations);
+  thread_local std::vector<NodeOnElement> where;
+  thread_local std::vector<signed char> side, past;
+  where.resize(m);
+  past.resize(m);
+  for (size_t ci = 0; ci < m; ++ci) where[ci] = read.place(static_cast<int>(ci));
+  sides_before(state.reference, state.reference.near, m, side);
+  const auto alpha_of = [&](int cj) { return where[cj].alpha; };
+  for (size_t ci = 0; ci < m; ++ci) {
+    const int c = static_cast<int>(ci);
+    past[ci] = SideReader::past(where[ci]);
+    side[ci] = read.side(c, where[ci], past[ci] != 0 && read.held_beyond(c, read.node_past(c, past[ci]), alpha_of), side[ci]);
   }
   // Beyond that reach: the side carried along the beam from the nearest element with one.
   carry_sides(geometry, spec, D, past, side);
   state.reference.side.set(side);
-  state.reference.position[0] = node.x();
-  state.reference.position[1] = node.y();
+  state.reference.sides_of_near = false;
+  state.reference.position[0] = read.node.x();
+  state.reference.position[1] = read.node.y();
   std::vector<double>().swap(state.reference.along);  // freed: a release's place is kept by keep_place
   std::vector<double>().swap(state.reference.across);
+}
+
+void reset_near_sides(const ContactGeometry& geometry, const ContactCandidates& spec, const StepStart& start,
+                      const CandidateChords& chords, ChordFrames& frames, ContactState& state) {
+  ContactReference& reference = state.reference;
+  const std::vector<int> near_before = std::move(reference.near);
+  list_near_candidates(geometry, spec, start.displacements, start.stamp, chords, reference);
+  const std::vector<int>& near = reference.near;
+  const SideReader read{geometry, spec, start.displacements, start.rotations, &frames,
+                        geometry.position(spec.node, start.displacements)};
+  thread_local std::vector<signed char> before, side, past;
+  thread_local std::vector<NodeOnElement> where;
+  where.resize(near.size());
+  for (size_t j = 0; j < near.size(); ++j) where[j] = read.place(near[j]);
+  const auto alpha_of = [&](int cj) {  // a neighbour beyond the list: its α read here
+    const int k = member_index(&near, cj);
+    return k >= 0 ? where[k].alpha : read.place(cj).alpha;
+  };
+  // The sides held until now, of the candidates near now (a node on a centre line keeps its side).
+  before.assign(near.size(), no_side);
+  if (reference.sides_of_near) {
+    for (size_t j = 0, i = 0; j < near.size(); ++j) {  // both lists ascending
+      while (i < near_before.size() && near_before[i] < near[j]) ++i;
+      if (i < near_before.size() && near_before[i] == near[j] && i < reference.side.size()) before[j] = reference.side[i];
+    }
+  } else if (reference.side.size() == spec.candidates.size()) {
+    for (size_t j = 0; j < near.size(); ++j) before[j] = reference.side[near[j]];
+  }
+  side.resize(near.size());
+  past.resize(near.size());
+  for (size_t j = 0; j < near.size(); ++j) {
+    const int ci = near[j];
+    past[j] = SideReader::past(where[j]);
+    side[j] = read.side(ci, where[j], past[j] != 0 && read.held_beyond(ci, read.node_past(ci, past[j]), alpha_of), before[j]);
+  }
+  carry_among(geometry, spec, start.displacements, &near, past, side);
+  reference.side.set(side);
+  reference.sides_of_near = true;
+  reference.position[0] = read.node.x();
+  reference.position[1] = read.node.y();
+  std::vector<double>().swap(reference.along);
+  std::vector<double>().swap(reference.across);
+}
+
+void take_every_side(const ContactGeometry& geometry, const ContactCandidates& spec, const StepStart& start,
+                     ChordFrames& frames, ContactReference& reference) {
+  if (!reference.sides_of_near || reference.stamp != start.stamp) return;
+  const size_t m = spec.candidates.size();
+  const SideReader read{geometry, spec, start.displacements, start.rotations, &frames,
+                        geometry.position(spec.node, start.displacements)};
+  thread_local std::vector<NodeOnElement> where;
+  thread_local std::vector<signed char> side, past;
+  where.resize(m);
+  past.resize(m);
+  for (size_t ci = 0; ci < m; ++ci) where[ci] = read.place(static_cast<int>(ci));
+  sides_before(reference, reference.near, m, side);  // the near ones' as they are, no_side elsewhere
+  const auto alpha_of = [&](int cj) { return where[cj].alpha; };
+  for (size_t ci = 0, j = 0; ci < m; ++ci) {
+    const int c = static_cast<int>(ci);
+    past[ci] = SideReader::past(where[ci]);
+    if (j < reference.near.size() && reference.near[j] == c) {
+      ++j;
+      continue;
+    }
+    side[ci] = read.side(c, where[ci], past[ci] != 0 && read.held_beyond(c, read.node_past(c, past[ci]), alpha_of), no_side);
+  }
+  carry_sides(geometry, spec, start.displacements, past, side);
+  reference.side.set(side);
+  reference.sides_of_near = false;
 }
 
 void keep_place(const ContactGeometry& geometry, const ContactCandidates& spec, const Eigen::VectorXd& D,

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "tsmframe/contact/broad_phase.hpp"
 #include "tsmframe/contact/chord_frames.hpp"
 #include "tsmframe/contact/contact_geometry.hpp"
 #include "tsmframe/contact/contact_state.hpp"
@@ -29,13 +30,27 @@ std::pair<int, int> across(const ContactGeometry& geometry, const ContactCandida
 void carry_sides(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& displacements,
                  const std::vector<signed char>& past, std::vector<signed char>& side);
 
-/// The node's reference at `displacements` (a converged state, or a release): its side of every
-/// candidate and its position; the place it kept at a release let go. Where it lies on a centre
-/// line, `fallback` (±1: the side it pressed from on state.element, 0: none) gives the side.
-/// `frames`: the candidates' chord frames at `displacements`, shared by the contacts of one pass
-/// (null: each formed here).
+/// The node's reference at `displacements` (a release): its side of every candidate and its
+/// position; the place it kept at a release let go. Where it lies on a centre line, `fallback`
+/// (±1: the side it pressed from on state.element, 0: none) gives the side. `frames`: the
+/// candidates' chord frames at `displacements`, shared by the contacts of one pass (null: each
+/// formed here).
 void reset_sides(const ContactGeometry& geometry, const ContactCandidates& contact, const Eigen::VectorXd& displacements,
                  const std::vector<double>& rotations, int fallback, ContactState& state, ChordFrames* frames = nullptr);
+
+/// The node's reference at a step's start (`start`; `chords` and `frames` there): the candidates
+/// near it (broad_phase.hpp, list_near_candidates), its side of each of those only
+/// (ContactReference::sides_of_near: carried among them) and its position — what detection
+/// looks at while the broad phase holds.
+void reset_near_sides(const ContactGeometry& geometry, const ContactCandidates& contact, const StepStart& start,
+                      const CandidateChords& chords, ChordFrames& frames, ContactState& state);
+
+/// Every candidate's side, where the reference holds the near ones' only (reset_near_sides), for
+/// an iterate the broad phase cannot bound: those stay, the others are read at the step's start
+/// (`start`, `frames` there) and carried from them. A reference that holds every side already,
+/// or was not taken at `start`, is left as it is (a side it does not hold: no_side).
+void take_every_side(const ContactGeometry& geometry, const ContactCandidates& contact, const StepStart& start,
+                     ChordFrames& frames, ContactReference& reference);
 
 /// Keeps in the reference the node's place in each candidate chord's frame at `displacements`
 /// (a release, away from the step's start): α along the chord, the signed distance across it.

@@ -1,8 +1,9 @@
 #pragma once
 // The start of the step being tried, to go back to when it fails. Its displacements are the
 // newest converged step's, which that step's record holds until a later step converges (Recorder):
-// only λ, the rotations and the contacts are copied (a vector of the model's size less at 10⁵
-// elements and up). Before the first step converges, the displacements are copied too.
+// only λ, the rotations and the contacts with their references are copied (a vector of the
+// model's size less at 10⁵ elements and up). Before the first step converges, the displacements
+// are copied too.
 
 #include <Eigen/Core>
 #include <vector>
@@ -21,6 +22,7 @@ class StepStart {
     own_.load_factor = state.load_factor;
     own_.chord_rotations = state.chord_rotations;
     own_.contacts = state.contacts;
+    own_.contact_references = state.contact_references;
   }
   /// Valid until a step converges (the record may then give up its displacements).
   void restore(State& state) const {
@@ -28,6 +30,7 @@ class StepStart {
     state.load_factor = own_.load_factor;
     state.chord_rotations = own_.chord_rotations;
     state.contacts = own_.contacts;
+    state.contact_references = own_.contact_references;
   }
   double load_factor() const { return own_.load_factor; }
   /// Valid as restore().

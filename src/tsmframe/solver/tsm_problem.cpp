@@ -88,7 +88,7 @@ bool TsmProblem::evaluate(State& state, Proximity proximity, bool contacts_only)
     if (!contacts_) return false;
     if (pass == max_passes) break;
     const contact::ContactChanges changes =
-        contacts_->update(u, state.chord_rotations, eval_.contacts, state.contacts, false, &state.contact_references);
+        contacts_->update(u, state.chord_rotations, eval_.contacts, state.contacts, false, state.contact_references);
     if (!changes.any()) break;
     changed = true;
     switches_ += changes.activated + changes.released;
@@ -276,16 +276,16 @@ std::vector<std::pair<int, int>> TsmProblem::accept(State& state) {
     if (!state.contacts[k].active && state.contacts[k].step.slid_off_element >= 0)
       slid_off.emplace_back(static_cast<int>(k), state.contacts[k].step.slid_off_element);
   if (contacts_) {
-    state.contact_references = contact::step_start(physical(state));
-    contacts_->accept(state.contact_references, state.chord_rotations, state.contacts);
+    state.contact_references = contact::step_start(physical(state), state.chord_rotations);
+    contacts_->accept(state.contact_references, state.contacts);
   }
   return slid_off;
 }
 
 void TsmProblem::take_contact_references(State& state) const {
   if (!contacts_) return;
-  state.contact_references = contact::step_start(physical(state));
-  contacts_->restore(state.contact_references, state.chord_rotations, state.contacts);
+  state.contact_references = contact::step_start(physical(state), state.chord_rotations);
+  contacts_->restore(state.contact_references, state.contacts);
 }
 
 bool TsmProblem::name_unloaded_mechanism(const State& state, StepFailure& failure, double within_shifts) {
@@ -348,7 +348,7 @@ bool TsmProblem::release_pulling_contacts(State& state) {
   bool overwrote_tangent = false;
   const std::vector<int> also = look_ahead_releases(state, overwrote_tangent);
   const contact::ContactChanges changes =
-      contacts_->update(physical(state), state.chord_rotations, eval_.contacts, state.contacts, true, &state.contact_references);
+      contacts_->update(physical(state), state.chord_rotations, eval_.contacts, state.contacts, true, state.contact_references);
   if (!changes.any() && !overwrote_tangent) return false;
   switches_ += changes.activated + changes.released;
   if (!also.empty()) switches_ += contacts_->release_as_pulling(also, physical(state), state.chord_rotations, state.contacts);

@@ -69,7 +69,7 @@ TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
     std::vector<double> rotations(model.elements.size(), 0.0);
     tsm::assembly::Evaluation e;
     system.evaluate(D, rotations, true, e);
-    tracker.update(D, e.chord_rotations, e.contacts, states, false);
+    tracker.update(D, e.chord_rotations, e.contacts, states, false, tsm::contact::unloaded_start(model));
     ASSERT_TRUE(states[0].active);
     const auto active = tracker.active_contacts(states);
     system.evaluate(D, e.chord_rotations, true, e, active);
@@ -101,7 +101,7 @@ TEST(ContactAssembly, APairNoLongerInTouchLeavesThePatternWhenForgottenAndTheTan
   tsm::assembly::Evaluation e;
   system.evaluate(D, rotations, true, e);
   const size_t alone = system.tangent().row.size();
-  tracker.update(D, e.chord_rotations, e.contacts, states, false);
+  tracker.update(D, e.chord_rotations, e.contacts, states, false, tsm::contact::unloaded_start(model));
   ASSERT_TRUE(states[0].active);
   const auto active = tracker.active_contacts(states);
   system.evaluate(D, e.chord_rotations, true, e, active);
@@ -152,7 +152,7 @@ TEST(ContactAssembly, APairTwoBeamsJoinBothWaysIsKeptWhileInUseTheOtherWayRound)
     std::vector<tsm::contact::ContactState> states = tracker.initial_states();
     tsm::assembly::Evaluation e;
     system.evaluate(D, rotations, true, e);
-    tracker.update(D, e.chord_rotations, e.contacts, states, false);
+    tracker.update(D, e.chord_rotations, e.contacts, states, false, tsm::contact::unloaded_start(model));
     const auto active = tracker.active_contacts(states);
     EXPECT_EQ(active.size(), 1u);
     for (const auto& a : active) {

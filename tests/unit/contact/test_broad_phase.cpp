@@ -7,6 +7,7 @@
 #include "support/contact_fixture.hpp"
 #include "tsmframe/contact/broad_phase.hpp"
 #include "tsmframe/contact/detection.hpp"
+#include "tsmframe/contact/sides.hpp"
 
 namespace {
 
@@ -42,7 +43,7 @@ TEST(BroadPhase, HoldsOnlyAtTheStepsStartAndWhileTheNodeAndTheBeamMoveLessThanTh
   ContactFixture f(0.5, 0.1, {{"gap", 0.005}}, 40);
   const ContactGeometry geometry(f.model);
   const ContactState state = at_step_start(geometry, f);
-  const StepStart start = tsm::contact::step_start(f.D);
+  const StepStart start = tsm::contact::step_start(f.D, f.rotations);
   const auto listed = [&](const StepStart* from) {
     const BroadPhase broad_phase(geometry, f.D, from);
     return broad_phase.candidates(geometry.contact(0), state.reference) != nullptr;
@@ -60,7 +61,7 @@ TEST(BroadPhase, HoldsOnlyAtTheStepsStartAndWhileTheNodeAndTheBeamMoveLessThanTh
   EXPECT_TRUE(listed(&start));
   Eigen::VectorXd elsewhere = start.displacements;
   elsewhere[0] = 1e-300;  // another start than the one the list was made at
-  const StepStart other = tsm::contact::step_start(elsewhere);
+  const StepStart other = tsm::contact::step_start(elsewhere, f.rotations);
   EXPECT_FALSE(listed(&other));
 }
 
@@ -77,7 +78,9 @@ TEST(BroadPhase, DetectionOverTheListedCandidatesFindsWhatDetectionOverEveryOneF
   // (gap 5 cm: the radius is 0.275 m) and close node and beam on each other by up to 1.5 times
   // the allowance, partly by lifting the beam — where a list that forgot the beam's motion or
   // the gap would miss a contact (checked). Detection with the broad phase and without it start the same
-  // contact (or none) on the same element from the same side at the same α.
+  // contact (or none) on the same element from the same side at the same α — and so does a
+  // reference as a step's start keeps it: the sides of the listed candidates only, every other
+  // side read at the start where the list does not hold (ContactSet::update).
   std::mt19937 random(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0), fraction(0.0, 1.0);
   int listed = 0, touched = 0;
@@ -87,8 +90,12 @@ TEST(BroadPhase, DetectionOverTheListedCandidatesFindsWhatDetectionOverEveryOneF
     const double y = closing ? 0.275 + 0.05 * unit(random) : 0.3 * unit(random);
     ContactFixture f(x, y, {{"gap", closing ? 0.05 : 0.01}}, 40);
     const ContactGeometry geometry(f.model);
-    const StepStart start = tsm::contact::step_start(f.D);
-    ContactState with = at_step_start(geometry, f), without = with;
+    const StepStart start = tsm::contact::step_start(f.D, f.rotations);
+    ContactState with = at_step_start(geometry, f), without = with, kept;
+    tsm::contact::ChordFrames frames_at_start(geometry, f.D);
+    tsm::contact::reset_near_sides(geometry, geometry.contact(0), start, tsm::contact::CandidateChords(geometry, f.D),
+                                   frames_at_start, kept);
+    ASSERT_EQ(kept.reference.side.size(), kept.reference.near.size());
     if (closing) {
       const double closure = 0.3 * fraction(random), lifted = fraction(random);
       f.move_foot(0.0, -(1.0 - lifted) * closure);
@@ -106,13 +113,23 @@ TEST(BroadPhase, DetectionOverTheListedCandidatesFindsWhatDetectionOverEveryOneF
                                         nullptr, near).has_value();
     const bool b = tsm::contact::detect(geometry, geometry.contact(0), f.D, f.rotations, frames_without, without,
                                         occupied_without).has_value();
+    const std::vector<int>* kept_near = broad_phase.candidates(geometry.contact(0), kept.reference);
+    if (!kept_near) tsm::contact::take_every_side(geometry, geometry.contact(0), start, frames_at_start, kept.reference);
+    tsm::contact::Occupancy occupied_kept(f.model.elements.size());
+    tsm::contact::ChordFrames frames_kept(geometry, f.D);
+    const bool c = tsm::contact::detect(geometry, geometry.contact(0), f.D, f.rotations, frames_kept, kept, occupied_kept,
+                                        nullptr, kept_near, &start).has_value();
     ASSERT_EQ(a, b) << "trial " << trial;
+    ASSERT_EQ(c, b) << "trial " << trial;
     ASSERT_EQ(with.active, without.active) << "trial " << trial;
     if (!with.active) continue;
     ++touched;
     ASSERT_EQ(with.element, without.element) << "trial " << trial;
     ASSERT_EQ(with.side, without.side) << "trial " << trial;
     ASSERT_EQ(with.alpha, without.alpha) << "trial " << trial;
+    ASSERT_EQ(kept.element, without.element) << "trial " << trial;
+    ASSERT_EQ(kept.side, without.side) << "trial " << trial;
+    ASSERT_EQ(kept.alpha, without.alpha) << "trial " << trial;
   }
   EXPECT_GT(listed, 400) << "steps within the allowance";
   EXPECT_LT(listed, 2600) << "and beyond it";

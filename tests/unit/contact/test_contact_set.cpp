@@ -27,6 +27,7 @@ TEST(ContactVertex, ASidePullingAtAConvergedIterateLetsGoAndBothPullingRelease) 
   std::vector<double> rotations(v.model.elements.size(), 0.0);
   tsm::assembly::Evaluation e;
   system.evaluate(v.D, rotations, false, e);
+  const tsm::contact::StepStart unloaded = tsm::contact::unloaded_start(v.model);  // the references' state
   // Compression is −side·Y: with side −1 a positive Y presses, a negative one pulls.
   using E = tsm::contact::ContactEvaluation;
   {
@@ -40,7 +41,7 @@ TEST(ContactVertex, ASidePullingAtAConvergedIterateLetsGoAndBothPullingRelease) 
     };
     // Each element's push on the node (its nodal force there: here along its chord's normal).
     const E first{0, false, 1.0, 5.0, 1.0, 5.0 * normal(v.ending)}, second{0, true, 0.0, 3.0, 1.0, 3.0 * normal(v.starting)};
-    EXPECT_FALSE(tracker.update(v.D, e.chord_rotations, {first, second}, states, true).any());
+    EXPECT_FALSE(tracker.update(v.D, e.chord_rotations, {first, second}, states, true, unloaded).any());
     ASSERT_TRUE(states[0].vertex);
     EXPECT_EQ(states[0].vertex->element, v.starting);
     // Reported: the compression of the resultant of the pushes, 5 n_ending + 3 n_starting.
@@ -51,13 +52,13 @@ TEST(ContactVertex, ASidePullingAtAConvergedIterateLetsGoAndBothPullingRelease) 
   }
   {
     auto states = v.states;  // one pulls, but the iterate has not converged: held
-    EXPECT_FALSE(tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, 5.0}, E{0, true, 0.0, -3.0}}, states, false).any());
+    EXPECT_FALSE(tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, 5.0}, E{0, true, 0.0, -3.0}}, states, false, unloaded).any());
     ASSERT_TRUE(states[0].vertex);
     EXPECT_EQ(states[0].vertex->element, v.starting);
   }
   {
     auto states = v.states;  // the starting element pulls: the ending one carries on alone, held at the node
-    const auto changes = tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, 5.0}, E{0, true, 0.0, -3.0}}, states, true);
+    const auto changes = tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, 5.0}, E{0, true, 0.0, -3.0}}, states, true, unloaded);
     EXPECT_EQ(changes.released, 1);
     EXPECT_TRUE(states[0].active);
     EXPECT_EQ(states[0].element, v.ending);
@@ -66,14 +67,14 @@ TEST(ContactVertex, ASidePullingAtAConvergedIterateLetsGoAndBothPullingRelease) 
   }
   {
     auto states = v.states;  // the ending element pulls: the starting one carries on
-    tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, -5.0}, E{0, true, 0.0, 3.0}}, states, true);
+    tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, -5.0}, E{0, true, 0.0, 3.0}}, states, true, unloaded);
     EXPECT_EQ(states[0].element, v.starting);
     EXPECT_EQ(states[0].side, -1);
     EXPECT_FALSE(states[0].vertex);
   }
   {
     auto states = v.states;  // both pull: released
-    tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, -5.0}, E{0, true, 0.0, -3.0}}, states, true);
+    tracker.update(v.D, e.chord_rotations, {E{0, false, 1.0, -5.0}, E{0, true, 0.0, -3.0}}, states, true, unloaded);
     EXPECT_FALSE(states[0].active);
     EXPECT_FALSE(states[0].vertex);
   }
@@ -98,9 +99,9 @@ TEST(ContactDetection, AlongTheNodesPathOnlyWhereTheNodeItselfCrossedTheElement)
   {
     std::vector<tsm::contact::ContactState> states = tracker.initial_states();
     Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
-    const tsm::contact::StepStart start = tsm::contact::step_start(D);  // where initial_states took the references
+    const tsm::contact::StepStart start = tsm::contact::unloaded_start(model);  // where initial_states took the references
     D.segment<2>(3 * pusher) = Eigen::Vector2d(1.5 - 0.125, -0.04);
-    const tsm::contact::ContactChanges changes = tracker.update(D, straight, {}, states, false, &start);
+    const tsm::contact::ContactChanges changes = tracker.update(D, straight, {}, states, false, start);
     EXPECT_EQ(changes.activated, 1);
     ASSERT_TRUE(states[0].active) << "the node's path crossed the beam";
     EXPECT_EQ(states[0].side, 1);  // from above
@@ -112,14 +113,14 @@ TEST(ContactDetection, AlongTheNodesPathOnlyWhereTheNodeItselfCrossedTheElement)
     tsm::contact::ContactSet outside_tracker(outside);
     std::vector<tsm::contact::ContactState> states = outside_tracker.initial_states();
     Eigen::VectorXd D = Eigen::VectorXd::Zero(outside.dof_count());
-    const tsm::contact::StepStart start = tsm::contact::step_start(D);
+    const tsm::contact::StepStart start = tsm::contact::unloaded_start(outside);
     for (int k = 0; k < outside.node_count(); ++k) {
       if (k == outside.node_index(100)) continue;
       const Eigen::Vector2d x = outside.nodes[k].position, turned = Eigen::Vector2d(1.0 - x.x(), -x.y());
       D.segment<3>(3 * k) << turned - x, std::numbers::pi;
     }
     const std::vector<double> half_turn(outside.elements.size(), std::numbers::pi);
-    EXPECT_FALSE(outside_tracker.update(D, half_turn, {}, states, false, &start).any());
+    EXPECT_FALSE(outside_tracker.update(D, half_turn, {}, states, false, start).any());
     EXPECT_FALSE(states[0].active);
   }
 }
@@ -140,6 +141,7 @@ TEST(ContactRelease, ANodeThatLetGoByPullingMayNotBeThroughTheBeamAnywhere) {
   states[0].element = 3;
   states[0].side = 1;
   const std::vector<double> rotations(model.elements.size(), 0.0);
+  const tsm::contact::StepStart unloaded = tsm::contact::unloaded_start(model);  // the references' state
   const int pusher = model.node_index(100);
   const auto at = [&](double x, double y) {  // the pusher moved to (x, y), the beam straight
     Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
@@ -149,7 +151,7 @@ TEST(ContactRelease, ANodeThatLetGoByPullingMayNotBeThroughTheBeamAnywhere) {
   const Eigen::VectorXd wild = at(5.0, 3.0);
   // Y > 0 on side +1 is a pull (compression −side·Y); the iterate has converged.
   const tsm::contact::ContactChanges changes =
-      tracker.update(wild, rotations, {tsm::contact::ContactEvaluation{0, false, 0.4, 10.0}}, states, true);
+      tracker.update(wild, rotations, {tsm::contact::ContactEvaluation{0, false, 0.4, 10.0}}, states, true, unloaded);
   ASSERT_EQ(changes.released, 1);
   ASSERT_FALSE(states[0].active);
   EXPECT_TRUE(tracker.passed_through(at(0.75, -0.001), rotations, states));   // under element 7
@@ -188,6 +190,7 @@ TEST(ContactRelease, ANodeThatLetGoOfARingIsThroughItOnlyWhereItIsInside) {
   states[0].element = top;
   states[0].side = side;
   const std::vector<double> rotations(model.elements.size(), 0.0);
+  const tsm::contact::StepStart unloaded = tsm::contact::unloaded_start(model);  // the references' state
   const int node = model.node_index(100);
   const auto at = [&](double x, double y) {  // the node moved to (x, y), the ring as drawn
     Eigen::VectorXd D = Eigen::VectorXd::Zero(model.dof_count());
@@ -195,7 +198,7 @@ TEST(ContactRelease, ANodeThatLetGoOfARingIsThroughItOnlyWhereItIsInside) {
     return D;
   };
   const tsm::contact::ContactChanges changes =
-      tracker.update(at(0.01, 1.005), rotations, {tsm::contact::ContactEvaluation{0, false, 0.5, side * 10.0}}, states, true);
+      tracker.update(at(0.01, 1.005), rotations, {tsm::contact::ContactEvaluation{0, false, 0.5, side * 10.0}}, states, true, unloaded);
   ASSERT_EQ(changes.released, 1);
   EXPECT_FALSE(tracker.passed_through(at(0.01, 1.02), rotations, states));   // above the ring
   EXPECT_FALSE(tracker.passed_through(at(0.3, 1.2), rotations, states));     // above, further on

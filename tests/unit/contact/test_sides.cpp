@@ -41,6 +41,28 @@ TEST(ContactSides, FarBeyondAnElementsReachTheSideIsCarriedAlongTheBeam) {
   EXPECT_EQ(state.reference.side.values(), (std::vector<signed char>(8, 1)));
 }
 
+TEST(ContactSides, AStepsStartKeepsTheListedCandidatesSidesOnlyAndReadsEveryOtherWhenAskedTo) {
+  // 400 elements of 2.5 mm, the node 1 cm above x = 0.5: a step's start keeps the sides of the
+  // elements within the broad phase's radius of it only (0.0225 m: 18 of them) — a contact's
+  // reference grows with what is near it, not with the candidates (10⁴ contact nodes on 3·10⁴
+  // candidates were 3·10⁸ sides read at every step). Asked for every side (an iterate beyond the
+  // list's reach), it holds what a reference of every candidate holds.
+  ContactFixture f(0.5, 0.01, json::object(), 400);
+  const ContactGeometry geometry(f.model);
+  const tsm::contact::StepStart start = tsm::contact::step_start(f.D, f.rotations);
+  tsm::contact::ChordFrames frames(geometry, f.D);
+  ContactState state;
+  tsm::contact::reset_near_sides(geometry, geometry.contact(0), start, tsm::contact::CandidateChords(geometry, f.D), frames, state);
+  EXPECT_TRUE(state.reference.sides_of_near);
+  EXPECT_EQ(state.reference.near.size(), 18u);
+  EXPECT_EQ(state.reference.side.values(), (std::vector<signed char>(18, 1)));
+  EXPECT_EQ(state.reference.side_of(0), no_side) << "not held";
+  tsm::contact::take_every_side(geometry, geometry.contact(0), start, frames, state.reference);
+  EXPECT_FALSE(state.reference.sides_of_near);
+  EXPECT_EQ(state.reference.side.values(), sides_at(geometry, f).reference.side.values());
+  EXPECT_EQ(state.reference.side.values(), (std::vector<signed char>(400, 1)));
+}
+
 TEST(ContactSides, ANodeOnTheCentreLineHasNoSideYet) {
   ContactFixture f(0.3, 0.0);
   const ContactGeometry geometry(f.model);
