@@ -3,19 +3,38 @@
 namespace tsm::assembly {
 
 std::vector<int> contact_dofs(const Element& e, const contact::ActiveContact& contact) {
-  std::vector<int> g(dofs_per_node * (2 + contact.size()));
+  std::vector<int> g;
+  contact_dofs(e, contact, g);
+  return g;
+}
+
+void contact_dofs(const Element& e, const contact::ActiveContact& contact, std::vector<int>& g) {
+  g.resize(dofs_per_node * (2 + contact.size()));
   for (int d = 0; d < dofs_per_node; ++d) {
     g[d] = dofs_per_node * e.start + d;
     g[3 + d] = dofs_per_node * e.end + d;
     for (int p = 0; p < contact.size(); ++p) g[6 + 3 * p + d] = dofs_per_node * contact.points[p].node + d;
   }
-  return g;
 }
 
 Eigen::VectorXd gather(const Eigen::VectorXd& displacements, const std::vector<int>& dofs) {
-  Eigen::VectorXd d(static_cast<Eigen::Index>(dofs.size()));
-  for (size_t a = 0; a < dofs.size(); ++a) d[static_cast<Eigen::Index>(a)] = displacements[dofs[a]];
+  Eigen::VectorXd d;
+  gather(displacements, dofs, d);
   return d;
+}
+
+void gather(const Eigen::VectorXd& displacements, const std::vector<int>& dofs, Eigen::VectorXd& d) {
+  d.resize(static_cast<Eigen::Index>(dofs.size()));
+  for (size_t a = 0; a < dofs.size(); ++a) d[static_cast<Eigen::Index>(a)] = displacements[dofs[a]];
+}
+
+void contact_response(const Model& model, const contact::ActiveContact& a, const Eigen::VectorXd& displacements,
+                      const std::vector<double>& previous_rotations, bool with_tangent, contact::MultiPointResponse& response) {
+  thread_local std::vector<int> g;  // per thread: the responses are formed in parallel
+  thread_local Eigen::VectorXd d;
+  contact_dofs(model.elements[a.element], a, g);
+  gather(displacements, g, d);
+  contact::active_contact_response(a, d, previous_rotations[a.element], with_tangent, response);
 }
 
 std::vector<ContactDirection> contact_directions(const Model& model, const DofMap& dofs, const NodalFrames& frames,

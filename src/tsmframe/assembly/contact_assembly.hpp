@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tsmframe/assembly/dof_map.hpp"
+#include "tsmframe/contact/active_contact.hpp"
 #include "tsmframe/contact/contact_set.hpp"
 #include "tsmframe/model/model.hpp"
 #include "tsmframe/model/nodal_frames.hpp"
@@ -26,11 +27,20 @@ struct ContactDirection {
   double Y = 0.0;
 };
 
-/// A contact element's dofs: the beam element's two nodes, then each point's node.
+/// A contact element's dofs: the beam element's two nodes, then each point's node (into `dofs`:
+/// its storage reused).
 std::vector<int> contact_dofs(const Element& element, const contact::ActiveContact& contact);
+void contact_dofs(const Element& element, const contact::ActiveContact& contact, std::vector<int>& dofs);
 
-/// The displacements of the given dofs.
+/// The displacements of the given dofs (into `values`: its storage reused).
 Eigen::VectorXd gather(const Eigen::VectorXd& displacements, const std::vector<int>& dofs);
+void gather(const Eigen::VectorXd& displacements, const std::vector<int>& dofs, Eigen::VectorXd& values);
+
+/// A contact element's response at `displacements` (its chord's rotation before: `previous_rotations`),
+/// into `response` (its storage reused): a function of the element's own dofs, safe to form on
+/// several threads at once.
+void contact_response(const Model& model, const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
+                      const std::vector<double>& previous_rotations, bool with_tangent, contact::MultiPointResponse& response);
 
 /// Each active contact point's (in `contacts`' order, points in order) load direction and
 /// stiffness at `displacements` (chord rotations of that state's evaluation).

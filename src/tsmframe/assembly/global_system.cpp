@@ -328,13 +328,12 @@ double GlobalSystem::end_rotation(int q, const Eigen::VectorXd& displacements,
   return slot.end_rotation(slot.respond(d, previous_rotations[k], false, connection(q)), connection(q));
 }
 
-void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen::VectorXd& displacements,
-                                    const std::vector<double>& previous_rotations, bool with_tangent, Evaluation& out) {
+void GlobalSystem::add_contact(const contact::ActiveContact& a, const contact::MultiPointResponse& r, bool with_tangent,
+                               Evaluation& out) {
   const Element& e = model_.elements[a.element];
-  const std::vector<int> g = contact_dofs(e, a);
+  std::vector<int>& g = contact_dofs_;
+  contact_dofs(e, a, g);
   const int size = static_cast<int>(g.size());
-  const contact::MultiPointResponse r =
-      contact::active_contact_response(a, gather(displacements, g), previous_rotations[a.element], with_tangent);
   out.chord_rotations[a.element] = r.chord.rotation;
   for (int p = 0; p < a.size(); ++p)
     out.contacts.push_back({a.points[p].contact, a.points[p].vertex, r.alpha[p], r.forces[3 + p], r.force_per_Y[p],
@@ -343,20 +342,26 @@ void GlobalSystem::evaluate_contact(const contact::ActiveContact& a, const Eigen
   if (!with_tangent) return;
   // The symmetric part joins the node blocks (i, j, then each point's node; each node pair once,
   // the lower triangle); each point's sliding term stays a rank-one term for the linear solver.
-  std::vector<int> nodes = {e.start, e.end};
+  std::vector<int>& nodes = contact_nodes_;
+  nodes.assign({e.start, e.end});
   for (const contact::ActivePoint& p : a.points) nodes.push_back(p.node);
   for (size_t p = 0; p < nodes.size(); ++p)
     for (size_t q = p; q < nodes.size(); ++q) {
       if (p != q && nodes[p] == nodes[q]) continue;
       add_block(nodes[p], nodes[q], r.symmetric_tangent.block<3, 3>(3 * p, 3 * q));
     }
-  std::vector<int> equation(g.size());
+  std::vector<int>& equation = contact_equations_;
+  equation.resize(g.size());
   for (int k = 0; k < size; ++k) equation[k] = dofs_.equation(g[k]);
   for (int p = 0; p < a.size(); ++p)
     if (r.sliding_u.col(p).squaredNorm() > 0.0 && r.sliding_v.col(p).squaredNorm() > 0.0) {
-      contact_rank_one_.push_back({equation, r.sliding_u.col(p), r.sliding_v.col(p)});
-      frames_.to_nodal(g, contact_rank_one_.back().u);
-      frames_.to_nodal(g, contact_rank_one_.back().v);
+      if (contact_rank_ones_ == contact_rank_one_.size()) contact_rank_one_.emplace_back();
+      linalg::RankOne& term = contact_rank_one_[contact_rank_ones_++];  // its storage reused
+      term.equation.assign(equation.begin(), equation.end());
+      term.u = r.sliding_u.col(p);
+      term.v = r.sliding_v.col(p);
+      frames_.to_nodal(g, term.u);
+      frames_.to_nodal(g, term.v);
     }
   if (!has_prescribed_) return;
   for (int b = 0; b < size; ++b) {
@@ -371,7 +376,7 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
   if (with_tangent) ensure_contact_pattern(contacts);
   for (const contact::ActiveContact& a : contacts) replaced_[a.element] = 1;
   out.contacts.clear();
-  if (with_tangent) contact_rank_one_.clear();
+  if (with_tangent) contact_rank_ones_ = 0;  // filled again by the contacts (finish_evaluation)
   const int n_elements = static_cast<int>(model_.elements.size());
   // The elements' first writers assign (mark_first_writers): only what no element writes is cleared.
   util::resize_touched(out.internal_force, model_.dof_count());
@@ -420,10 +425,22 @@ void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const
                                      bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts) {
   out.largest_end_rotation = 0.0;  // a maximum: the same whatever the order
   for (const double largest : chunk_largest_end_rotation_) out.largest_end_rotation = std::max(out.largest_end_rotation, largest);
-  for (const contact::ActiveContact& a : contacts) {
-    evaluate_contact(a, displacements, previous_rotations, with_tangent, out);
-    replaced_[a.element] = 0;
+  // The contact elements' responses, each a function of its own dofs, are formed in parallel a
+  // chunk at a time and added in the contacts' order: the sums are the same on any number of
+  // threads, and a chunk's responses are all that is held at once.
+  constexpr size_t chunk = 256;
+  for (size_t begin = 0; begin < contacts.size(); begin += chunk) {
+    const size_t count = std::min(chunk, contacts.size() - begin);
+    if (contact_responses_.size() < count) contact_responses_.resize(count);
+    util::parallel_for_dynamic(size_t{0}, count, count >= 16, [&](size_t i) {
+      contact_response(model_, contacts[begin + i], displacements, previous_rotations, with_tangent, contact_responses_[i]);
+    });
+    for (size_t i = 0; i < count; ++i) {
+      add_contact(contacts[begin + i], contact_responses_[i], with_tangent, out);
+      replaced_[contacts[begin + i].element] = 0;
+    }
   }
+  if (with_tangent) contact_rank_one_.resize(contact_rank_ones_);
   if (!frames_.empty()) turn_to_nodal_frames(out, with_tangent);
   if (with_tangent) mask_constrained_dofs();
   out.id = ++evaluations_;
@@ -494,7 +511,7 @@ void GlobalSystem::evaluate_contact_change(const Eigen::VectorXd& displacements,
   }
   for (const int node : nodes) contact_node_[node] = 0;
   out.contacts.clear();
-  contact_rank_one_.clear();
+  contact_rank_ones_ = 0;
   finish_evaluation(displacements, previous_rotations, true, out, contacts);
 }
 

@@ -17,6 +17,7 @@
 #include "tsmframe/assembly/follower_loads.hpp"
 #include "tsmframe/assembly/nodal_springs.hpp"
 #include "tsmframe/assembly/rounding_floor.hpp"
+#include "tsmframe/contact/active_contact.hpp"
 #include "tsmframe/contact/contact_set.hpp"
 #include "tsmframe/element/beam_element.hpp"
 #include "tsmframe/linalg/block_matrix.hpp"
@@ -162,8 +163,10 @@ class GlobalSystem {
   int entry(int block_row, int block_column) const;  ///< index in tangent_ of a lower entry (row ≥ column), −1 if absent
   void ensure_contact_pattern(const std::vector<contact::ActiveContact>& contacts);
   void add_block(int node_a, int node_b, const Eigen::Matrix3d& value);
-  void evaluate_contact(const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
-                        const std::vector<double>& previous_rotations, bool with_tangent, Evaluation& out);
+  /// A contact element's response (contact_response) added to `out`: its forces, blocks and
+  /// sliding terms.
+  void add_contact(const contact::ActiveContact& contact, const contact::MultiPointResponse& response, bool with_tangent,
+                   Evaluation& out);
   NodalFrames frames_;                              ///< the skew rollers' frames (empty: none)
   FollowerLoads follower_loads_;                    ///< the members' pressure (assembly/follower_loads)
   NodalSprings springs_;                            ///< springs to the ground (assembly/nodal_springs)
@@ -235,6 +238,12 @@ class GlobalSystem {
   std::vector<int> unwritten_nodes_;       ///< nodes no element joins: their internal forces cleared
   std::vector<char> replaced_;             ///< per element: carries a contact in this evaluation
   std::vector<linalg::RankOne> contact_rank_one_;
+  /// finish_evaluation's scratch, kept so that its storage is reused: a chunk of contacts'
+  /// responses, a contact element's dofs, nodes and equations, and how many of contact_rank_one_
+  /// the evaluation has filled.
+  std::vector<contact::MultiPointResponse> contact_responses_;
+  std::vector<int> contact_dofs_, contact_nodes_, contact_equations_;
+  size_t contact_rank_ones_ = 0;
   std::vector<std::pair<int, int>> contact_pairs_;  ///< node pairs joined only by contact elements
   bool forget_contact_pairs_ = false;                ///< see forget_contact_pairs()
   int pattern_version_ = 0;

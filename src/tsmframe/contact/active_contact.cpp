@@ -10,26 +10,28 @@
 namespace tsm::contact {
 namespace {
 
-/// The three-node element's response in the k-point form (k = 1), value for value.
-MultiPointResponse as_multi_point(const ContactElementData& data, const ContactResponse& r, bool with_tangent) {
-  MultiPointResponse m;
+/// The three-node element's response in the k-point form (k = 1), value for value, into `m`
+/// (Eigen keeps a vector's or a matrix's storage where the size stays).
+void as_multi_point(const ContactElementData& data, const ContactResponse& r, bool with_tangent, MultiPointResponse& m) {
   m.chord = r.chord;
-  m.alpha = Eigen::VectorXd::Constant(1, r.alpha);
-  m.normal = Eigen::VectorXd::Constant(1, r.normal);
+  m.alpha.setConstant(1, r.alpha);
+  m.normal.setConstant(1, r.normal);
   m.deformations = r.deformations;
   m.forces = r.forces;
   m.nodal_forces = r.nodal_forces;
   const bool deflected = data.frame == ContactFrame::chord && data.normal == ContactNormal::deflected;
-  m.force_per_Y = Eigen::VectorXd::Constant(1, deflected ? deflected_normal(data, r).direction.norm() : 1.0);
+  m.force_per_Y.setConstant(1, deflected ? deflected_normal(data, r).direction.norm() : 1.0);
   m.point_u = r.point_u;
-  m.point_stiffness = Eigen::MatrixXd::Constant(1, 1, r.point_stiffness);
+  m.point_stiffness.setConstant(1, 1, r.point_stiffness);
   m.sliding_u = r.sliding_u;
   m.sliding_v = r.sliding_v;
   if (with_tangent) {
     m.tangent = r.tangent;
     m.symmetric_tangent = r.symmetric_tangent;
+  } else {
+    m.tangent.resize(0, 0);
+    m.symmetric_tangent.resize(0, 0);
   }
-  return m;
 }
 
 }  // namespace
@@ -54,17 +56,25 @@ MultiPointElementData multi_point_data(const ActiveContact& contact) {
 
 MultiPointResponse active_contact_response(const ActiveContact& contact, const Eigen::VectorXd& d,
                                            double previous_rotation, bool with_tangent) {
+  MultiPointResponse out;
+  active_contact_response(contact, d, previous_rotation, with_tangent, out);
+  return out;
+}
+
+void active_contact_response(const ActiveContact& contact, const Eigen::VectorXd& d, double previous_rotation,
+                             bool with_tangent, MultiPointResponse& out) {
   if (contact.size() == 1) {
     const Vector9 d9 = d;
     const ContactElementData& data = contact.data.front();
-    return as_multi_point(data, contact_response(data, d9, previous_rotation, with_tangent), with_tangent);
+    as_multi_point(data, contact_response(data, d9, previous_rotation, with_tangent), with_tangent, out);
+    return;
   }
   const MultiPointElementData data = multi_point_data(contact);
-  if (data.frame == ContactFrame::cantilever) return multi_point_cantilever_response(data, d, previous_rotation, with_tangent);
   const bool any_deflected = std::any_of(data.points.begin(), data.points.end(),
                                          [](const ContactPointData& p) { return p.normal == ContactNormal::deflected; });
-  if (any_deflected) return multi_point_deflected_response(data, d, previous_rotation, with_tangent);
-  return multi_point_response(data, d, previous_rotation, with_tangent);
+  if (data.frame == ContactFrame::cantilever) out = multi_point_cantilever_response(data, d, previous_rotation, with_tangent);
+  else if (any_deflected) out = multi_point_deflected_response(data, d, previous_rotation, with_tangent);
+  else out = multi_point_response(data, d, previous_rotation, with_tangent);
 }
 
 }  // namespace tsm::contact

@@ -40,5 +40,9 @@ MultiPointElementData multi_point_data(const ActiveContact& contact);
 /// The contact element evaluated at d = (u, v, Θ of nodes i, j, then of each point's node).
 MultiPointResponse active_contact_response(const ActiveContact& contact, const Eigen::VectorXd& d,
                                            double previous_rotation, bool with_tangent = true);
+/// The same into `out`, whose storage is reused where its sizes fit: a one-point element
+/// evaluated into the response of one allocates nothing (a Newton iteration evaluates 10⁴ of them).
+void active_contact_response(const ActiveContact& contact, const Eigen::VectorXd& d, double previous_rotation,
+                             bool with_tangent, MultiPointResponse& out);
 
 }  // namespace tsm::contact
