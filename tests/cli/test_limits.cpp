@@ -136,24 +136,25 @@ TEST_F(Limits, TenMillionElementsAreRefusedBeforeTheyAreMadeWhereTheMachineLacks
 
 TEST_F(Limits, ContactsWhoseCandidatesWouldTakeMoreThanTheMachineHasAreRefusedUpFront) {
   if (tsm::test::address_sanitizer) GTEST_SKIP() << "under AddressSanitizer the bound is on resident memory, not ulimit -v";
-  // 80,001 contact nodes on a beam of 80,000 elements: 19 bytes per contact and candidate element
-  // (the reference sides in the state and the step's start, a released node's place; the
-  // candidate tables are the one contact entry's, shared), 6.4·10⁹ of them: 122 GB.
+  // 80,001 contact nodes on a beam of 80,000 elements, 6.4·10⁹ contact and candidate element
+  // pairs: a side each (two bits) should every node move beyond the broad phase's reach at once
+  // (the candidate tables are the one contact entry's, shared): 3.2 GB, more than ulimit -v leaves.
   const std::string model = write("contacts.json", beam_under_contact_nodes(80'000, 80'001));
   const Outcome o = run_cli_bounded("run " + model + " --out " + out(), 2 * gigabyte, seconds);
   expect_over_budget(o, model, "contacts: the run needs ~");
   const std::string part = "(80,001 contacts with 6,400,080,000 candidate elements ";
   const size_t at = o.output.find(part);
   ASSERT_NE(at, std::string::npos) << o.output;
-  // The contacts' part by hand: per candidate 19 B × 6.4·10⁹ = 121.6 GB; per contact its state
-  // and 51 iterates' points, 80,001 × 3,048 B = 0.24 GB; past 32 contacts the sparse LU kept as
-  // the fallback, ~5 KB per unknown × 240,000 = 1.2 GB: 123.0 GB, the rest (the table, the
-  // elements' chords, the look-ahead's G) under 0.05 GB.
+  // The contacts' part by hand: per candidate ¼ B × 6.4·10⁹ = 1.60 GB; per contact its state,
+  // reference and 51 iterates' points, 80,001 × 3,348 B = 0.27 GB; the places of 64 nodes let go
+  // off a free end, 16 B × 64 × 80,000 = 0.08 GB; past 32 contacts the sparse LU kept as the
+  // fallback, ~5 KB per unknown × 240,000 = 1.2 GB: 3.15 GB, the rest (the table, the elements'
+  // chords, the look-ahead's G) under 0.05 GB.
   const std::string stated = o.output.substr(at + part.size());
   size_t digits = 0;
   const double contacts_gigabytes = std::stod(stated, &digits);
   EXPECT_EQ(stated.substr(digits, 4), " GB,") << o.output;
-  EXPECT_NEAR(contacts_gigabytes, 123.05, 0.1) << o.output;
+  EXPECT_NEAR(contacts_gigabytes, 3.19, 0.06) << o.output;
 }
 
 TEST_F(Limits, TheStatesTheOutputKeepsCountAgainstTheMachine) {

@@ -68,13 +68,13 @@ struct StepMemory {
   /// may not reach the other side of any element of it within the step (the reference sides
   /// hold that side, carried along the beam from the element it left).
   bool released_pulled = false;
-  /// At that release: the side the node was on, the normal n of the element it left, and per
-  /// candidate whether the node lay within its span (0 ≤ α ≤ 1). Until the step ends the node
-  /// must not reach the other side of those elements while within their span (going round a
-  /// free end is allowed).
+  /// At that release: the side the node was on, the normal n of the element it left, and the
+  /// candidates (ascending) whose span held the node (0 ≤ α ≤ 1), with their neighbours. Until
+  /// the step ends the node must not reach the other side of those elements while within their
+  /// span (going round a free end is allowed).
   int released_side = 0;
   double released_normal[2] = {0.0, 0.0};
-  std::vector<char> released_within;
+  std::vector<int> released_within;
   /// The element whose free end the point left (released so), −1: none.
   int slid_off_element = -1;
   /// Direction of the last hand-over (+1 past node j, −1 past node i, 0 none), to tell a point

@@ -50,15 +50,18 @@ void release(const ContactGeometry& geometry, const ContactCandidates& contact, 
   state.step.released_normal[1] = n.y();
   // The elements whose span holds the node, and their neighbours in the set: near a joint the
   // node may sit just past one element's end yet is inside the beam's continuation.
-  state.step.released_within.assign(contact.candidates.size(), 0);
+  std::vector<int>& within = state.step.released_within;
+  within.clear();
   for (size_t ci = 0; ci < contact.candidates.size(); ++ci) {
     const int f = contact.candidates[ci];
     const double alpha = geometry.locate(contact, f, D, rotations, -alpha_tolerance, 1.0 + alpha_tolerance).alpha;
     if (alpha < -alpha_tolerance || alpha > 1.0 + alpha_tolerance) continue;
     for (const int node : {model.elements[f].start, model.elements[f].end})
       for (const int g : geometry.node_elements(node))
-        if (contact.is_candidate(g)) state.step.released_within[contact.candidate_index[g]] = 1;
+        if (contact.is_candidate(g)) within.push_back(contact.candidate_index[g]);
   }
+  std::sort(within.begin(), within.end());
+  within.erase(std::unique(within.begin(), within.end()), within.end());
   state.active = false;
   state.step.released = true;
   state.element = -1;
@@ -71,8 +74,7 @@ bool passed_through(const ContactGeometry& geometry, const ContactCandidates& co
                     const std::vector<double>& rotations, const ContactState& state, const ElementLoads& loads) {
   if (state.active || !state.step.released) return false;
   const Eigen::Vector2d released_normal(state.step.released_normal[0], state.step.released_normal[1]);
-  for (size_t ci = 0; ci < contact.candidates.size(); ++ci) {
-    if (!state.step.released_within[ci]) continue;
+  for (const int ci : state.step.released_within) {
     const int f = contact.candidates[ci];
     const NodeOnElement where = geometry.locate(contact, f, D, rotations, 0.0, 1.0, &loads);
     if (where.alpha < 0.0 || where.alpha > 1.0) continue;

@@ -21,13 +21,16 @@ constexpr double state_per_node = 48.0, state_per_element = 32.0;
 // headers), and what it shows in steps.csv: the monitored nodes' displacements, the reactions at
 // the moved dofs, every contact's point.
 constexpr double per_step = 400.0, step_per_monitored = 24.0, step_per_moved = 8.0, step_per_contact = 48.0;
-// A contact: its state, its geometry's settings and its step's points (~600 bytes); per
-// candidate the reference side in the state and in the step's start (2 bytes) and, should it be
-// released in the step, its place in the chord's frame and whether within the span (17 bytes);
-// its point at every Newton iterate of a step (48 bytes). Per group of contacts that may
-// touch the same elements (model/candidate_groups) one table: the candidates' places (an int per
-// element of the model), and per candidate its index and Ψ (12 bytes).
-constexpr double contact_fixed = 600.0, contact_per_candidate = 19.0, contact_per_iterate = 48.0;
+// A contact: its state, its geometry's settings and its step's points, and its reference at the
+// step's start — the candidates near its node and its side of each (~64 of them, 4¼ bytes each):
+// ~900 bytes; its point at every Newton iterate of a step (48 bytes). Per candidate a side, two
+// bits, where an iterate moves the node beyond the broad phase's reach or the node lets go
+// (contact/sides.hpp; counted for every contact at once), and for a node let go off a free end its
+// place in each candidate chord's frame (16 bytes; counted for `released_places` contacts at once).
+// Per group of contacts that may touch the same elements (model/candidate_groups) one table: the
+// candidates' places (an int per element of the model), and per candidate its index and Ψ (12 bytes).
+constexpr double contact_fixed = 900.0, contact_per_candidate = 0.25, contact_per_iterate = 48.0;
+constexpr double place_per_candidate = 16.0, released_places = 64.0;
 constexpr double table_per_element = 4.0, table_per_candidate = 12.0;
 // Once per model with contacts: each element's initial chord and the elements at each node.
 constexpr double contacts_per_element = 48.0;
@@ -82,9 +85,10 @@ MemoryEstimate estimate_memory(const ModelCounts& c) {
   e.input = {"the model file", input_per_byte * c.input_bytes};
   e.elements = {count_text(c.elements) + " elements and " + count_text(c.nodes) + " nodes",
                 per_element * c.elements + per_node * c.nodes};
+  const double places = c.contacts > 0.0 ? std::min(c.contacts, released_places) * c.contact_candidates / c.contacts : 0.0;
   e.contacts = {count_text(c.contacts) + " contacts with " + count_text(c.contact_candidates) + " candidate elements",
                 c.contacts * (contact_fixed + contact_per_iterate * (c.max_iterations + 1.0)) +
-                    contact_per_candidate * c.contact_candidates +
+                    contact_per_candidate * c.contact_candidates + place_per_candidate * places +
                     c.candidate_tables * table_per_element * c.elements + table_per_candidate * c.table_candidates +
                     c.contact_spec_bytes + contact_solver_bytes(c) +
                     (c.contacts > 0.0 ? contacts_per_element * c.elements : 0.0)};

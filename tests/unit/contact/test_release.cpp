@@ -36,7 +36,7 @@ TEST(ContactRelease, ALetGoByPullingRemembersItsSideAlongTheWholeBeam) {
   // The side it let go on, carried from element 1 to every element of the beam.
   EXPECT_EQ(state.reference.side.values(), (std::vector<signed char>{1, 1, 1, 1}));
   // Within the span of element 1, and its neighbours across its nodes.
-  EXPECT_EQ(state.step.released_within, (std::vector<char>{1, 1, 1, 0}));
+  EXPECT_EQ(state.step.released_within, (std::vector<int>{0, 1, 2}));
 }
 
 TEST(ContactRelease, ALetGoOffAFreeEndNamesTheElementItLeft) {
