@@ -49,6 +49,32 @@ def model(kind, size, contacts=True):
     return m
 
 
+def pipeline(elements, lift=0.5):
+    """A pipeline of `elements` 10-cm elements lying on a bed beam of as many (every pipeline node a
+    contact node resting on the bed, 5 cm between the centre lines), pressed by 2 kN/m and lifted at
+    its middle by `lift` metres, both in proportion in 10 load steps. The bed rests on a Winkler
+    foundation (10⁷ N/m²) and is pinned at its ends; the pipeline is held along its length at its
+    left end only."""
+    length, h = 0.1 * elements, 0.1
+    middle = elements // 2
+    nodes = [{"id": 1, "x": 0.0, "y": 0.0}, {"id": 2, "x": length, "y": 0.0},
+             {"id": 3, "x": 0.5 * h, "y": 0.05}, {"id": 4, "x": length - 0.5 * h, "y": 0.05},
+             {"id": 5, "x": 0.5 * h + middle * (length - h) / (elements - 1), "y": 0.05}]
+    section = {"material": "steel", "element": "timoshenko"}
+    upper = lambda a, b, n: {"from": a, "to": b, "divisions": n, "section": "top", "load": {"fy": -2000.0}, **section}
+    return {"title": f"a pipeline of {elements} elements lifted at its middle off a bed of {elements}",
+            "materials": {"steel": {"E": 2e11, "nu": 0.3}},
+            "sections": {"beam": {"A": 4e-3, "I": 2e-5, "shear_area": 3.3e-3},
+                         "top": {"A": 1e-3, "I": 1e-7, "shear_area": 8e-4}},
+            "nodes": nodes,
+            "members": [{"from": 1, "to": 2, "divisions": elements, "section": "beam", "foundation": 1e7, **section},
+                        upper(3, 5, middle), upper(5, 4, elements - 1 - middle)],
+            "supports": [{"node": 1, "type": "pinned"}, {"node": 2, "type": "pinned"}, {"node": 3, "fix": ["ux"]}],
+            "prescribed": [{"node": 5, "uy": lift}],
+            "contacts": [{"nodes": {"members": [1, 2]}, "members": [0], "gap": 0.05}],
+            "analysis": {"control": {"type": "load", "steps": 10}, "output": "last"}}
+
+
 def run(binary, path):
     out = tempfile.mkdtemp(prefix="contact-scale-")
     start = time.time()

@@ -1,14 +1,15 @@
 // Contacts as drawn (a node at the contact's gap from a beam is in contact from the start) and
 // beams held by contacts: a beam on knife edges, a cantilever on a cantilever, a beam pressed
 // onto a stiffer one, a column against a wall, a mat and a riding load on a beam, a beam lying
-// on a beam; the model check that only a held node drawn at the gap rests; lifted off, the run
-// says nothing holds it.
+// on a beam, a heavy pipe lifted off its bed; the model check that only a held node drawn at the
+// gap rests; lifted off, the run says nothing holds it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <exception>
 #include <string>
+#include <tuple>
 
 #include <Eigen/Core>
 
@@ -540,6 +541,45 @@ TEST(ContactResting, ABeamLyingOnABeamLiftedOffFailsSayingNothingHoldsIt) {
   const RunResult r = run(beam_on_beam(-1e3), model);  // pulled up: the contacts would pull
   EXPECT_NE(r.status, tsm::solver::Status::converged);
   EXPECT_NE(r.message.find("held only by the contacts resting on it"), std::string::npos) << r.message;
+}
+
+TEST(ContactResting, AHeavyBeamLiftedAtOnePointLeavesTheGroundOverTheLengthTheBeamEquationGives) {
+  // A pipe (EI 2·10⁴, 2 kN/m) lying on a bed beam on a stiff foundation (10⁹ N/m²: 2 µm under the
+  // pipe's weight), every pipe node a contact node resting on it, lifted at its middle by δ = 0.5 m
+  // (bench/contact_scale.py's pipeline, 40 m long here). From the touchdown, where w = w' = w'' = 0,
+  // to the lift point, where w' = 0, EI w'''' = −q gives w = q L x³/18EI − q x⁴/24EI and
+  // δ = q L⁴/72EI: off the ground over L = (72 EI δ / q)^¼ = 4.356 m on each side, 87.1 of the
+  // 10-cm nodes, lifted by P = 4/3 q L = 11.6 kN (the ground keeps q L/3 at each touchdown).
+  const double EI = 2e11 * 1e-7, q = 2000.0, delta = 0.5, h = 0.1;
+  const int elements = 400, middle = elements / 2;
+  const double length = h * elements;
+  json m = {{"materials", {{"steel", {{"E", 2e11}, {"nu", 0.3}}}}},
+            {"sections", {{"bed", {{"A", 4e-3}, {"I", 2e-5}, {"shear_area", 3.3e-3}}},
+                          {"pipe", {{"A", 1e-3}, {"I", 1e-7}, {"shear_area", 8e-4}}}}},
+            {"nodes", json::array({{{"id", 1}, {"x", 0.0}, {"y", 0.0}}, {{"id", 2}, {"x", length}, {"y", 0.0}},
+                                   {{"id", 3}, {"x", 0.5 * h}, {"y", 0.05}}, {{"id", 4}, {"x", length - 0.5 * h}, {"y", 0.05}},
+                                   {{"id", 5}, {"x", 0.5 * h + middle * h}, {"y", 0.05}}})},
+            {"supports", json::array({{{"node", 1}, {"type", "pinned"}}, {{"node", 2}, {"type", "pinned"}},
+                                      {{"node", 3}, {"fix", {"ux"}}}})},
+            {"prescribed", json::array({{{"node", 5}, {"uy", delta}}})},
+            {"contacts", json::array({{{"nodes", {{"members", {1, 2}}}}, {"members", {0}}, {"gap", 0.05}}})},
+            {"analysis", {{"control", {{"type", "load"}, {"steps", 10}}}}}};
+  m["members"] = json::array({{{"from", 1}, {"to", 2}, {"divisions", elements}, {"material", "steel"}, {"section", "bed"},
+                               {"element", "timoshenko"}, {"foundation", 1e9}}});
+  for (const auto& [from, to, divisions] : {std::tuple{3, 5, middle}, std::tuple{5, 4, elements - 1 - middle}})
+    m["members"].push_back({{"from", from}, {"to", to}, {"divisions", divisions}, {"material", "steel"}, {"section", "pipe"},
+                            {"element", "timoshenko"}, {"load", {{"fy", -q}}}});
+  tsm::Model model;
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const StepRecord& last = r.steps.back();
+  const double L = std::pow(72.0 * EI * delta / q, 0.25);
+  int touching = 0;
+  for (const tsm::solver::ContactPoint& c : last.contacts) touching += c.element >= 0 ? 1 : 0;
+  const int off = static_cast<int>(model.contacts.size()) - touching;
+  EXPECT_NEAR(off, 2.0 * L / h, 2.5) << "within a node either side of each touchdown";
+  const double P = 4.0 / 3.0 * q * L;
+  EXPECT_NEAR(last.reactions[3 * model.node_index(5) + 1], P, 0.02 * P);
 }
 
 }  // namespace
