@@ -347,9 +347,8 @@ std::string free_part(const Model& model, Parts& parts, const std::vector<int>& 
   return os.str();
 }
 
-}  // namespace
-
-std::optional<std::string> find_mechanism(const Model& model, bool resting_contacts_hold) {
+/// find_mechanism; without `explain`, an empty sentence for a part no support holds.
+std::optional<std::string> first_mechanism(const Model& model, bool resting_contacts_hold, bool explain) {
   Parts parts = join_by_elements(model);
   const std::vector<char> hinge = hinge_nodes(model);
   const RestingAsDrawn resting = resting_contacts_hold ? resting_contacts(model) : RestingAsDrawn{};
@@ -362,9 +361,20 @@ std::optional<std::string> find_mechanism(const Model& model, bool resting_conta
     if (part.empty()) continue;
     const int root = parts.root(part.front());
     if (holding.held[root]) continue;
+    if (!explain) return std::string();
     return free_part(model, parts, part, root, modes_of(model, frames, hinge, part, holding.resting[root]));
   }
   return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::string> find_mechanism(const Model& model, bool resting_contacts_hold) {
+  return first_mechanism(model, resting_contacts_hold, true);
+}
+
+bool is_mechanism(const Model& model, bool resting_contacts_hold) {
+  return first_mechanism(model, resting_contacts_hold, false).has_value();
 }
 
 std::optional<std::string> starting_mechanism(Model& model) {

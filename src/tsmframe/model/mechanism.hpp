@@ -18,6 +18,9 @@ namespace tsm {
 /// contacts resting on a part as drawn (model/resting_contact) count as supports along their
 /// normal unless `resting_contacts_hold` is false.
 std::optional<std::string> find_mechanism(const Model& model, bool resting_contacts_hold = true);
+/// Whether find_mechanism finds one, without the sentence (which looks at every contact against
+/// every element for one that plainly does not rest).
+bool is_mechanism(const Model& model, bool resting_contacts_hold = true);
 
 /// find_mechanism where the analysis starts: the supports and the first stage's prescribed dofs
 /// (later stages only hold more). `model.constrained` is marked while it looks and restored.

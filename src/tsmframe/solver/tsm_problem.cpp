@@ -48,7 +48,7 @@ TsmProblem::TsmProblem(assembly::GlobalSystem& system, const contact::ContactSet
   // which looks at parts as rigid bodies, does not see.
   hinged_ = std::any_of(model.elements.begin(), model.elements.end(),
                         [](const Element& e) { return e.release_start || e.release_end; });
-  if (contacts_ && !find_mechanism(model) && find_mechanism(model, false)) {
+  if (contacts_ && !is_mechanism(model) && is_mechanism(model, false)) {
     const auto resting = resting_contacts(model);
     for (int k = 0; k < static_cast<int>(model.contacts.size()); ++k)
       if (resting[k]) holding_contacts_.push_back(k);
