@@ -214,9 +214,10 @@ void ContactSet::restore(const StepStart& start, std::vector<ContactState>& stat
   const CandidateChords chords(geometry_, D);
   for (int k = 0; k < contact_count(); ++k) {
     const ContactCandidates& contact = geometry_.contact(k);
+    // A release's reference (every side) stands; a step's start's is taken again here, with the
+    // candidates the contact has now (a stage may have turned it off and on since).
     const ContactReference& reference = states[k].reference;
-    if (reference.sides_of_near ? reference.stamp == start.stamp : reference.side.size() == contact.candidates.size())
-      continue;  // taken there already (or at a release)
+    if (!reference.sides_of_near && reference.side.size() == contact.candidates.size() && !contact.candidates.empty()) continue;
     reset_near_sides(geometry_, contact, start, chords, frames, states[k]);
   }
 }

@@ -97,8 +97,9 @@ class ContactSet {
   /// At a converged state: the step's memory is cleared, and inactive contacts take their
   /// current sides as reference (`start`: this state, the next step's start).
   void accept(const StepStart& start, std::vector<ContactState>& states) const;
-  /// States read back without their references (a restart, solver/restart.hpp): each takes its
-  /// sides at this converged state as reference, as accept() gives an inactive contact.
+  /// At a run's or a stage's start (states read back without their references, solver/
+  /// restart.hpp; contacts a stage turns on with other candidates): each contact takes its
+  /// reference at this converged state as accept() gives an inactive one — all but a release's.
   void restore(const StepStart& start, std::vector<ContactState>& states) const;
 
  private:

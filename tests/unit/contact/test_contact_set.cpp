@@ -125,6 +125,24 @@ TEST(ContactDetection, AlongTheNodesPathOnlyWhereTheNodeItselfCrossedTheElement)
   }
 }
 
+TEST(ContactReferences, ARunsOrAStagesStartTakesEveryReferenceAgainWithTheCandidatesItHasNow) {
+  // A stage that turns a contact off leaves it a reference taken with no candidates, at the very
+  // displacements the next stage starts from; turned on again, its reference is taken anew
+  // (its near list feeds the broad phase and the landing), not kept for its stamp.
+  BeamSpec b;
+  b.divisions = 4;
+  const tsm::Model model = tsm::io::read_model(pusher_model(b, 0.125, 0.02, 0.0, -0.02, 1));
+  tsm::contact::ContactSet tracker(model);
+  std::vector<tsm::contact::ContactState> states = tracker.initial_states();
+  const std::vector<int> near = states[0].reference.near;
+  ASSERT_FALSE(near.empty());
+  states[0].reference.near.clear();  // as taken while the stage had turned it off
+  states[0].reference.side.set({});
+  tracker.restore(tsm::contact::unloaded_start(model), states);
+  EXPECT_EQ(states[0].reference.near, near);
+  EXPECT_EQ(states[0].reference.side.size(), near.size());
+}
+
 TEST(ContactRelease, ANodeThatLetGoByPullingMayNotBeThroughTheBeamAnywhere) {
   // A contact on element 3 of a 10-element cantilever, from above, lets go by pulling at an
   // iterate that has thrown the node far beyond the beam (a diverging Newton iterate): no
