@@ -7,13 +7,16 @@ under 2 kN/m in 10 load steps, output "last" (tests/support/models.hpp, pressed_
 
   press N        10 m long, the lower beam simply supported (the sizes bench/README.md quotes);
   continuous L   the issue's target shape, L metres of 10 cm upper elements on a lower beam
-                 supported every 10 m (the target is L = 1000: 10^4 contact nodes).
+                 supported every 10 m (the target is L = 1000: 10^4 contact nodes);
+  pipeline N     the issue's 10⁵-contact shape at N elements a beam: a pipe resting on a bed,
+                 lifted at its middle (pipeline() below).
 
 Each row also runs the same beams without contacts (the upper one supported where the lower one
-is, every 10 m) for the cost of an iteration without contacts. Wall time and peak memory of the
-whole command (/usr/bin/time), one run per build per row, builds alternating.
+is, every 10 m; the pipe on a foundation of its own) for the cost of an iteration without
+contacts. Wall time and peak memory of the whole command (/usr/bin/time), one run per build per
+row, builds alternating.
 
-  /usr/bin/python3 bench/contact_scale.py BUILD [OLD_BUILD] [--rows press:501,press:701,continuous:50]
+  /usr/bin/python3 bench/contact_scale.py BUILD [OLD_BUILD] [--rows press:501,press:701,continuous:50,pipeline:1000]
 """
 import argparse, json, os, subprocess, tempfile, time
 
@@ -49,12 +52,13 @@ def model(kind, size, contacts=True):
     return m
 
 
-def pipeline(elements, lift=0.5):
+def pipeline(elements, lift=0.5, contacts=True):
     """A pipeline of `elements` 10-cm elements lying on a bed beam of as many (every pipeline node a
     contact node resting on the bed, 5 cm between the centre lines), pressed by 2 kN/m and lifted at
     its middle by `lift` metres, both in proportion in 10 load steps. The bed rests on a Winkler
     foundation (10⁷ N/m²) and is pinned at its ends; the pipeline is held along its length at its
-    left end only."""
+    left end only. Without contacts the pipeline rests on a foundation of its own instead (the
+    same stiffness): the same two beams, for the cost of an iteration without contacts."""
     length, h = 0.1 * elements, 0.1
     middle = elements // 2
     nodes = [{"id": 1, "x": 0.0, "y": 0.0}, {"id": 2, "x": length, "y": 0.0},
@@ -62,7 +66,7 @@ def pipeline(elements, lift=0.5):
              {"id": 5, "x": 0.5 * h + middle * (length - h) / (elements - 1), "y": 0.05}]
     section = {"material": "steel", "element": "timoshenko"}
     upper = lambda a, b, n: {"from": a, "to": b, "divisions": n, "section": "top", "load": {"fy": -2000.0}, **section}
-    return {"title": f"a pipeline of {elements} elements lifted at its middle off a bed of {elements}",
+    m = {"title": f"a pipeline of {elements} elements lifted at its middle off a bed of {elements}",
             "materials": {"steel": {"E": 2e11, "nu": 0.3}},
             "sections": {"beam": {"A": 4e-3, "I": 2e-5, "shear_area": 3.3e-3},
                          "top": {"A": 1e-3, "I": 1e-7, "shear_area": 8e-4}},
@@ -73,6 +77,11 @@ def pipeline(elements, lift=0.5):
             "prescribed": [{"node": 5, "uy": lift}],
             "contacts": [{"nodes": {"members": [1, 2]}, "members": [0], "gap": 0.05}],
             "analysis": {"control": {"type": "load", "steps": 10}, "output": "last"}}
+    if not contacts:
+        del m["contacts"]
+        for member in m["members"][1:]:
+            member["foundation"] = 1e7
+    return m
 
 
 def run(binary, path):
@@ -107,7 +116,8 @@ def main():
         paths = {}
         for contacts in (True, False):
             paths[contacts] = os.path.join(work, f"{kind}-{size}-{'contact' if contacts else 'free'}.json")
-            json.dump(model(kind, int(size), contacts), open(paths[contacts], "w"))
+            shape = pipeline(int(size), contacts=contacts) if kind == "pipeline" else model(kind, int(size), contacts)
+            json.dump(shape, open(paths[contacts], "w"))
         for name, build in (builds[::-1] if len(builds) == 2 else builds):  # old first, then new
             binary = os.path.join(build, "tsmframe")
             r = run(binary, paths[True])
