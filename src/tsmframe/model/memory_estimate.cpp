@@ -32,8 +32,10 @@ constexpr double per_step = 400.0, step_per_monitored = 24.0, step_per_moved = 8
 constexpr double contact_fixed = 900.0, contact_per_candidate = 0.25, contact_per_iterate = 48.0;
 constexpr double place_per_candidate = 16.0, released_places = 64.0;
 constexpr double table_per_element = 4.0, table_per_candidate = 12.0;
-// Once per model with contacts: each element's initial chord and the elements at each node.
-constexpr double contacts_per_element = 48.0;
+// Once per model with contacts: each element's initial chord and the elements at each node; the
+// displacements and chord rotations the references were taken at (solver::State's, and the
+// copy the step's start keeps): 48 bytes per node, 16 per element.
+constexpr double contacts_per_element = 64.0, contacts_per_node = 48.0;
 // The solver once contacts touch: beyond 32 of them the sliding terms are lagged, but a sparse LU
 // of the whole tangent stays the fallback where the symmetric part alone is singular and is
 // counted (Eigen's SparseLU: ~5 KB per unknown, measured on beams pressed onto beams); up to 32 a
@@ -91,7 +93,7 @@ MemoryEstimate estimate_memory(const ModelCounts& c) {
                     contact_per_candidate * c.contact_candidates + place_per_candidate * places +
                     c.candidate_tables * table_per_element * c.elements + table_per_candidate * c.table_candidates +
                     c.contact_spec_bytes + contact_solver_bytes(c) +
-                    (c.contacts > 0.0 ? contacts_per_element * c.elements : 0.0)};
+                    (c.contacts > 0.0 ? contacts_per_element * c.elements + contacts_per_node * c.nodes : 0.0)};
   e.kept_states = {"the state of " + count_text(c.kept_states) + (c.kept_states == 1.0 ? " step" : " steps"),
                    c.kept_states * (state_per_node * c.nodes + state_per_element * c.elements)};
   e.steps = {count_text(c.steps) + " steps' records",
