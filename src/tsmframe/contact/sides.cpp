@@ -166,6 +166,44 @@ void sides_before(const ContactReference& reference, const std::vector<int>& nea
   for (size_t j = 0; j < near.size() && j < reference.side.size(); ++j) before[near[j]] = reference.side[j];
 }
 
+/// Reads the node's side of the candidates `members` (ascending; null: every candidate) into
+/// `side`, one per member, and carries them among the members. On entry `side` holds the sides
+/// held until now (kept where the node lies on a centre line); the members in `keep` (ascending;
+/// null: none) keep theirs as they are.
+void read_and_carry(const SideReader& read, const std::vector<int>* members, const std::vector<int>* keep,
+                    std::vector<signed char>& side) {
+  const size_t m = side.size();
+  const auto candidate = [&](size_t j) { return members ? (*members)[j] : static_cast<int>(j); };
+  thread_local std::vector<NodeOnElement> where;
+  thread_local std::vector<signed char> past;
+  where.resize(m);
+  past.resize(m);
+  for (size_t j = 0; j < m; ++j) where[j] = read.place(candidate(j));
+  const auto alpha_of = [&](int cj) {  // a neighbour beyond the members: its α read here
+    const int k = member_index(members, cj);
+    return k >= 0 ? where[k].alpha : read.place(cj).alpha;
+  };
+  for (size_t j = 0, kept = 0; j < m; ++j) {
+    const int ci = candidate(j);
+    past[j] = SideReader::past(where[j]);
+    if (keep && kept < keep->size() && (*keep)[kept] == ci) {
+      ++kept;
+      continue;
+    }
+    side[j] = read.side(ci, where[j], past[j] != 0 && read.held_beyond(ci, read.node_past(ci, past[j]), alpha_of), side[j]);
+  }
+  // Beyond the reach of each: the side carried along the beam from the nearest element with one.
+  carry_among(read.geometry, read.spec, read.D, members, past, side);
+}
+
+/// The node's position in the reference; a release's place (keep_place) freed.
+void keep_position(const Eigen::Vector2d& node, ContactReference& reference) {
+  reference.position[0] = node.x();
+  reference.position[1] = node.y();
+  std::vector<double>().swap(reference.along);
+  std::vector<double>().swap(reference.across);
+}
+
 }  // namespace
 
 void carry_sides(const ContactGeometry& geometry, const ContactCandidates& spec, const Eigen::VectorXd& D,
@@ -185,30 +223,15 @@ void carry_sides(const ContactGeometry& geometry, const ContactCandidates& spec,
 
 void reset_sides(const ContactGeometry& geometry, const ContactCandidates& spec, const Eigen::VectorXd& D,
                  const std::vector<double>& rotations, int fallback, ContactState& state, ChordFrames* frames) {
-  const size_t m = spec.candidates.size();
   SideReader read{geometry, spec, D, rotations, frames, geometry.position(spec.node, D), fallback};
   // fallback: the side on state.element's frame, used where the node lies on the centre line.
   if (fallback != 0 && state.element >= 0) read.released_normal = geometry.chord_normal(state.element, D, rotations);
-  thread_local std::vector<NodeOnElement> where;
-  thread_local std::vector<signed char> side, past;
-  where.resize(m);
-  past.resize(m);
-  for (size_t ci = 0; ci < m; ++ci) where[ci] = read.place(static_cast<int>(ci));
-  sides_before(state.reference, state.reference.near, m, side);
-  const auto alpha_of = [&](int cj) { return where[cj].alpha; };
-  for (size_t ci = 0; ci < m; ++ci) {
-    const int c = static_cast<int>(ci);
-    past[ci] = SideReader::past(where[ci]);
-    side[ci] = read.side(c, where[ci], past[ci] != 0 && read.held_beyond(c, read.node_past(c, past[ci]), alpha_of), side[ci]);
-  }
-  // Beyond that reach: the side carried along the beam from the nearest element with one.
-  carry_sides(geometry, spec, D, past, side);
+  thread_local std::vector<signed char> side;
+  sides_before(state.reference, state.reference.near, spec.candidates.size(), side);
+  read_and_carry(read, nullptr, nullptr, side);
   state.reference.side.set(side);
   state.reference.sides_of_near = false;
-  state.reference.position[0] = read.node.x();
-  state.reference.position[1] = read.node.y();
-  std::vector<double>().swap(state.reference.along);  // freed: a release's place is kept by keep_place
-  std::vector<double>().swap(state.reference.across);
+  keep_position(read.node, state.reference);
 }
 
 void reset_near_sides(const ContactGeometry& geometry, const ContactCandidates& spec, const StepStart& start,
@@ -217,65 +240,33 @@ void reset_near_sides(const ContactGeometry& geometry, const ContactCandidates& 
   const std::vector<int> near_before = std::move(reference.near);
   list_near_candidates(geometry, spec, start.displacements, start.stamp, chords, reference);
   const std::vector<int>& near = reference.near;
-  const SideReader read{geometry, spec, start.displacements, start.rotations, &frames,
-                        geometry.position(spec.node, start.displacements)};
-  thread_local std::vector<signed char> before, side, past;
-  thread_local std::vector<NodeOnElement> where;
-  where.resize(near.size());
-  for (size_t j = 0; j < near.size(); ++j) where[j] = read.place(near[j]);
-  const auto alpha_of = [&](int cj) {  // a neighbour beyond the list: its α read here
-    const int k = member_index(&near, cj);
-    return k >= 0 ? where[k].alpha : read.place(cj).alpha;
-  };
   // The sides held until now, of the candidates near now (a node on a centre line keeps its side).
-  before.assign(near.size(), no_side);
+  thread_local std::vector<signed char> side;
+  side.assign(near.size(), no_side);
   if (reference.sides_of_near) {
     for (size_t j = 0, i = 0; j < near.size(); ++j) {  // both lists ascending
       while (i < near_before.size() && near_before[i] < near[j]) ++i;
-      if (i < near_before.size() && near_before[i] == near[j] && i < reference.side.size()) before[j] = reference.side[i];
+      if (i < near_before.size() && near_before[i] == near[j] && i < reference.side.size()) side[j] = reference.side[i];
     }
   } else if (reference.side.size() == spec.candidates.size()) {
-    for (size_t j = 0; j < near.size(); ++j) before[j] = reference.side[near[j]];
+    for (size_t j = 0; j < near.size(); ++j) side[j] = reference.side[near[j]];
   }
-  side.resize(near.size());
-  past.resize(near.size());
-  for (size_t j = 0; j < near.size(); ++j) {
-    const int ci = near[j];
-    past[j] = SideReader::past(where[j]);
-    side[j] = read.side(ci, where[j], past[j] != 0 && read.held_beyond(ci, read.node_past(ci, past[j]), alpha_of), before[j]);
-  }
-  carry_among(geometry, spec, start.displacements, &near, past, side);
+  const SideReader read{geometry, spec, start.displacements, start.rotations, &frames,
+                        geometry.position(spec.node, start.displacements)};
+  read_and_carry(read, &near, nullptr, side);
   reference.side.set(side);
   reference.sides_of_near = true;
-  reference.position[0] = read.node.x();
-  reference.position[1] = read.node.y();
-  std::vector<double>().swap(reference.along);
-  std::vector<double>().swap(reference.across);
+  keep_position(read.node, reference);
 }
 
 void take_every_side(const ContactGeometry& geometry, const ContactCandidates& spec, const StepStart& start,
                      ChordFrames& frames, ContactReference& reference) {
   if (!reference.sides_of_near || reference.stamp != start.stamp) return;
-  const size_t m = spec.candidates.size();
   const SideReader read{geometry, spec, start.displacements, start.rotations, &frames,
                         geometry.position(spec.node, start.displacements)};
-  thread_local std::vector<NodeOnElement> where;
-  thread_local std::vector<signed char> side, past;
-  where.resize(m);
-  past.resize(m);
-  for (size_t ci = 0; ci < m; ++ci) where[ci] = read.place(static_cast<int>(ci));
-  sides_before(reference, reference.near, m, side);  // the near ones' as they are, no_side elsewhere
-  const auto alpha_of = [&](int cj) { return where[cj].alpha; };
-  for (size_t ci = 0, j = 0; ci < m; ++ci) {
-    const int c = static_cast<int>(ci);
-    past[ci] = SideReader::past(where[ci]);
-    if (j < reference.near.size() && reference.near[j] == c) {
-      ++j;
-      continue;
-    }
-    side[ci] = read.side(c, where[ci], past[ci] != 0 && read.held_beyond(c, read.node_past(c, past[ci]), alpha_of), no_side);
-  }
-  carry_sides(geometry, spec, start.displacements, past, side);
+  thread_local std::vector<signed char> side;
+  sides_before(reference, reference.near, spec.candidates.size(), side);  // the near ones' as they are, no_side elsewhere
+  read_and_carry(read, nullptr, &reference.near, side);
   reference.side.set(side);
   reference.sides_of_near = false;
 }
