@@ -28,7 +28,7 @@ void gather(const Eigen::VectorXd& displacements, const std::vector<int>& dofs, 
   for (size_t a = 0; a < dofs.size(); ++a) d[static_cast<Eigen::Index>(a)] = displacements[dofs[a]];
 }
 
-void contact_response(const Model& model, const contact::ActiveContact& a, const Eigen::VectorXd& displacements,
+void contact_element_response(const Model& model, const contact::ActiveContact& a, const Eigen::VectorXd& displacements,
                       const std::vector<double>& previous_rotations, bool with_tangent, contact::MultiPointResponse& response) {
   thread_local std::vector<int> g;  // per thread: the responses are formed in parallel
   thread_local Eigen::VectorXd d;

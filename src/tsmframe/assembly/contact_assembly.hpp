@@ -39,7 +39,7 @@ void gather(const Eigen::VectorXd& displacements, const std::vector<int>& dofs, 
 /// A contact element's response at `displacements` (its chord's rotation before: `previous_rotations`),
 /// into `response` (its storage reused): a function of the element's own dofs, safe to form on
 /// several threads at once.
-void contact_response(const Model& model, const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
+void contact_element_response(const Model& model, const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
                       const std::vector<double>& previous_rotations, bool with_tangent, contact::MultiPointResponse& response);
 
 /// Each active contact point's (in `contacts`' order, points in order) load direction and

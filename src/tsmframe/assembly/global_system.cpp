@@ -433,7 +433,8 @@ void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const
     const size_t count = std::min(chunk, contacts.size() - begin);
     if (contact_responses_.size() < count) contact_responses_.resize(count);
     util::parallel_for_dynamic(size_t{0}, count, count >= 16, [&](size_t i) {
-      contact_response(model_, contacts[begin + i], displacements, previous_rotations, with_tangent, contact_responses_[i]);
+      contact_element_response(model_, contacts[begin + i], displacements, previous_rotations, with_tangent,
+                               contact_responses_[i]);
     });
     for (size_t i = 0; i < count; ++i) {
       add_contact(contacts[begin + i], contact_responses_[i], with_tangent, out);

@@ -163,7 +163,7 @@ class GlobalSystem {
   int entry(int block_row, int block_column) const;  ///< index in tangent_ of a lower entry (row ≥ column), −1 if absent
   void ensure_contact_pattern(const std::vector<contact::ActiveContact>& contacts);
   void add_block(int node_a, int node_b, const Eigen::Matrix3d& value);
-  /// A contact element's response (contact_response) added to `out`: its forces, blocks and
+  /// A contact element's response (contact_element_response) added to `out`: its forces, blocks and
   /// sliding terms.
   void add_contact(const contact::ActiveContact& contact, const contact::MultiPointResponse& response, bool with_tangent,
                    Evaluation& out);
