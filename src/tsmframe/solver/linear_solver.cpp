@@ -1,5 +1,7 @@
 #include "tsmframe/solver/linear_solver.hpp"
 
+#include <algorithm>
+
 namespace tsm::solver {
 
 void LinearSolver::analyze(const assembly::DofMap& dofs, const BlockMatrix& matrix) {
@@ -14,12 +16,22 @@ void LinearSolver::analyze(const assembly::DofMap& dofs, const BlockMatrix& matr
   for (int eq = 0; eq < dofs.free_count() && !padding_needed_; ++eq) padding_needed_ = padded_[eq] != eq;
   if (!padding_needed_) std::vector<int>().swap(padded_);  // the identity: not kept
   ldlt_.analyze(matrix);
+  block_lu_analyzed_ = false;  // analysed when first needed
 }
 
 bool LinearSolver::factorize(BlockMatrix& matrix, const std::vector<RankOne>& rank_one, const Refill& refill) {
   woodbury_z_.resize(0, 0);
-  general_ = rank_one.size() > most_rank_one;
-  if (general_) return factorize_general(matrix, rank_one);
+  general_ = block_lu_ = false;
+  if (rank_one.size() > most_rank_one) {
+    if (factorize_block_lu(matrix, rank_one)) return true;
+    // A pivot block the unpivoted LU cannot take, or a term outside the pattern: the general LU,
+    // of the tangent the in-place factorisation has overwritten.
+    block_lu_ = false;
+    if (!refill) return false;
+    refill(matrix);
+    general_ = true;
+    return factorize_general(matrix, rank_one);
+  }
   // With contacts, A alone may be singular while A + Σ u vᵀ is not: the fallback needs A again
   // (the in-place factorisation has overwritten it).
   if (!ldlt_.factorize(matrix)) {
@@ -58,7 +70,7 @@ bool LinearSolver::factorize_and_solve(BlockMatrix& matrix, const std::vector<Ra
     return true;
   }
   woodbury_z_.resize(0, 0);
-  general_ = false;
+  general_ = block_lu_ = false;
   if (!padding_needed_) {
     if (!ldlt_.factorize(matrix, &x)) return false;
     ldlt_.finish_solve(x);
@@ -70,6 +82,40 @@ bool LinearSolver::factorize_and_solve(BlockMatrix& matrix, const std::vector<Ra
   ldlt_.finish_solve(padded_work_);
   for (Eigen::Index eq = 0; eq < x.size(); ++eq) x[eq] = padded_work_[padded_[eq]];
   return true;
+}
+
+bool LinearSolver::factorize_block_lu(BlockMatrix& matrix, const std::vector<RankOne>& rank_one) {
+  if (!block_lu_analyzed_) {
+    block_lu_factor_.analyze(matrix);
+    block_lu_analyzed_ = true;
+  }
+  // A is symmetric: its upper triangle's entry (c, r), transposed, is the lower one's (r, c).
+  upper_.resize(matrix.value.size());
+  for (size_t p = 0; p < matrix.value.size(); ++p) upper_[p] = matrix.value[p];
+  const auto entry = [&](int r, int c) {  // the entry (r, c), r ≥ c, of a block of A; −1 if none
+    const auto begin = matrix.row.begin() + matrix.column[c], end = matrix.row.begin() + matrix.column[c + 1];
+    const auto at = std::lower_bound(begin, end, r);
+    const int p = at != end && *at == r ? static_cast<int>(at - matrix.row.begin()) : -1;
+    return p >= 0 && !matrix.is_fill(p) ? p : -1;
+  };
+  // K(a, b) += u_a v_b, into the block of the equations' nodes: the lower triangle's entry,
+  // the diagonal block (whole), or the upper triangle's, held transposed at its lower partner.
+  for (const RankOne& t : rank_one)
+    for (int a = 0; a < t.size(); ++a) {
+      if (t.equation[a] < 0 || t.u[a] == 0.0) continue;
+      const int pa = place(t.equation[a]);
+      for (int b = 0; b < t.size(); ++b) {
+        if (t.equation[b] < 0 || t.v[b] == 0.0) continue;
+        const int pb = place(t.equation[b]);
+        const int ra = pa / dofs_per_node, rb = pb / dofs_per_node, da = pa % dofs_per_node, db = pb % dofs_per_node;
+        const int p = entry(std::max(ra, rb), std::min(ra, rb));
+        if (p < 0) return false;
+        if (ra >= rb) matrix.value[p](da, db) += t.u[a] * t.v[b];
+        else upper_[p](db, da) += t.u[a] * t.v[b];
+      }
+    }
+  block_lu_ = true;
+  return block_lu_factor_.factorize(matrix, upper_);
 }
 
 bool LinearSolver::factorize_general(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one) {
@@ -126,6 +172,10 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& rhs) const {
 }
 
 void LinearSolver::solve_in_place(Eigen::VectorXd& x) const {
+  if (block_lu_) {
+    in_blocks(x, [&](Eigen::VectorXd& b) { block_lu_factor_.solve_in_place(b); });
+    return;
+  }
   if (general_) {
     const Eigen::VectorXd rhs = x;
     x = lu_->solve(rhs);
@@ -139,13 +189,18 @@ void LinearSolver::solve_in_place(Eigen::VectorXd& x) const {
 }
 
 void LinearSolver::solve_symmetric_in_place(Eigen::VectorXd& x) const {
+  in_blocks(x, [&](Eigen::VectorXd& b) { ldlt_.solve_in_place(b); });
+}
+
+template <class Solve>
+void LinearSolver::in_blocks(Eigen::VectorXd& x, const Solve& solve) const {
   if (!padding_needed_) {  // every block is a whole node: the equations are the padded places
-    ldlt_.solve_in_place(x);
+    solve(x);
     return;
   }
   padded_work_.setZero(padded_size_);  // constrained dofs of a block carry 0 (no allocation after the first)
   for (Eigen::Index eq = 0; eq < x.size(); ++eq) padded_work_[padded_[eq]] = x[eq];
-  ldlt_.solve_in_place(padded_work_);
+  solve(padded_work_);
   for (Eigen::Index eq = 0; eq < x.size(); ++eq) x[eq] = padded_work_[padded_[eq]];
 }
 

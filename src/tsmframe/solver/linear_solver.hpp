@@ -1,11 +1,13 @@
 #pragma once
 // The linear solver of the Newton iteration: K_ff δD = R, K_ff = A + Σ u_k v_kᵀ with A the
 // symmetric node-block tangent (node-block LDLᵀ, block_ldlt) and u_k v_kᵀ the non-symmetric
-// sliding terms of active contact elements, applied exactly by the Sherman–Morrison–Woodbury
-// formula (one extra solve per contact). With more terms than that (the caller lags them where
-// it can: tsm_problem), or if A alone cannot be factorised (a structure held only through a
-// contact's sliding term), the whole K_ff goes to Eigen's SparseLU instead. Vectors are over the
-// free equations.
+// sliding terms of active contact elements. Up to most_rank_one terms they are applied exactly
+// by the Sherman–Morrison–Woodbury formula (one extra solve per contact); beyond, each is added
+// into the blocks of its contact element's nodes and the whole is factorised by the node-block
+// LU (block_lu: the same pattern, a second triangle). Where that cannot be done (an unpivoted
+// pivot block singular), or A alone cannot be factorised (a structure held only through a
+// contact's sliding term), the whole K_ff goes to Eigen's SparseLU. Vectors are over the free
+// equations.
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -19,6 +21,7 @@
 
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/linalg/block_ldlt.hpp"
+#include "tsmframe/linalg/block_lu.hpp"
 #include "tsmframe/linalg/rank_one.hpp"
 
 namespace tsm::solver {
@@ -28,14 +31,15 @@ using linalg::RankOne;
 
 class LinearSolver {
  public:
-  /// Beyond this many rank-one terms one sparse LU is cheaper than an extra solve for each.
+  /// Beyond this many rank-one terms one block LU is cheaper than an extra solve for each.
   static constexpr size_t most_rank_one = 32;
   /// Symbolic analysis of the tangent's block pattern (values ignored); done once.
   void analyze(const assembly::DofMap& dofs, const BlockMatrix& matrix);
   /// Refills `matrix` with the tangent as it was before a failed in-place factorisation (the
-  /// Newton iteration evaluates it again): called only when the block LDLᵀ of A fails while
-  /// sliding terms are present, for the SparseLU of A + Σ u vᵀ. Keeping a copy of A instead would
-  /// cost a copy of the tangent at every factorisation with contacts.
+  /// Newton iteration evaluates it again): called only when the block LDLᵀ of A or the block LU
+  /// of A + Σ u vᵀ fails while sliding terms are present, for the SparseLU of A + Σ u vᵀ.
+  /// Keeping a copy of A instead would cost a copy of the tangent at every factorisation with
+  /// contacts.
   using Refill = std::function<void(BlockMatrix&)>;
   /// Numeric factorisation of `matrix` + Σ u vᵀ; false if singular or not finite. The block
   /// LDLᵀ overwrites `matrix` with its factor (solves use it until the next factorisation).
@@ -49,7 +53,7 @@ class LinearSolver {
   /// The inertia of the symmetric part A in the last factorisation (block LDLᵀ's; its rows are
   /// blocks, DofMap::block_node), none when the last factorisation was the general SparseLU one.
   std::optional<linalg::Inertia> inertia() const {
-    if (general_) return std::nullopt;
+    if (general_ || block_lu_) return std::nullopt;
     return ldlt_.inertia();
   }
   /// Solves with the last factorisation.
@@ -58,12 +62,22 @@ class LinearSolver {
   void solve_in_place(Eigen::VectorXd& x) const;
 
  private:
+  bool factorize_block_lu(BlockMatrix& matrix, const std::vector<RankOne>& rank_one);
   bool factorize_general(const BlockMatrix& matrix, const std::vector<RankOne>& rank_one);
   void solve_symmetric_in_place(Eigen::VectorXd& x) const;
+  /// solve(b) on `x` laid out in blocks (3 entries per block, a constrained dof's place 0).
+  template <class Solve>
+  void in_blocks(Eigen::VectorXd& x, const Solve& solve) const;
+  /// An equation's place among the blocks' entries.
+  int place(int equation) const { return padding_needed_ ? padded_[equation] : equation; }
 
   linalg::BlockLDLT ldlt_;
   const assembly::DofMap* dofs_ = nullptr;
   bool general_ = false;  ///< the last factorisation is the SparseLU one
+  bool block_lu_ = false;  ///< the last factorisation is the block LU of A + Σ u vᵀ
+  linalg::BlockLU block_lu_factor_;
+  bool block_lu_analyzed_ = false;
+  std::vector<linalg::Block> upper_;  ///< the block LU's other triangle (BlockLU::factorize)
   Eigen::SparseMatrix<double> general_matrix_;
   std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>> lu_;
   // Woodbury: Z = A⁻¹ U (one column per contact), V (dense), and the LU of I + Vᵀ Z.
