@@ -87,3 +87,34 @@ TEST(ContactLanding, AThousandContactNodesTakeTheFullLoadInOneStep) {
 
 }  // namespace
 }  // namespace test_landing_end_to_end
+
+namespace test_landing_sliding_terms {
+namespace {
+
+using namespace tsm::test;
+
+TEST(ContactSlidingTerms, AThousandPointsSlidingConvergeQuadraticallyOnceTheirSetHasSettled) {
+  // The 100-m press in one step (997 points in touch, most sliding along their elements): near
+  // the solution Newton's tangent holds their sliding terms (the node-block LU), so an iterate
+  // that neither changes the contacts nor starts from far squares the residual: r' ≤ 100 r², or
+  // reaches the tolerance. Left out beyond 32 points (the symmetric part alone, lagged), the
+  // tail was linear: 4.4e-5 → 2.3e-7 → 2.6e-9, 1.4e-5 → 2.9e-8, 3.1e-5 → 4.7e-7.
+  json m = continuous_press(100, -2000.0, 1);
+  m["analysis"]["cutback"] = false;
+  tsm::Model model;
+  const tsm::solver::RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::converged) << r.message;
+  const std::vector<double>& residual = r.steps.back().residual_norms;
+  const double tolerance = model.analysis.tolerance;
+  int pairs = 0;
+  for (size_t k = 1; k + 1 < residual.size(); ++k) {
+    if (residual[k] >= 1e-4 || residual[k + 1] >= residual[k]) continue;  // far, or the contacts changed
+    ++pairs;
+    EXPECT_TRUE(residual[k + 1] <= 100.0 * residual[k] * residual[k] || residual[k + 1] <= tolerance)
+        << "iterate " << k << ": " << residual[k] << " → " << residual[k + 1];
+  }
+  EXPECT_GE(pairs, 2);
+}
+
+}  // namespace
+}  // namespace test_landing_sliding_terms
