@@ -37,10 +37,10 @@ constexpr double table_per_element = 4.0, table_per_candidate = 12.0;
 // copy the step's start keeps): 48 bytes per node, 16 per element.
 constexpr double contacts_per_element = 64.0, contacts_per_node = 48.0;
 // The solver once contacts touch: beyond 32 of them the sliding terms join the node-block LU (a
-// second triangle of the tangent's size), but a sparse LU of the whole tangent stays the fallback
-// where an unpivoted pivot block is singular and is counted (Eigen's SparseLU: ~5 KB per unknown, measured on beams pressed onto beams); up to 32 a
-// dense column per contact (Woodbury); from 4 on, the release look-ahead's G over the contacts in
-// touch (at most 2,000).
+// second triangle of the tangent's size), but a sparse LU of the whole tangent stays the
+// fallback where an unpivoted pivot block is singular and is counted (Eigen's SparseLU: ~5 KB
+// per unknown, measured on beams pressed onto beams); up to 32 a dense column per contact
+// (Woodbury); from 4 on, the release look-ahead's G over the contacts in touch (at most 2,000).
 constexpr double sparse_lu_per_dof = 5000.0;
 constexpr double woodbury_most = 32.0, forecast_fewest = 4.0, forecast_most = 2000.0;
 
