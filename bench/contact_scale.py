@@ -7,7 +7,11 @@ under 2 kN/m in 10 load steps, output "last" (tests/support/models.hpp, pressed_
 
   press N        10 m long, the lower beam simply supported (the sizes bench/README.md quotes);
   continuous L   the issue's target shape, L metres of 10 cm upper elements on a lower beam
-                 supported every 10 m (the target is L = 1000: 10^4 contact nodes);
+                 supported every 10 m (the target is L = 1000: 10^4 contact nodes); the upper
+                 beam 5 mm shorter at each end, so that its nodes pass from 5 mm beside the
+                 lower beam's nodes (α 0.15) to over them (the middle) and back;
+  midway L       the same with every upper node over the middle of a lower element (α ½; the
+                 upper beam one element shorter): no point starts near a lower beam's node;
   pipeline N     the issue's 10⁵-contact shape at N elements a beam: a pipe resting on a bed,
                  lifted at its middle (pipeline() below).
 
@@ -29,11 +33,16 @@ def model(kind, size, contacts=True):
         upper, spacing = int(round(length / 0.1)), 10.0
     lower = 3 * upper
     inset = 0.005 if contacts or kind == "press" else 0.0  # without contacts: upper nodes over the supports
+    start, end = inset, length - inset
+    if kind == "midway" and contacts:
+        upper -= 1
+        start = 0.5 * length / lower
+        end = start + 0.1 * upper
     nodes = [{"id": 1, "x": 0.0, "y": 0.0}, {"id": 2, "x": length, "y": 0.0},
-             {"id": 3, "x": inset, "y": 0.06}, {"id": 4, "x": length - inset, "y": 0.06}]
+             {"id": 3, "x": start, "y": 0.06}, {"id": 4, "x": end, "y": 0.06}]
     supports = [{"node": 1, "type": "pinned"}, {"node": 2, "type": "roller-x"},
                 {"node": 3, "type": "pinned"}, {"node": 4, "type": "pinned"}]
-    if kind == "continuous":  # a support every 10 m under the lower beam (and the upper one without contacts)
+    if kind in ("continuous", "midway"):  # a support every 10 m under the lower beam (and the upper one without contacts)
         for k in range(1, int(round(length / spacing))):
             supports.append({"node": [k * spacing, 0.0], "fix": ["uy"]})
             if not contacts:
