@@ -13,10 +13,19 @@ namespace tsm::linalg {
 void BlockLU::analyze(const BlockMatrix& a) {
   const int n = size_ = a.size;
   const BlockRows rows = lower_rows(a);
+  // The pattern must hold its fill: each column's rows below its first one (its parent in the
+  // elimination tree) are rows of the parent's column too (as BlockLDLT::analyze checks).
   std::vector<int> parent(n, -1);
   for (int c = 0; c < n; ++c) {
     if (a.row[a.column[c]] != c) throw std::logic_error("BlockLU: a column does not start with its diagonal");
-    if (a.column[c + 1] - a.column[c] >= 2) parent[c] = a.row[a.column[c] + 1];
+    if (a.column[c + 1] - a.column[c] < 2) continue;
+    const int p = parent[c] = a.row[a.column[c] + 1];
+    int q = a.column[p];
+    for (int e = a.column[c] + 2; e < a.column[c + 1]; ++e) {
+      while (q < a.column[p + 1] && a.row[q] < a.row[e]) ++q;
+      if (q == a.column[p + 1] || a.row[q] != a.row[e])
+        throw std::logic_error("BlockLU: the block pattern lacks the fill of its factor (add_fill)");
+    }
   }
   row_start_ = rows.start;
   row_column_ = rows.column;

@@ -51,7 +51,8 @@ class LinearSolver {
   /// Whether the next factorisations guard their inertia against round-off (BlockLDLT::guard_inertia).
   void guard_inertia(bool on) { ldlt_.guard_inertia(on); }
   /// The inertia of the symmetric part A in the last factorisation (block LDLᵀ's; its rows are
-  /// blocks, DofMap::block_node), none when the last factorisation was the general SparseLU one.
+  /// blocks, DofMap::block_node), none when the last factorisation was an LU (the block LU of
+  /// A + Σ u vᵀ beyond most_rank_one terms, or the general SparseLU).
   std::optional<linalg::Inertia> inertia() const {
     if (general_ || block_lu_) return std::nullopt;
     return ldlt_.inertia();

@@ -160,6 +160,7 @@ Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms
   if (rhs) kept_rhs_ = *rhs;  // the solve runs along the factorisation
   if (const Factorisation f = attempt(skew, rhs); f.ok) return f;
   refill(K);  // the failed factorisation has overwritten part of it
+  analyse_pattern();  // the evaluation may have joined or forgotten contact pairs
   if (rhs) *rhs = kept_rhs_;
   return attempt(sliding, rhs);
 }

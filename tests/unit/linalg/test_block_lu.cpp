@@ -6,8 +6,10 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <limits>
 #include <random>
 #include <set>
+#include <stdexcept>
 
 #include <omp.h>
 
@@ -68,14 +70,16 @@ Case random_case(int n, int chains, double shift, unsigned seed, bool dense = tr
   return out;
 }
 
-// add_fill for both triangles: the filled pattern's entries taken from the case's by (row, column).
+// add_fill for both triangles: the filled pattern's entries taken from the case's by (row,
+// column); the fill's own entries hold NaN (what a previous factor left: never to be read).
 void fill(Case& c) {
   BlockMatrix filled = c.lower;
   tsm::linalg::add_fill(filled);
-  std::vector<Block> upper(filled.row.size(), Block::Zero());
+  const Block stale = Block::Constant(std::numeric_limits<double>::quiet_NaN());
+  std::vector<Block> upper(filled.row.size(), stale);
   for (int col = 0; col < filled.size; ++col)
     for (int p = filled.column[col]; p < filled.column[col + 1]; ++p) {
-      filled.value[p].setZero();
+      filled.value[p] = stale;
       for (int q = c.lower.column[col]; q < c.lower.column[col + 1]; ++q)
         if (c.lower.row[q] == filled.row[p]) filled.value[p] = c.lower.value[q], upper[p] = c.upper[q];
     }
@@ -120,6 +124,12 @@ TEST(BlockLU, ANonSymmetricPartIsNotLostToTheSymmetricStorage) {
   a.solve_in_place(x);
   b.solve_in_place(y);
   EXPECT_GT((x - y).norm(), 1e-3 * x.norm());
+}
+
+TEST(BlockLU, APatternWithoutItsFillIsRefused) {
+  Case c = random_case(60, 1, 6.0, 5u);  // random couplings along a chain: fill under elimination
+  BlockLU lu;
+  EXPECT_THROW(lu.analyze(c.lower), std::logic_error);
 }
 
 TEST(BlockLU, ASingularPivotBlockFails) {

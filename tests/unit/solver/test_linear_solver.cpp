@@ -145,6 +145,47 @@ TEST(LinearSolver, ManySlidingTermsOnTheirElementsNodesByTheBlockLU) {
   EXPECT_EQ(expect_solves(*pinned, pinned->tangent, element_rank_ones(pinned->model, *pinned->dofs, 40, 9)), 0);
 }
 
+TEST(LinearSolver, ABlockLUPivotThatNeedsPivotingFallsBackToSparseLUOnTheTangentAskedForAgain) {
+  // The first block eliminated is singular in its u dof alone (no pivot there without
+  // pivoting), the whole regular through its couplings; 40 terms on elements away from it.
+  const auto s = setup(7, 12.0);
+  BlockMatrix a = s->tangent;
+  Block& first = a.value[a.column[0]];
+  first.row(0).setZero();
+  first.col(0).setZero();
+  const int held = s->dofs->block_node(0);
+  std::vector<RankOne> terms;
+  for (const RankOne& t : element_rank_ones(s->model, *s->dofs, 200, 10)) {
+    bool touches = false;
+    for (const int eq : t.equation) touches = touches || (eq >= 0 && s->dofs->dof(eq) / 3 == held);
+    if (!touches && terms.size() < 40) terms.push_back(t);
+  }
+  ASSERT_EQ(terms.size(), 40u);
+  EXPECT_EQ(expect_solves(*s, a, terms), 2);  // factorize, factorize_and_solve
+}
+
+TEST(LinearSolver, OneSolverGoesFromTheBlockLUToWoodburyToTheLDLTAndOnToANewPattern) {
+  const auto s = setup(8, 12.0);
+  const auto pinned = setup(9, 12.0, "pinned");
+  tsm::solver::LinearSolver solver;
+  const auto solves = [&](const ::Setup& setup, const std::vector<RankOne>& terms, bool symmetric) {
+    BlockMatrix a = setup.tangent;
+    const Eigen::MatrixXd K = dense_tangent(*setup.dofs, a, terms);
+    ASSERT_TRUE(solver.factorize(a, terms));
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.rows(), -1.0, 2.0);
+    const Eigen::VectorXd expected = K.fullPivLu().solve(b);
+    EXPECT_LT((solver.solve(b) - expected).norm(), 1e-10 * expected.norm()) << terms.size() << " terms";
+    EXPECT_EQ(solver.inertia().has_value(), symmetric) << terms.size() << " terms";
+  };
+  solver.analyze(*s->dofs, s->tangent);
+  solves(*s, element_rank_ones(s->model, *s->dofs, 40, 11), false);
+  solves(*s, element_rank_ones(s->model, *s->dofs, 3, 12), true);
+  solves(*s, {}, true);
+  solves(*s, element_rank_ones(s->model, *s->dofs, 50, 13), false);
+  solver.analyze(*pinned->dofs, pinned->tangent);  // another pattern: the block LU analysed anew
+  solves(*pinned, element_rank_ones(pinned->model, *pinned->dofs, 40, 14), false);
+}
+
 TEST(LinearSolver, ManySlidingTermsOutsideThePatternBySparseLUOnTheTangentAskedForAgain) {
   const auto s = setup(3, 12.0);
   EXPECT_EQ(expect_solves(*s, s->tangent, rank_ones(*s->dofs, 40, 8)), 2);  // factorize, factorize_and_solve
