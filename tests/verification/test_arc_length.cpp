@@ -229,6 +229,34 @@ TEST(ArcLength, ADeepArchLoadedPastItsMaximumUnderLoadControlIsToldToUseArcLengt
   EXPECT_NE(r.message.find("use arc-length control"), std::string::npos) << r.message;
 }
 
+TEST(ArcLength, TheDeepArchsMaximumIsToldSoBesideFortyContactsInTouch) {
+  // The same run with a plank of 40 contact nodes lying on a beam beside the arch, pressed by
+  // λ × 1 N/m: past 32 contacts in touch the tangent with their sliding terms goes to the block
+  // LU, whose factorisation has no inertia; the step's start factorises the symmetric part for
+  // it, so the limit point is still told (without it: "10 cutbacks in a row" and nothing else).
+  tsm::Model model;
+  json m = deep_arch({{"type", "load"}, {"steps", 2}});
+  m["loads"][0]["fy"] = -2000.0;
+  const double sixth = 1.0 / 6.0;  // the plank's nodes over the middle of the beam's elements
+  for (const json& node : {json{{"id", 11}, {"x", 300.0}, {"y", 0.0}}, json{{"id", 12}, {"x", 340.0}, {"y", 0.0}},
+                           json{{"id", 13}, {"x", 300.0 + sixth}, {"y", 0.5}}, json{{"id", 14}, {"x", 339.0 + sixth}, {"y", 0.5}}})
+    m["nodes"].push_back(node);
+  m["sections"]["ground"] = {{"A", 100.0}, {"I", 1e4}};  // the beam 10⁴ × the plank's EI: no sag to bridge
+  m["members"].push_back({{"from", 11}, {"to", 12}, {"divisions", 120}, {"material", "m"}, {"section", "ground"}});
+  m["members"].push_back({{"from", 13}, {"to", 14}, {"divisions", 39}, {"material", "m"}, {"section", "s"},
+                          {"load", {{"fy", -1.0}}}});
+  m["supports"].push_back({{"node", 11}, {"type", "fixed"}});
+  m["supports"].push_back({{"node", 12}, {"type", "fixed"}});
+  m["supports"].push_back({{"node", 13}, {"fix", {"ux"}}});
+  m["contacts"] = json::array({{{"nodes", {{"members", {3}}}}, {"members", {2}}, {"gap", 0.5}}});
+  const RunResult r = run(m, model);
+  ASSERT_EQ(r.status, tsm::solver::Status::cutback_limit) << r.message;
+  int in_touch = 0;
+  for (const auto& c : r.steps.front().contacts) in_touch += c.element >= 0;
+  EXPECT_EQ(in_touch, 40);
+  EXPECT_NE(r.message.find("the load seems to have reached a maximum (a limit point"), std::string::npos) << r.message;
+}
+
 TEST(ArcLength, AnArcLengthFarLongerThanTheStructureIsToldSo) {
   // Δs = 10⁶ on an arch 200 wide: ten cutbacks leave 977, and no arc that long meets the path.
   // The failure names the arc's size against the structure's and what to give instead.

@@ -154,7 +154,19 @@ Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms
     // inertia tells nothing of stability (a non-conservative load).
     return factorisation(ok, !follower);
   };
-  if (with_optional_terms || contact.empty()) return attempt(sliding, rhs);
+  if (contact.empty()) return attempt(sliding, rhs);
+  if (with_optional_terms && stability && contact.size() > LinearSolver::most_rank_one) {
+    // A step's start, where the symmetric part's inertia is read (the limit-point diagnosis,
+    // load_stepping), and the block LU of the whole does not give it: the symmetric part is
+    // factorised first for it — one factorisation and one evaluation more a step.
+    const Factorisation symmetric = attempt(skew, nullptr);
+    refill(K);
+    analyse_pattern();
+    Factorisation whole = attempt(sliding, rhs);
+    if (whole.ok) whole.negative_pivots = symmetric.negative_pivots, whole.rounded = symmetric.rounded;
+    return whole;
+  }
+  if (with_optional_terms) return attempt(sliding, rhs);
   // Without the sliding terms the symmetric part alone may be singular where the whole is not:
   // then once more with them.
   if (rhs) kept_rhs_ = *rhs;  // the solve runs along the factorisation
