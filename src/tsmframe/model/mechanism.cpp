@@ -30,18 +30,36 @@ int find_root(std::vector<int>& parent, int k) {
 
 /// Why a contact from `node`'s side does not rest as drawn, where the reason is plain: its node
 /// lies on a candidate element's centre line itself with no gap (no side), or over an element
-/// but farther from it than its gap (a part held only by contacts cannot fall onto them).
-/// Empty where neither holds (the node is beside every candidate element).
-std::string why_not_resting(const Model& model, const ContactSpec& contact) {
+/// but farther from it than its gap (a part held only by contacts cannot fall onto them), or
+/// within its gap of a beam node but beside both elements there — over a corner the beam turns
+/// away from, where a point rests on neither element (`corner`). Empty where none holds (the
+/// node is beside every candidate element, farther than its gap from their nodes).
+std::string why_not_resting(const Model& model, const ContactSpec& contact, bool& corner) {
   const double tolerance = 1e-10 * model.size;
   std::vector<bool> in_set(model.member_count, false);
   for (const int m : contact.members) in_set[m] = true;
   const Eigen::Vector2d x = model.nodes[contact.node].position;
-  double nearest = INFINITY;
+  double nearest = INFINITY, nearest_end = INFINITY;
+  int end_node = -1;
   for (const Element& e : model.elements) {
     if (!in_set[e.member] || e.start == contact.node || e.end == contact.node) continue;
     const element::ChordPlace place = element::place_on_chord(model.nodes[e.start].position, model.nodes[e.end].position, x);
     if (place.alpha >= 0.0 && place.alpha <= 1.0) nearest = std::min(nearest, std::abs(place.across));
+    for (const int end : {e.start, e.end})
+      if (const double d = (model.nodes[end].position - x).norm(); d < nearest_end) nearest_end = d, end_node = end;
+  }
+  const auto joined = std::count_if(model.elements.begin(), model.elements.end(), [&](const Element& e) {
+    return in_set[e.member] && (e.start == end_node || e.end == end_node);
+  });
+  corner = !(nearest <= contact.gap + tolerance) && nearest_end > tolerance && nearest_end <= contact.gap + tolerance &&
+           joined >= 2;  // not a free end
+  if (corner) {
+    std::ostringstream os;
+    os << " (contact node " << model.nodes[contact.node].id << " is drawn " << nearest_end << " from beam node "
+       << model.nodes[end_node].id << ", within its gap " << contact.gap
+       << ", but beside both elements there: over a corner the beam turns away from, where a point rests on "
+          "neither — draw it over an element, at the gap from its chord)";
+    return os.str();
   }
   std::ostringstream os;
   const int id = model.nodes[contact.node].id;
@@ -57,6 +75,11 @@ std::string why_not_resting(const Model& model, const ContactSpec& contact) {
                                         : "")
        << ")";
   return os.str();
+}
+
+std::string not_resting(const Model& model, const ContactSpec& contact) {
+  bool corner = false;
+  return why_not_resting(model, contact, corner);
 }
 
 /// The nodes that elements join into connected parts (a union-find over the nodes), and the
@@ -139,7 +162,7 @@ std::optional<std::string> unheld_node(const Model& model, const std::vector<boo
                (contact_node ? std::string(" (a contact node is held by its contact only if drawn at its \"gap\" from the "
                                            "beam and free in one direction only, across the beam: else prescribe its "
                                            "motion, or make it a node of a beam)") +
-                                   why_not_resting(model, model.contacts[contact])
+                                   not_resting(model, model.contacts[contact])
                              : std::string());
   }
   return std::nullopt;
@@ -322,14 +345,19 @@ std::string first_not_resting(const Model& model, Parts& parts, int root) {
     if (parts.root(e.start) == root) member_on_part[e.member] = true;
   constexpr double most_pairs = 5e7;
   double pairs = 0.0;
+  std::string first;
   for (const ContactSpec& c : model.contacts) {
     const bool on_part = parts.root(c.node) == root ||
                          std::any_of(c.members.begin(), c.members.end(), [&](int m) { return member_on_part[m]; });
     if (!on_part) continue;
     if ((pairs += static_cast<double>(model.elements.size())) > most_pairs) break;
-    if (std::string why = why_not_resting(model, c); !why.empty()) return why;
+    // A node drawn at a corner is likely the one meant to rest: it goes first.
+    bool corner = false;
+    std::string why = why_not_resting(model, c, corner);
+    if (corner) return why;
+    if (first.empty()) first = std::move(why);
   }
-  return std::string();
+  return first;
 }
 
 /// The sentence for a part no support holds: its free motion and, where contacts act on it,

@@ -139,6 +139,24 @@ TEST(MechanismCheck, ABeamOnTwoKnifeEdgesAtItsGapIsHeldByThemAlone) {
   EXPECT_TRUE(tsm::is_mechanism(model, false));
 }
 
+TEST(MechanismCheck, ANodeDrawnAtItsGapOverAConvexCornerIsToldItRestsOnNeitherElement) {
+  // A roof of two held elements meeting at (0, 1), a plank (−1, 1.1)–(1, 1.1) held along x and
+  // in rotation, its middle node (0, 1.1) a contact at gap 0.1 over the apex: 0.1 from the beam
+  // node, but beside both elements' spans (the roof turns away from it). The plank's ends, also
+  // contacts, are drawn far above the roof: the apex node is the one meant to rest, and named.
+  Model model = frame({{-2, 0}, {0, 1}, {2, 0}, {-1, 1.1}, {0, 1.1}, {1, 1.1}}, {{0, 1}, {1, 2}, {3, 4}, {4, 5}});
+  for (const int held : {0, 1, 2}) fix(model, held, {tsm::ux, tsm::uy, tsm::rz});
+  fix(model, 4, {tsm::ux, tsm::rz});
+  model.elements[3].member = 2;  // the plank is one member
+  model.elements[1].member = 0;  // and the roof another
+  model.member_count = 3;
+  for (const int node : {3, 4, 5}) contact(model, node, 0, 0.1);
+  const std::string message = tsm::find_mechanism(model).value_or("");
+  EXPECT_NE(message.find("contact node 5 is drawn 0.1 from beam node 2, within its gap 0.1, but beside both elements"),
+            std::string::npos)
+      << message;
+}
+
 TEST(MechanismCheck, ABeamLyingOnAHeldBeamIsHeldByItAndSlidesWithoutAnAxialSupport) {
   // A simply supported beam (0, 0)–(4, 0); a second beam (1, 0.05)–(3, 0.05) lying on it, its
   // two nodes contacts on the first with gap 0.05. The lower beam holds the upper one in y and
