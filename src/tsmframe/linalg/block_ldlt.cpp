@@ -77,32 +77,13 @@ class RankThreeUpdate {
 
 void BlockLDLT::analyze(const BlockMatrix& a) {
   const int n = size_ = a.size;
-  const BlockRows rows = lower_rows(a);
-  // The pattern must hold its fill. Then it is closed under elimination: each column's rows
-  // below its first one (the column's parent in the elimination tree) are rows of the parent's
-  // column too — checked by one merge per column, and the tree read off the pattern.
-  std::vector<int> parent(n, -1);
-  for (int c = 0; c < n; ++c) {
-    if (a.row[a.column[c]] != c) throw std::logic_error("BlockLDLT: a column does not start with its diagonal");
-    if (a.column[c + 1] - a.column[c] < 2) continue;
-    const int p = parent[c] = a.row[a.column[c] + 1];
-    int q = a.column[p];
-    for (int e = a.column[c] + 2; e < a.column[c + 1]; ++e) {
-      while (q < a.column[p + 1] && a.row[q] < a.row[e]) ++q;
-      if (q == a.column[p + 1] || a.row[q] != a.row[e])
-        throw std::logic_error("BlockLDLT: the block pattern lacks the fill of its factor (add_fill)");
-    }
-  }
-  row_start_ = rows.start;
-  row_column_ = rows.column;
-  row_position_ = rows.position;
-  row_fill_.clear();
-  if (!a.fill.empty()) {
-    row_fill_.resize(row_position_.size());
-    for (size_t t = 0; t < row_position_.size(); ++t) row_fill_[t] = a.fill[row_position_[t]];
-  }
+  FilledPattern pattern = filled_pattern(a);
+  row_start_ = pattern.rows.start;
+  row_column_ = pattern.rows.column;
+  row_position_ = pattern.rows.position;
+  row_fill_ = std::move(pattern.row_fill);
   util::assign_touched(slot_, n, -1);
-  schedule_ = schedule_block_ldlt(a, rows, parent);
+  schedule_ = schedule_block_ldlt(a, pattern.rows, pattern.parent);
   if (schedule_.parallel_top) deferred_z_.resize(schedule_.deferred);  // the path rows' running sums, pass (1) to (2)
   else std::vector<Block>().swap(deferred_z_);
   dense_.resize(0, 0);

@@ -2,9 +2,7 @@
 
 #include <Eigen/LU>
 #include <cmath>
-#include <stdexcept>
 
-#include "tsmframe/linalg/elimination_tree.hpp"
 #include "tsmframe/util/first_touch.hpp"
 #include "tsmframe/util/parallel_for.hpp"
 
@@ -12,31 +10,13 @@ namespace tsm::linalg {
 
 void BlockLU::analyze(const BlockMatrix& a) {
   const int n = size_ = a.size;
-  const BlockRows rows = lower_rows(a);
-  // The pattern must hold its fill: each column's rows below its first one (its parent in the
-  // elimination tree) are rows of the parent's column too (as BlockLDLT::analyze checks).
-  std::vector<int> parent(n, -1);
-  for (int c = 0; c < n; ++c) {
-    if (a.row[a.column[c]] != c) throw std::logic_error("BlockLU: a column does not start with its diagonal");
-    if (a.column[c + 1] - a.column[c] < 2) continue;
-    const int p = parent[c] = a.row[a.column[c] + 1];
-    int q = a.column[p];
-    for (int e = a.column[c] + 2; e < a.column[c + 1]; ++e) {
-      while (q < a.column[p + 1] && a.row[q] < a.row[e]) ++q;
-      if (q == a.column[p + 1] || a.row[q] != a.row[e])
-        throw std::logic_error("BlockLU: the block pattern lacks the fill of its factor (add_fill)");
-    }
-  }
-  row_start_ = rows.start;
-  row_column_ = rows.column;
-  row_position_ = rows.position;
-  row_fill_.clear();
-  if (!a.fill.empty()) {
-    row_fill_.resize(row_position_.size());
-    for (size_t t = 0; t < row_position_.size(); ++t) row_fill_[t] = a.fill[row_position_[t]];
-  }
+  FilledPattern pattern = filled_pattern(a);
+  row_start_ = pattern.rows.start;
+  row_column_ = pattern.rows.column;
+  row_position_ = pattern.rows.position;
+  row_fill_ = std::move(pattern.row_fill);
   util::assign_touched(slot_, n, -1);
-  schedule_ = schedule_block_ldlt(a, rows, parent);
+  schedule_ = schedule_block_ldlt(a, pattern.rows, pattern.parent);
 }
 
 bool BlockLU::factorize_row(BlockMatrix& a, std::vector<Block>& upper, int k) {

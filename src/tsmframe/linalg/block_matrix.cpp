@@ -3,6 +3,8 @@
 #include "tsmframe/linalg/elimination_tree.hpp"
 #include "tsmframe/util/first_touch.hpp"
 
+#include <stdexcept>
+
 namespace tsm::linalg {
 namespace {
 
@@ -44,6 +46,32 @@ BlockRows lower_rows(const BlockMatrix& a) {
         r.position[next[a.row[p]]++] = p;
       }
   return r;
+}
+
+FilledPattern filled_pattern(const BlockMatrix& a) {
+  const int n = a.size;
+  FilledPattern f;
+  f.rows = lower_rows(a);
+  // Closed under elimination: each column's rows below its first one (the column's parent in
+  // the elimination tree) are rows of the parent's column too — checked by one merge per
+  // column, and the tree read off the pattern.
+  f.parent.assign(n, -1);
+  for (int c = 0; c < n; ++c) {
+    if (a.row[a.column[c]] != c) throw std::logic_error("block factorisation: a column does not start with its diagonal");
+    if (a.column[c + 1] - a.column[c] < 2) continue;
+    const int p = f.parent[c] = a.row[a.column[c] + 1];
+    int q = a.column[p];
+    for (int e = a.column[c] + 2; e < a.column[c + 1]; ++e) {
+      while (q < a.column[p + 1] && a.row[q] < a.row[e]) ++q;
+      if (q == a.column[p + 1] || a.row[q] != a.row[e])
+        throw std::logic_error("block factorisation: the block pattern lacks the fill of its factor (add_fill)");
+    }
+  }
+  if (!a.fill.empty()) {
+    f.row_fill.resize(f.rows.position.size());
+    for (size_t t = 0; t < f.rows.position.size(); ++t) f.row_fill[t] = a.fill[f.rows.position[t]];
+  }
+  return f;
 }
 
 void add_fill(BlockMatrix& a) {

@@ -30,6 +30,17 @@ struct BlockRows {
 };
 BlockRows lower_rows(const BlockMatrix& matrix);
 
+/// A pattern that holds its fill, as the block factorisations (block_ldlt, block_lu) read it:
+/// its rows, its elimination tree and which row entries are fill (empty: none).
+struct FilledPattern {
+  BlockRows rows;
+  std::vector<int> parent;               ///< each column's parent in the elimination tree, −1 at a root
+  std::vector<unsigned char> row_fill;   ///< per entry of rows: added by add_fill
+};
+/// The pattern of `matrix`, checked to start each column with its diagonal and to hold its fill
+/// (closed under elimination); std::logic_error otherwise.
+FilledPattern filled_pattern(const BlockMatrix& matrix);
+
 /// Extends the pattern of `matrix` (every column must hold its diagonal) by the fill of its
 /// LDLᵀ factor, so that it can be factorised in place, and marks the added entries (fill); the
 /// values become zero.

@@ -100,6 +100,8 @@ bool LinearSolver::factorize_block_lu(BlockMatrix& matrix, const std::vector<Ran
   };
   // K(a, b) += u_a v_b, into the block of the equations' nodes: the lower triangle's entry,
   // the diagonal block (whole), or the upper triangle's, held transposed at its lower partner.
+  // A term's entries come a node's dofs at a time: one search per pair of blocks, not per pair of dofs.
+  int searched_r = -1, searched_c = -1, p = -1;
   for (const RankOne& t : rank_one)
     for (int a = 0; a < t.size(); ++a) {
       if (t.equation[a] < 0 || t.u[a] == 0.0) continue;
@@ -108,7 +110,10 @@ bool LinearSolver::factorize_block_lu(BlockMatrix& matrix, const std::vector<Ran
         if (t.equation[b] < 0 || t.v[b] == 0.0) continue;
         const int pb = place(t.equation[b]);
         const int ra = pa / dofs_per_node, rb = pb / dofs_per_node, da = pa % dofs_per_node, db = pb % dofs_per_node;
-        const int p = entry(std::max(ra, rb), std::min(ra, rb));
+        if (std::max(ra, rb) != searched_r || std::min(ra, rb) != searched_c) {
+          searched_r = std::max(ra, rb), searched_c = std::min(ra, rb);
+          p = entry(searched_r, searched_c);
+        }
         if (p < 0) return false;
         if (ra >= rb) matrix.value[p](da, db) += t.u[a] * t.v[b];
         else upper_[p](db, da) += t.u[a] * t.v[b];

@@ -13,6 +13,7 @@
 
 #include <omp.h>
 
+#include "support/block_patterns.hpp"
 #include "tsmframe/linalg/block_lu.hpp"
 
 namespace test_block_lu {
@@ -28,27 +29,12 @@ struct Case {
   Eigen::MatrixXd dense;
 };
 
-// `chains` chains of n / chains blocks with random couplings inside each and a few between them
-// (subtrees of the elimination tree and rows above them); diagonally dominant by `shift`.
+// A chain pattern (support/block_patterns.hpp) of `chains` chains and as many couplings between
+// them (subtrees of the elimination tree and rows above them); diagonally dominant by `shift`.
 Case random_case(int n, int chains, double shift, unsigned seed, bool dense = true) {
   std::mt19937 random(seed);
   std::uniform_real_distribution<double> value(-1.0, 1.0);
-  const int length = n / chains;
-  std::uniform_int_distribution<int> block(0, length - 1), chain(0, chains - 1);
-  std::vector<std::set<int>> rows(n);
-  for (int c = 0; c < n; ++c) {
-    rows[c].insert(c);
-    if (c + 1 < n && (c + 1) % length != 0) rows[c].insert(c + 1);
-  }
-  for (int k = 0; k < chains; ++k)
-    for (int extra = 0; extra < length / 3; ++extra) {
-      const int a = k * length + block(random), b = k * length + block(random);
-      rows[std::min(a, b)].insert(std::max(a, b));
-    }
-  for (int extra = 0; extra < chains; ++extra) {
-    const int a = chain(random) * length + block(random), b = chain(random) * length + block(random);
-    rows[std::min(a, b)].insert(std::max(a, b));
-  }
+  const std::vector<std::set<int>> rows = tsm::test::chain_pattern(n, chains, chains, random);
   Case out;
   if (dense) out.dense = Eigen::MatrixXd::Zero(3 * n, 3 * n);
   BlockMatrix& m = out.lower;
