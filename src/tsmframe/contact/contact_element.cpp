@@ -15,12 +15,32 @@ ContactEquilibriumMatrix contact_equilibrium_matrix(const element::Chord& chord,
   return J;
 }
 
+ChordFrameLaw chord_frame_law(const ContactElementData& data, double alpha) {
+  ChordFrameLaw law;
+  law.raw = point_load_law(data.section, data.initial.length, alpha, data.edge, data.min_compliance);  // Eq. 6–9, split
+  law.connected = law.raw;
+  law.k_plain = data.k0.bottomRightCorner<2, 2>();
+  if (data.connected()) {  // a hinge or a spring between an end and its node: condensed out
+    const ConnectedLaw c = connected_law(law.raw, law.k_plain, data.flexibility_i, data.flexibility_j);
+    law.connected = c.law;
+    law.k_plain = c.k_plain;
+  }
+  return law;
+}
+
 ContactResponse chord_frame_response(const ContactElementData& data, const Vector9& d, double previous_rotation,
                                      bool with_tangent) {
+  ContactResponse r = chord_frame_parts(data, d, previous_rotation, with_tangent);
+  if (with_tangent) r.tangent = r.symmetric_tangent + r.sliding_u * r.sliding_v.transpose();
+  return r;
+}
+
+ContactResponse chord_frame_parts(const ContactElementData& data, const Vector9& d, double previous_rotation,
+                                  bool with_tangent) {
   ContactResponse r;
   const Vector6 beam = d.head<6>();
   r.chord = element::current_chord(data.initial, beam, previous_rotation);
-  const double l = r.chord.length, l0 = data.initial.length;
+  const double l = r.chord.length;
   const Eigen::Vector2d e(r.chord.cos, r.chord.sin), n(-r.chord.sin, r.chord.cos);
   // r = x_c − x_i formed as (X_c − X_i) + (u_c − u_i): no large coordinates cancel.
   const Eigen::Vector2d rel = (data.contact_start - data.initial.start) + Eigen::Vector2d(d[6] - d[0], d[7] - d[1]);
@@ -29,13 +49,9 @@ ContactResponse chord_frame_response(const ContactElementData& data, const Vecto
   const double theta_i = d[2] - r.chord.rotation, theta_j = d[5] - r.chord.rotation;
   r.deformations << r.chord.elongation, theta_i, theta_j, r.normal - data.offset;
 
-  PointLoadLaw law = point_load_law(data.section, l0, r.alpha, data.edge, data.min_compliance);  // Eq. 6–9, split
-  Eigen::Matrix2d k_plain = data.k0.bottomRightCorner<2, 2>();
-  if (data.connected()) {  // a hinge or a spring between an end and its node: condensed out
-    const ConnectedLaw connected = connected_law(law, k_plain, data.flexibility_i, data.flexibility_j);
-    law = connected.law;
-    k_plain = connected.k_plain;
-  }
+  r.law = chord_frame_law(data, r.alpha);
+  const PointLoadLaw& law = r.law.connected;
+  const Eigen::Matrix2d& k_plain = r.law.k_plain;
   const Eigen::Vector2d h(law.h_i, law.h_j), theta(theta_i, theta_j);
   const double Y = (r.deformations[3] + h.dot(theta)) / law.compliance;
   const Eigen::Vector2d moments = k_plain * theta + h * Y;
@@ -53,17 +69,19 @@ ContactResponse chord_frame_response(const ContactElementData& data, const Vecto
   Eigen::Vector4d point(0.0, law.h_i, law.h_j, 1.0);
   D += point * point.transpose() / law.compliance;
   D.block<2, 2>(1, 1) += k_plain;
-  r.tangent = J * D * J.transpose();
+  Matrix9& K = r.symmetric_tangent;
+  const ContactEquilibriumMatrix JD = J * D;
+  K.noalias() = JD.lazyProduct(J.transpose());  // a 9×4×9 product: coefficient by coefficient
 
   // K_G: N ∂²l + (M_i + M_j) ∂²(−β) on i, j, and Y ∂²δy_c on the translations of i, j, c.
-  r.tangent.topLeftCorner<6, 6>() += element::geometric_stiffness(r.chord, r.forces.head<3>());
+  K.topLeftCorner<6, 6>() += element::geometric_stiffness(r.chord, r.forces.head<3>());
   const double rho = r.normal;
   const Vector9 a1 = spread(-n, n, Eigen::Vector2d::Zero());  // n · dΔ
   const Vector9 a2 = spread(-e, Eigen::Vector2d::Zero(), e);  // e · dr
   const Vector9 a3 = spread(-e, e, Eigen::Vector2d::Zero());  // e · dΔ
-  const Matrix9 hessian = (-(a1 * a2.transpose() + a2 * a1.transpose()) - (rho / l) * a1 * a1.transpose() +
-                           r.alpha * (a1 * a3.transpose() + a3 * a1.transpose())) / l;
-  r.tangent += Y * hessian;
+  // Y ∂²δy_c = −(Y/l) [a1 a2ᵀ + a2 a1ᵀ + (ρ/l) a1 a1ᵀ − α (a1 a3ᵀ + a3 a1ᵀ)] = −(Y/l) (a1 bᵀ + b a1ᵀ).
+  const Vector9 b = a2 + (0.5 * rho / l) * a1 - r.alpha * a3;
+  add_symmetric(K, (-Y / l) * a1, b);
 
   if (data.sliding_term) {
     // a, b follow the geometry: J (∂S/∂α)(∂α/∂x)ᵀ (FORMULATION §2).
@@ -74,8 +92,6 @@ ContactResponse chord_frame_response(const ContactElementData& data, const Vecto
     r.sliding_u = J * dS;
     r.sliding_v = dalpha;
   }
-  r.symmetric_tangent = r.tangent;
-  r.tangent += r.sliding_u * r.sliding_v.transpose();
   return r;
 }
 

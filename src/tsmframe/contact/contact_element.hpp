@@ -27,6 +27,12 @@ inline Vector9 spread(const Eigen::Vector2d& at_i, const Eigen::Vector2d& at_j, 
   return v;
 }
 using Matrix9 = Eigen::Matrix<double, 9, 9>;
+
+/// K += x yᵀ + y xᵀ: the symmetric outer products the contact tangents are sums of.
+inline void add_symmetric(Matrix9& K, const Vector9& x, const Vector9& y) {
+  K.noalias() += x * y.transpose();
+  K.noalias() += y * x.transpose();
+}
 using ContactEquilibriumMatrix = Eigen::Matrix<double, 9, 4>;  // rows i, j, c × (u, v, θ)
 
 /// What does not change while a contact sits on one element.
@@ -47,8 +53,18 @@ struct ContactElementData {
   bool connected() const { return flexibility_i != 0.0 || flexibility_j != 0.0; }
 };
 
+/// The law at α as the chord frame evaluates it: the beam's own (raw) and, where the ends are
+/// hinged or sprung, the connected one (connected_law; the raw one where they are rigid), with the
+/// bending block that goes with it.
+struct ChordFrameLaw {
+  PointLoadLaw raw, connected;
+  Eigen::Matrix2d k_plain = Eigen::Matrix2d::Zero();
+};
+ChordFrameLaw chord_frame_law(const ContactElementData& data, double alpha);
+
 struct ContactResponse {
   element::Chord chord;
+  ChordFrameLaw law;      ///< the law at α the forces were formed with (chord frame)
   double alpha = 0.0;     ///< α = l_ic / l on the current chord (may leave [0, 1]: hand over)
   double normal = 0.0;    ///< r·n, the contact node's distance from the chord
   Vector4 deformations;   ///< (δl, θ_i, θ_j, δy_c)
@@ -69,6 +85,10 @@ struct ContactResponse {
 /// d = (u_i, v_i, Θ_i, u_j, v_j, Θ_j, u_c, v_c, Θ_c); Θ_c plays no part.
 ContactResponse chord_frame_response(const ContactElementData& data, const Vector9& d, double previous_rotation,
                                      bool with_tangent = true);
+/// The same without its last sum: `tangent` is left unset, symmetric_tangent and the sliding
+/// term formed — what the element with the force along the bent beam's normal builds on.
+ContactResponse chord_frame_parts(const ContactElementData& data, const Vector9& d, double previous_rotation,
+                                  bool with_tangent);
 
 /// J (9×4): columns N, M_i, M_j as for the two-node element, Y: i −(1−α) n, j −α n, c +n.
 ContactEquilibriumMatrix contact_equilibrium_matrix(const element::Chord& chord, double alpha);

@@ -13,25 +13,6 @@ using Eigen::Vector2d;
 using Row4 = Eigen::Matrix<double, 1, 4>;
 using Matrix24 = Eigen::Matrix<double, 2, 4>;
 
-/// The law at α as chord_frame_response evaluates it: the beam's own (raw) and, where the ends
-/// are hinged or sprung, the connected one (K12), with the bending block that goes with it.
-struct Law {
-  PointLoadLaw raw, connected;
-  Eigen::Matrix2d k_plain;
-};
-Law contact_law(const ContactElementData& data, double alpha) {
-  Law law;
-  law.raw = point_load_law(data.section, data.initial.length, alpha, data.edge, data.min_compliance);
-  law.connected = law.raw;
-  law.k_plain = data.k0.bottomRightCorner<2, 2>();
-  if (data.connected()) {
-    const ConnectedLaw c = connected_law(law.raw, law.k_plain, data.flexibility_i, data.flexibility_j);
-    law.connected = c.law;
-    law.k_plain = c.k_plain;
-  }
-  return law;
-}
-
 /// S's dependence on d = (δl, θ_i, θ_j, δy_c) and on α, for M and Y (K13 with k = 1).
 struct LawRates {
   Row4 dY = Row4::Zero();        ///< ∂Y/∂d = (0, h, 1)/c
@@ -39,7 +20,7 @@ struct LawRates {
   double dY_dalpha = 0.0;
   Vector2d dM_dalpha = Vector2d::Zero();
 };
-LawRates law_rates(const Law& law, const Vector2d& theta, double Y) {
+LawRates law_rates(const ChordFrameLaw& law, const Vector2d& theta, double Y) {
   const PointLoadLaw& p = law.connected;
   const Vector2d h(p.h_i, p.h_j), dh(p.dh_i, p.dh_j);
   LawRates rates;
@@ -58,7 +39,7 @@ struct OwnRotations {
   Matrix24 d = Matrix24::Zero();
   Vector2d d_alpha = Vector2d::Zero();
 };
-OwnRotations own_rotations(const ContactElementData& data, const Law& law, const LawRates& rates,
+OwnRotations own_rotations(const ContactElementData& data, const ChordFrameLaw& law, const LawRates& rates,
                            const Vector2d& theta, const Vector2d& moments, double Y) {
   OwnRotations own{theta};
   if (!data.connected()) {
@@ -79,7 +60,7 @@ struct Slope {
   Row4 d = Row4::Zero();
   double d_alpha = 0.0;
 };
-Slope shape_slope(const ContactElementData& data, const ContactResponse& r, const Law& law, const LawRates& rates) {
+Slope shape_slope(const ContactElementData& data, const ContactResponse& r, const ChordFrameLaw& law, const LawRates& rates) {
   const Vector2d theta = r.deformations.segment<2>(1), moments = r.forces.segment<2>(1);
   const double Y = r.forces[3];
   const OwnRotations own = own_rotations(data, law, rates, theta, moments, Y);
@@ -100,13 +81,20 @@ Vector9 alpha_gradient(const element::Chord& chord, double alpha, double rho) {
 }
 
 Matrix9 alpha_hessian(const element::Chord& chord, double alpha, double rho) {
+  Matrix9 H = Matrix9::Zero();
+  add_alpha_hessian(H, 1.0, chord, alpha, rho);
+  return H;
+}
+
+void add_alpha_hessian(Matrix9& K, double scale, const element::Chord& chord, double alpha, double rho) {
   const Vector2d e(chord.cos, chord.sin), n(-chord.sin, chord.cos), zero = Vector2d::Zero();
-  const double l = chord.length;
+  const double l = chord.length, s = scale / (l * l);
   const Vector9 a1 = spread(-n, n, zero), a2 = spread(-e, zero, e);  // n·dΔ, e·dr
   const Vector9 a3 = spread(-e, e, zero), b2 = spread(-n, zero, n);  // e·dΔ, n·dr
-  auto sym = [](const Vector9& u, const Vector9& v) -> Matrix9 { return u * v.transpose() + v * u.transpose(); };
-  return (-sym(a2, a3) + sym(b2, a1) - (2.0 * rho / l) * sym(a1, a3) +
-          2.0 * alpha * (a3 * a3.transpose() - a1 * a1.transpose())) / (l * l);
+  // l² ∂²α = −sym(a2, a3) + sym(b2, a1) − (2ρ/l) sym(a1, a3) + 2α (a3 a3ᵀ − a1 a1ᵀ)     (N11)
+  //        = sym(a3, α a3 − a2 − (2ρ/l) a1) + sym(a1, b2 − α a1),  sym(x, y) = x yᵀ + y xᵀ.
+  add_symmetric(K, s * a3, alpha * a3 - a2 - (2.0 * rho / l) * a1);
+  add_symmetric(K, s * a1, b2 - alpha * a1);
 }
 
 ShapeSlopeTerms shape_slope_terms(const element::SectionStiffness& section, double l0, double alpha) {
@@ -126,7 +114,7 @@ ShapeSlopeTerms shape_slope_terms(const element::SectionStiffness& section, doub
 }
 
 DeflectedNormal deflected_normal(const ContactElementData& data, const ContactResponse& r) {
-  const Law law = contact_law(data, r.alpha);
+  const ChordFrameLaw& law = r.law;
   const double Y = r.forces[3], N = r.forces[0];
   const Slope w = shape_slope(data, r, law, law_rates(law, r.deformations.segment<2>(1), Y));
   const Vector2d e(r.chord.cos, r.chord.sin), n(-r.chord.sin, r.chord.cos);
@@ -142,8 +130,8 @@ DeflectedNormal deflected_normal(const ContactElementData& data, const ContactRe
 ContactResponse deflected_normal_response(const ContactElementData& data, const Vector9& d, double previous_rotation,
                                           bool with_tangent) {
   // α, δy_c and S as the paper's element measures them (N5); its J S, tangent and point load.
-  ContactResponse r = chord_frame_response(data, d, previous_rotation, with_tangent);
-  const Law law = contact_law(data, r.alpha);
+  ContactResponse r = chord_frame_parts(data, d, previous_rotation, with_tangent);
+  const ChordFrameLaw& law = r.law;
   const double Y = r.forces[3], c = law.connected.compliance;
   const LawRates rates = law_rates(law, r.deformations.segment<2>(1), Y);
   const Slope w = shape_slope(data, r, law, rates);
@@ -156,9 +144,9 @@ ContactResponse deflected_normal_response(const ContactElementData& data, const 
 
   // N14: K = K_chord − ∂α/∂x (∇T)ᵀ − T ∂²α, ∇T = w_α ∇Y + Y ∇w_α; N15 splits it.
   const Vector9 dw = contact_equilibrium_matrix(r.chord, r.alpha) * w.d.transpose() + w.d_alpha * g;  // ∇w_α
-  r.symmetric_tangent += -(w.value / c) * (g * point_chord.transpose() + point_chord * g.transpose()) +
-                         (w.value * w.value / c) * g * g.transpose() - T * alpha_hessian(r.chord, r.alpha, r.normal) -
-                         Y * (g * dw.transpose() + dw * g.transpose());
+  // = sym(g, −(w/c) p + (w²/2c) g − Y ∇w_α) − T ∂²α, p the chord's point_u, sym(x, y) = x yᵀ + y xᵀ.
+  add_symmetric(r.symmetric_tangent, g, (-w.value / c) * point_chord + (0.5 * w.value * w.value / c) * g - Y * dw);
+  add_alpha_hessian(r.symmetric_tangent, -T, r.chord, r.alpha, r.normal);
   if (data.sliding_term) {
     r.sliding_u += (w.value / c) * r.point_u - w.value * rates.dY_dalpha * g + Y * dw;
     r.sliding_v = g;

@@ -36,6 +36,8 @@ ShapeSlopeTerms shape_slope_terms(const element::SectionStiffness& section, doub
 /// i, j, c (N10, FORMULATION §2), and ∂²α/∂x² (N11); shared with the k-point element.
 Vector9 alpha_gradient(const element::Chord& chord, double alpha, double rho);
 Matrix9 alpha_hessian(const element::Chord& chord, double alpha, double rho);
+/// K += scale · ∂²α/∂x², without forming it apart.
+void add_alpha_hessian(Matrix9& K, double scale, const element::Chord& chord, double alpha, double rho);
 
 /// The deflected normal at the contact point of a state (N2–N6).
 struct DeflectedNormal {
