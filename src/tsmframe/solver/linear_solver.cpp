@@ -100,25 +100,39 @@ bool LinearSolver::factorize_block_lu(BlockMatrix& matrix, const std::vector<Ran
   };
   // K(a, b) += u_a v_b, into the block of the equations' nodes: the lower triangle's entry,
   // the diagonal block (whole), or the upper triangle's, held transposed at its lower partner.
-  // A term's entries come a node's dofs at a time: one search per pair of blocks, not per pair of dofs.
-  int searched_r = -1, searched_c = -1, p = -1;
-  for (const RankOne& t : rank_one)
+  // A term's entries are grouped by block first: one search per pair of blocks.
+  std::vector<TermEntry>& rows = term_rows_;
+  std::vector<TermEntry>& columns = term_columns_;
+  for (const RankOne& t : rank_one) {
+    rows.clear();
+    columns.clear();
     for (int a = 0; a < t.size(); ++a) {
-      if (t.equation[a] < 0 || t.u[a] == 0.0) continue;
+      if (t.equation[a] < 0) continue;
       const int pa = place(t.equation[a]);
-      for (int b = 0; b < t.size(); ++b) {
-        if (t.equation[b] < 0 || t.v[b] == 0.0) continue;
-        const int pb = place(t.equation[b]);
-        const int ra = pa / dofs_per_node, rb = pb / dofs_per_node, da = pa % dofs_per_node, db = pb % dofs_per_node;
-        if (std::max(ra, rb) != searched_r || std::min(ra, rb) != searched_c) {
-          searched_r = std::max(ra, rb), searched_c = std::min(ra, rb);
-          p = entry(searched_r, searched_c);
-        }
-        if (p < 0) return false;
-        if (ra >= rb) matrix.value[p](da, db) += t.u[a] * t.v[b];
-        else upper_[p](db, da) += t.u[a] * t.v[b];
-      }
+      const TermEntry entry_of_a{a, pa / dofs_per_node, pa % dofs_per_node};
+      if (t.u[a] != 0.0) rows.push_back(entry_of_a);
+      if (t.v[a] != 0.0) columns.push_back(entry_of_a);
     }
+    for (size_t i = 0; i < rows.size();) {
+      size_t i_end = i + 1;
+      while (i_end < rows.size() && rows[i_end].block == rows[i].block) ++i_end;
+      for (size_t j = 0; j < columns.size();) {
+        size_t j_end = j + 1;
+        while (j_end < columns.size() && columns[j_end].block == columns[j].block) ++j_end;
+        const int ra = rows[i].block, rb = columns[j].block;
+        const int p = entry(std::max(ra, rb), std::min(ra, rb));
+        if (p < 0) return false;
+        for (size_t x = i; x < i_end; ++x)
+          for (size_t y = j; y < j_end; ++y) {
+            const double value = t.u[rows[x].index] * t.v[columns[y].index];
+            if (ra >= rb) matrix.value[p](rows[x].dof, columns[y].dof) += value;
+            else upper_[p](columns[y].dof, rows[x].dof) += value;
+          }
+        j = j_end;
+      }
+      i = i_end;
+    }
+  }
   block_lu_ = true;
   return block_lu_factor_.factorize(matrix, upper_);
 }

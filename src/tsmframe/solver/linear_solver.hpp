@@ -79,6 +79,11 @@ class LinearSolver {
   linalg::BlockLU block_lu_factor_;
   bool block_lu_analyzed_ = false;
   std::vector<linalg::Block> upper_;  ///< the block LU's other triangle (BlockLU::factorize)
+  /// A sliding term's entry in the block LU's matrix: its index in the term, its block and dof there.
+  struct TermEntry {
+    int index, block, dof;
+  };
+  std::vector<TermEntry> term_rows_, term_columns_;  ///< a term's nonzero u and v entries (reused)
   Eigen::SparseMatrix<double> general_matrix_;
   std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>> lu_;
   // Woodbury: Z = A⁻¹ U (one column per contact), V (dense), and the LU of I + Vᵀ Z.
