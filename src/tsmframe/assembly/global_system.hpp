@@ -165,8 +165,13 @@ class GlobalSystem {
   void add_block(int node_a, int node_b, const Eigen::Matrix3d& value);
   /// A contact element's response (contact_element_response) added to `out`: its forces, blocks and
   /// sliding terms.
-  void add_contact(const contact::ActiveContact& contact, const contact::MultiPointResponse& response, bool with_tangent,
-                   Evaluation& out);
+  /// The tangent's entries of a contact element's node pairs (i, j, then its points' nodes; pairs
+  /// p ≤ q in order): 2·entry, +1 where the lower triangle holds the pair transposed, −1 where a
+  /// node has no block or repeats. Read-only: formed with the responses, in parallel.
+  void contact_blocks(const contact::ActiveContact& contact, std::vector<int>& blocks) const;
+  void prefetch_contact_blocks(const std::vector<int>& blocks) const;
+  void add_contact(const contact::ActiveContact& contact, const contact::MultiPointResponse& response,
+                   const std::vector<int>& blocks, bool with_tangent, Evaluation& out);
   NodalFrames frames_;                              ///< the skew rollers' frames (empty: none)
   FollowerLoads follower_loads_;                    ///< the members' pressure (assembly/follower_loads)
   NodalSprings springs_;                            ///< springs to the ground (assembly/nodal_springs)
@@ -242,7 +247,8 @@ class GlobalSystem {
   /// responses, a contact element's dofs, nodes and equations, and how many of contact_rank_one_
   /// the evaluation has filled.
   std::vector<contact::MultiPointResponse> contact_responses_;
-  std::vector<int> contact_dofs_, contact_nodes_, contact_equations_;
+  std::vector<std::vector<int>> contact_blocks_;  ///< contact_blocks of each response in contact_responses_
+  std::vector<int> contact_dofs_, contact_equations_;
   size_t contact_rank_ones_ = 0;
   std::vector<std::pair<int, int>> contact_pairs_;  ///< node pairs joined only by contact elements
   bool forget_contact_pairs_ = false;                ///< see forget_contact_pairs()
