@@ -163,6 +163,23 @@ void ContactSet::update_active(const ContactCandidates& contact, const Eigen::Ve
   add(hand_over(geometry_, contact, D, rotations, at_convergence, state, occupancy), changes);
 }
 
+std::vector<LandingMove> ContactSet::landing_moves(const Eigen::VectorXd& D, const std::vector<double>& rotations,
+                                                   const std::vector<ContactState>& states,
+                                                   const std::vector<char>& touching_before) const {
+  std::vector<LandingMove> moves;
+  std::vector<char> moved(geometry_.model().nodes.size(), 0);
+  for (int k = 0; k < contact_count(); ++k) {
+    if (touching_before[k] || !states[k].active) continue;
+    const ContactCandidates& contact = geometry_.contact(k);
+    if (moved[contact.node]) continue;
+    const LandingMove move = landing_move(geometry_, contact, states[k], D, rotations);
+    if (move.node < 0) continue;
+    moved[contact.node] = 1;
+    moves.push_back(move);
+  }
+  return moves;
+}
+
 double ContactSet::landing_fraction(const Eigen::VectorXd& D, const Eigen::VectorXd& trial,
                                     const std::vector<ContactState>& states) const {
   double fraction = 1.0;

@@ -19,6 +19,7 @@
 #include "tsmframe/contact/contact_element.hpp"
 #include "tsmframe/contact/contact_geometry.hpp"
 #include "tsmframe/contact/contact_state.hpp"
+#include "tsmframe/contact/landing.hpp"
 #include "tsmframe/contact/occupancy.hpp"
 #include "tsmframe/model/model.hpp"
 
@@ -76,6 +77,11 @@ class ContactSet {
   /// contact's node deeper than landing.hpp allows (1: all of it).
   double landing_fraction(const Eigen::VectorXd& displacements, const Eigen::VectorXd& trial,
                           const std::vector<ContactState>& states) const;
+  /// landing_move (landing.hpp) of each contact in touch in `states` that was not in
+  /// `touching_before`, each node once.
+  std::vector<LandingMove> landing_moves(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
+                                         const std::vector<ContactState>& states,
+                                         const std::vector<char>& touching_before) const;
   /// Whether a contact released during this step has let its node pass through a beam: the
   /// converged state is then not acceptable.
   bool passed_through(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,

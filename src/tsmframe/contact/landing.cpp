@@ -30,4 +30,13 @@ double landing_fraction(const ContactGeometry& geometry, const ContactCandidates
   return fraction;
 }
 
+LandingMove landing_move(const ContactGeometry& geometry, const ContactCandidates& contact, const ContactState& state,
+                         const Eigen::VectorXd& D, const std::vector<double>& rotations) {
+  if (!state.active || state.vertex) return {};
+  const NodeOnElement at = geometry.locate(contact, state.element, D, rotations);
+  const double back = state.side * contact.gap - at.gap;  // along n, to the gap
+  if (!(state.side * back > 0.0)) return {};            // not through it
+  return {contact.node, back * geometry.chord_normal(state.element, D, rotations)};
+}
+
 }  // namespace tsm::contact

@@ -28,4 +28,20 @@ constexpr double landing_depth_in_elements = 2.0;
 double landing_fraction(const ContactGeometry& geometry, const ContactCandidates& contact, const ContactState& state,
                         const Eigen::VectorXd& displacements, const Eigen::VectorXd& trial);
 
+/// A contact node put back on the surface it has just landed on: its translation (global).
+struct LandingMove {
+  int node = -1;  ///< −1: the node stays
+  Eigen::Vector2d by = Eigen::Vector2d::Zero();
+};
+
+/// The iterate the landing cut short leaves the contacts it started as deep as the cut did (up to
+/// the landing depth), and the next iterate would push them out through the beams' geometry, far
+/// from its linearisation: with every point's Y ~10⁵ times the beam's force, thousands of them
+/// bounced over the lower beam's nodes until the step was cut back (bench/README.md, "Landing on
+/// the surface"). A contact that has just started on an element, its node beyond the gap, is
+/// moved back along the element's chord normal to the gap (where its Y is zero): the node's
+/// translation. Not a vertex's (it rests on two elements).
+LandingMove landing_move(const ContactGeometry& geometry, const ContactCandidates& contact, const ContactState& state,
+                         const Eigen::VectorXd& displacements, const std::vector<double>& rotations);
+
 }  // namespace tsm::contact

@@ -1,6 +1,7 @@
 #include "tsmframe/solver/tsm_problem.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <numbers>
 #include <utility>
@@ -70,19 +71,26 @@ bool TsmProblem::evaluate(State& state, Proximity proximity, bool contacts_only)
   // An iterate whose normals turned back from the chords' to the bent beams' is judged as one
   // whose contacts changed: the correction that reached it was the other model's (no round-off).
   const bool was_along_chords = along_chords_;
+  const bool landed = landing_cut_;
   along_chords_ = std::exchange(landing_cut_, false) || far_along_chords(state, proximity);
   bool changed = bends_normals_ && was_along_chords && !along_chords_;
+  bool moved = false;  // contact nodes put on the surface they landed on: every element again
   for (int pass = 0;; ++pass) {
     const std::vector<contact::ActiveContact> active = active_contacts(state);
     // The rotations are continued in place (one vector, not two): lent to the evaluation.
     std::swap(state.chord_rotations, eval_.chord_rotations);
-    if (pass > 0 || contacts_only) system_.evaluate_contact_change(u, eval_.chord_rotations, eval_, active);
+    if (pass == 0 ? contacts_only : !moved) system_.evaluate_contact_change(u, eval_.chord_rotations, eval_, active);
     else system_.evaluate(u, eval_.chord_rotations, true, eval_, active);
     std::swap(state.chord_rotations, eval_.chord_rotations);
     if (!contacts_) return false;
     if (pass == max_passes) break;
+    if (landed && pass == 0) {
+      touching_before_.resize(state.contacts.size());
+      for (size_t k = 0; k < state.contacts.size(); ++k) touching_before_[k] = state.contacts[k].active;
+    }
     const contact::ContactChanges changes =
         contacts_->update(u, state.chord_rotations, eval_.contacts, state.contacts, false, state.contact_references);
+    moved = landed && pass == 0 && changes.activated > 0 && put_on_surface(state);
     if (!changes.any()) break;
     changed = true;
     switches_ += changes.activated + changes.released;
@@ -91,6 +99,23 @@ bool TsmProblem::evaluate(State& state, Proximity proximity, bool contacts_only)
   // α and force of the evaluation that stands (update() has set them unless the passes ran out).
   contacts_->record(eval_.contacts, state.contacts);
   return changed;
+}
+
+bool TsmProblem::put_on_surface(State& state) {
+  const std::vector<contact::LandingMove> moves =
+      contacts_->landing_moves(physical(state), state.chord_rotations, state.contacts, touching_before_);
+  const NodalFrames& frames = system_.frames();
+  const std::vector<int>& held = equations_.constrained_dofs;
+  for (const contact::LandingMove& move : moves) {
+    const std::array<int, dofs_per_node> dofs{dofs_per_node * move.node, dofs_per_node * move.node + 1,
+                                              dofs_per_node * move.node + 2};
+    Eigen::Vector3d by(move.by.x(), move.by.y(), 0.0);
+    if (frames.turned(move.node)) frames.to_nodal(dofs, by);  // a skew roller's node: in its frame
+    for (int d = 0; d < 2; ++d)
+      if (!std::binary_search(held.begin(), held.end(), dofs[d])) state.displacements[dofs[d]] += by[d];
+  }
+  if (!moves.empty()) physical(state);  // where frames turn, u (physical_) follows
+  return !moves.empty();
 }
 
 bool TsmProblem::far_along_chords(const State& state, Proximity proximity) {

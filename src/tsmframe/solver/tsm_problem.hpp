@@ -88,6 +88,9 @@ class TsmProblem final : public Problem {
   /// Whether an iterate `proximity` from the solution pushes along the chords' normals: far,
   /// with many points in touch along bent beams' normals (tsm_problem.cpp).
   bool far_along_chords(const State& state, Proximity proximity);
+  /// After the landing cut an iterate short: the contacts started at it put back on the surface
+  /// they landed on (contact::landing_move, state.displacements moved); whether any node moved.
+  bool put_on_surface(State& state);
   /// The contact elements standing in for beam elements at `state` (none without contacts).
   std::vector<contact::ActiveContact> active_contacts(const State& state) const;
   /// Analyses the tangent's pattern again where a contact has joined new nodes.
@@ -117,6 +120,7 @@ class TsmProblem final : public Problem {
   bool landing_cut_ = false;        ///< the next evaluation's iterate is one the landing cut short (step_fraction)
   bool along_chords_ = false;       ///< the last evaluation's: every point pushes along its chord's normal (far, or a landing)
   bool bends_normals_ = false;      ///< some contact pushes along the bent beam's normal (ContactSet::bends_normals)
+  std::vector<char> touching_before_;  ///< per contact: in touch before the landing iterate's update (put_on_surface)
   bool far_along_chords_ = false;   ///< this step's far iterates push along the chords (far_along_chords)
   LinearSolver solver_;
   /// The last factorisation's outcome and what it tells of the tangent's inertia (`symmetric`:

@@ -1,7 +1,7 @@
 // Newton's step cut short where contacts land (contact/landing.hpp): the fraction of a step that
 // leaves an inactive contact's node no deeper than two of its candidate's element lengths beyond
 // the gap (landing_depth_in_elements, 2), from the distances across the chords before and after
-// the step.
+// the step; and a node it left through a beam's surface put back on it (landing_move).
 #include <gtest/gtest.h>
 
 #include "support/contact_fixture.hpp"
@@ -15,6 +15,8 @@ using tsm::contact::ContactGeometry;
 using tsm::contact::ContactState;
 using tsm::contact::landing_depth_in_elements;
 using tsm::contact::landing_fraction;
+using tsm::contact::landing_move;
+using tsm::contact::LandingMove;
 using tsm::test::ContactFixture;
 
 // A node 10 cm above a 1-m beam of 40 elements (2.5 cm), its contact's gap 5 mm: the surface is
@@ -74,6 +76,43 @@ TEST(Landing, AContactInTouchOrReleasedInTheStepIsNotCut) {
   ContactState released = tsm::test::reference_state(geometry, f);
   released.step.released = true;
   EXPECT_EQ(landing_fraction(geometry, geometry.contact(0), released, f.D, trial), 1.0);
+}
+
+TEST(Landing, ANodeThatLandedIsPutBackOnTheSurfaceAlongItsChordsNormal) {
+  // The beam bent (v = 0.2 x²: element 20's chord tilted by ~0.2), the node 3 cm through its
+  // surface: the move runs along that chord's normal and ends at the gap, α unchanged.
+  ContactFixture f(0.51, height, {{"gap", gap}}, 40);
+  f.bend_beam(0.2);
+  f.move_foot(0.0, 0.2 * 0.51 * 0.51 - 0.03 - height);
+  const ContactGeometry geometry(f.model);
+  const int element = 20;  // [0.5, 0.525]
+  const ContactState state = tsm::test::active_state(geometry, f, element);
+  const tsm::contact::NodeOnElement before = geometry.locate(geometry.contact(0), element, f.D, f.rotations);
+  ASSERT_LT(before.gap, -0.02);
+  const LandingMove move = landing_move(geometry, geometry.contact(0), state, f.D, f.rotations);
+  ASSERT_EQ(move.node, f.foot);
+  const Eigen::Vector2d n = geometry.chord_normal(element, f.D, f.rotations);
+  EXPECT_NEAR(move.by.normalized().dot(n), 1.0, 1e-12);
+  EXPECT_GT(std::abs(n.x()), 0.1);  // a tilted normal
+  Eigen::VectorXd moved = f.D;
+  moved.segment<2>(tsm::dofs_per_node * f.foot) += move.by;
+  const tsm::contact::NodeOnElement after = geometry.locate(geometry.contact(0), element, moved, f.rotations);
+  EXPECT_NEAR(after.gap, gap, 1e-12);
+  EXPECT_NEAR(after.alpha, before.alpha, 1e-12);
+}
+
+TEST(Landing, ANodeShortOfTheSurfaceAVertexAndAContactNotInTouchStayWhereTheyAre) {
+  ContactFixture f(0.51, height, {{"gap", gap}}, 40);
+  const ContactGeometry geometry(f.model);
+  f.move_foot(0.0, 1.5 * gap - height);  // 2.5 mm short of the surface: not through it
+  EXPECT_EQ(landing_move(geometry, geometry.contact(0), tsm::test::active_state(geometry, f, 20), f.D, f.rotations).node, -1);
+  f.move_foot(0.0, -0.03 - height);  // through, but …
+  ContactState vertex = tsm::test::active_state(geometry, f, 20);
+  vertex.vertex.emplace();  // … resting on a node between two elements
+  EXPECT_EQ(landing_move(geometry, geometry.contact(0), vertex, f.D, f.rotations).node, -1);
+  const ContactState away = tsm::test::reference_state(geometry, f);  // not in touch
+  EXPECT_EQ(landing_move(geometry, geometry.contact(0), away, f.D, f.rotations).node, -1);
+  EXPECT_EQ(landing_move(geometry, geometry.contact(0), tsm::test::active_state(geometry, f, 20), f.D, f.rotations).node, f.foot);
 }
 
 }  // namespace

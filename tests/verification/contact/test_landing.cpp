@@ -78,6 +78,15 @@ TEST(ContactLanding, ThreeThousandContactNodesPressedToTheFullLoadInTenStepsNeed
   expect_press_bends_as_its_spans(300, 2000.0, 10);
 }
 
+TEST(ContactLanding, FiveThousandContactNodesBesideTheLowerBeamsNodesPressedInTenStepsNeedNoCutback) {
+  // The 500-m press: its upper nodes pass from 5 mm beside the lower beam's nodes to over them.
+  // The landing leaves the points it starts up to two lower elements deep, and the iterate after
+  // it pushed them out with Y ~10⁵ times the beam's force: the lower beam moved by millimetres an
+  // iterate, points hopped over its nodes, and two attempts of the first step were cut back (12
+  // steps). The points landed are put back on the surface (contact::landing_move).
+  expect_press_bends_as_its_spans(500, 2000.0, 10);
+}
+
 TEST(ContactLanding, AThousandContactNodesTakeTheFullLoadInOneStep) {
   // The 100-m press (1,001 contact nodes on 3,000 lower elements) to 2 kN/m in one step: the
   // issue's "the press in one step". Its far iterates push along the chords (≥ 200 points in
