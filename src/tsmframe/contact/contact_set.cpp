@@ -10,6 +10,7 @@
 #include "tsmframe/contact/sides.hpp"
 #include "tsmframe/contact/sliding.hpp"
 #include "tsmframe/contact/vertex.hpp"
+#include "tsmframe/util/parallel_for.hpp"
 #include "tsmframe/model/resting_contact.hpp"
 
 namespace tsm::contact {
@@ -62,18 +63,22 @@ bool ContactSet::bends_normals() const {
 std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<ContactState>& states, bool along_chords) const {
   std::vector<ActiveContact> active;
   std::vector<int> place;  // per element: its place in `active`, −1 none (made only when needed)
-  // `chord`: the point pushes along its chord's normal whatever its contact asks (a vertex's).
+  // The points are grouped by element first; what each point's element is made of is formed
+  // after, in parallel (a contact element's data costs more than its place).
+  struct Pending {
+    int slot, point, contact, element, side;
+    bool chord;  ///< the point pushes along its chord's normal whatever its contact asks (a vertex's)
+  };
+  std::vector<Pending> pending;
   const auto add_point = [&](int k, bool vertex, int element, int side, bool chord) {
-    const ContactCandidates& contact = geometry_.contact(k);
     if (place.empty()) place.assign(geometry_.model().elements.size(), -1);
     if (place[element] < 0) {
       place[element] = static_cast<int>(active.size());
       active.push_back({element, {}, {}});
     }
     ActiveContact& a = active[place[element]];
-    a.points.push_back({k, vertex, contact.node});
-    a.data.push_back(geometry_.element_data(contact, element, side));
-    if (chord) a.data.back().normal = ContactNormal::chord;
+    pending.push_back({place[element], a.size(), k, element, side, chord});
+    a.points.push_back({k, vertex, geometry_.contact(k).node});
   };
   for (int k = 0; k < contact_count(); ++k) {
     const ContactState& s = states[k];
@@ -85,6 +90,13 @@ std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<Contact
     add_point(k, false, s.element, s.side, vertex);
     if (vertex) add_point(k, true, s.vertex->element, s.vertex->side, true);
   }
+  for (ActiveContact& a : active) a.data.resize(a.points.size());
+  util::parallel_for_static(size_t{0}, pending.size(), pending.size() >= 1024, [&](size_t q) {
+    const Pending& p = pending[q];
+    ContactElementData& data = active[p.slot].data[p.point];
+    data = geometry_.element_data(geometry_.contact(p.contact), p.element, p.side);
+    if (p.chord) data.normal = ContactNormal::chord;
+  });
   // An element a point enters pushes along its chord's normal at all its points: the entering
   // point's Y, read from how far the predictor ran its node through the beam, would turn the
   // others' normals too.
