@@ -1,6 +1,9 @@
 #include "tsmframe/solver/linear_solver.hpp"
 
 #include <algorithm>
+#include <atomic>
+
+#include "tsmframe/util/parallel_for.hpp"
 
 namespace tsm::solver {
 
@@ -84,6 +87,42 @@ bool LinearSolver::factorize_and_solve(BlockMatrix& matrix, const std::vector<Ra
   return true;
 }
 
+bool LinearSolver::plan_term(const BlockMatrix& matrix, const RankOne& t, TermPlan& plan) const {
+  plan.rows.clear();
+  plan.columns.clear();
+  plan.blocks.clear();
+  for (int a = 0; a < t.size(); ++a) {
+    if (t.equation[a] < 0) continue;
+    const int pa = place(t.equation[a]);
+    const TermEntry entry_of_a{a, pa / dofs_per_node, pa % dofs_per_node};
+    if (t.u[a] != 0.0) plan.rows.push_back(entry_of_a);
+    if (t.v[a] != 0.0) plan.columns.push_back(entry_of_a);
+  }
+  // One search per pair of blocks: a term's entries come a node's dofs at a time.
+  for_each_block_pair(plan, [&](size_t i, size_t, size_t j, size_t) {
+    const int r = std::max(plan.rows[i].block, plan.columns[j].block), c = std::min(plan.rows[i].block, plan.columns[j].block);
+    const auto begin = matrix.row.begin() + matrix.column[c], end = matrix.row.begin() + matrix.column[c + 1];
+    const auto at = std::lower_bound(begin, end, r);
+    const int p = at != end && *at == r ? static_cast<int>(at - matrix.row.begin()) : -1;
+    plan.blocks.push_back(p >= 0 && !matrix.is_fill(p) ? p : -1);
+  });
+  return std::find(plan.blocks.begin(), plan.blocks.end(), -1) == plan.blocks.end();
+}
+
+void LinearSolver::add_term(BlockMatrix& matrix, const RankOne& t, const TermPlan& plan) {
+  size_t pair = 0;
+  for_each_block_pair(plan, [&](size_t i, size_t i_end, size_t j, size_t j_end) {
+    const int p = plan.blocks[pair++];
+    const bool lower = plan.rows[i].block >= plan.columns[j].block;
+    for (size_t x = i; x < i_end; ++x)
+      for (size_t y = j; y < j_end; ++y) {
+        const double value = t.u[plan.rows[x].index] * t.v[plan.columns[y].index];
+        if (lower) matrix.value[p](plan.rows[x].dof, plan.columns[y].dof) += value;
+        else upper_[p](plan.columns[y].dof, plan.rows[x].dof) += value;
+      }
+  });
+}
+
 bool LinearSolver::factorize_block_lu(BlockMatrix& matrix, const std::vector<RankOne>& rank_one) {
   if (!block_lu_analyzed_) {
     block_lu_factor_.analyze(matrix);
@@ -92,46 +131,26 @@ bool LinearSolver::factorize_block_lu(BlockMatrix& matrix, const std::vector<Ran
   // A is symmetric: its upper triangle's entry (c, r), transposed, is the lower one's (r, c).
   upper_.resize(matrix.value.size());
   for (size_t p = 0; p < matrix.value.size(); ++p) upper_[p] = matrix.value[p];
-  const auto entry = [&](int r, int c) {  // the entry (r, c), r ≥ c, of a block of A; −1 if none
-    const auto begin = matrix.row.begin() + matrix.column[c], end = matrix.row.begin() + matrix.column[c + 1];
-    const auto at = std::lower_bound(begin, end, r);
-    const int p = at != end && *at == r ? static_cast<int>(at - matrix.row.begin()) : -1;
-    return p >= 0 && !matrix.is_fill(p) ? p : -1;
-  };
   // K(a, b) += u_a v_b, into the block of the equations' nodes: the lower triangle's entry,
   // the diagonal block (whole), or the upper triangle's, held transposed at its lower partner.
-  // A term's entries are grouped by block first: one search per pair of blocks.
-  std::vector<TermEntry>& rows = term_rows_;
-  std::vector<TermEntry>& columns = term_columns_;
-  for (const RankOne& t : rank_one) {
-    rows.clear();
-    columns.clear();
-    for (int a = 0; a < t.size(); ++a) {
-      if (t.equation[a] < 0) continue;
-      const int pa = place(t.equation[a]);
-      const TermEntry entry_of_a{a, pa / dofs_per_node, pa % dofs_per_node};
-      if (t.u[a] != 0.0) rows.push_back(entry_of_a);
-      if (t.v[a] != 0.0) columns.push_back(entry_of_a);
-    }
-    for (size_t i = 0; i < rows.size();) {
-      size_t i_end = i + 1;
-      while (i_end < rows.size() && rows[i_end].block == rows[i].block) ++i_end;
-      for (size_t j = 0; j < columns.size();) {
-        size_t j_end = j + 1;
-        while (j_end < columns.size() && columns[j_end].block == columns[j].block) ++j_end;
-        const int ra = rows[i].block, rb = columns[j].block;
-        const int p = entry(std::max(ra, rb), std::min(ra, rb));
-        if (p < 0) return false;
-        for (size_t x = i; x < i_end; ++x)
-          for (size_t y = j; y < j_end; ++y) {
-            const double value = t.u[rows[x].index] * t.v[columns[y].index];
-            if (ra >= rb) matrix.value[p](rows[x].dof, columns[y].dof) += value;
-            else upper_[p](columns[y].dof, rows[x].dof) += value;
-          }
-        j = j_end;
+  // The blocks each term meets are found first, in parallel (TermPlan); the terms are then
+  // added in their order, the blocks of a term a few ahead asked for (they are scattered).
+  if (term_plans_.size() < rank_one.size()) term_plans_.resize(rank_one.size());
+  std::atomic<bool> outside{false};
+  util::parallel_for_static(size_t{0}, rank_one.size(), rank_one.size() >= 256, [&](size_t t) {
+    if (!plan_term(matrix, rank_one[t], term_plans_[t])) outside = true;
+  });
+  if (outside) return false;
+  constexpr size_t prefetch_distance = 4;
+  for (size_t t = 0; t < rank_one.size(); ++t) {
+    if (t + prefetch_distance < rank_one.size())
+      for (const int p : term_plans_[t + prefetch_distance].blocks) {
+        const char* block = reinterpret_cast<const char*>(matrix.value.data() + p);
+        __builtin_prefetch(block, 1), __builtin_prefetch(block + 64, 1);
+        const char* other = reinterpret_cast<const char*>(upper_.data() + p);
+        __builtin_prefetch(other, 1), __builtin_prefetch(other + 64, 1);
       }
-      i = i_end;
-    }
+    add_term(matrix, rank_one[t], term_plans_[t]);
   }
   block_lu_ = true;
   return block_lu_factor_.factorize(matrix, upper_);

@@ -83,7 +83,33 @@ class LinearSolver {
   struct TermEntry {
     int index, block, dof;
   };
-  std::vector<TermEntry> term_rows_, term_columns_;  ///< a term's nonzero u and v entries (reused)
+  /// A sliding term's nonzero u entries (rows) and v entries (columns), grouped by block, and the
+  /// matrix entry of each pair of a row group and a column group (for_each_block_pair's order).
+  struct TermPlan {
+    std::vector<TermEntry> rows, columns;
+    std::vector<int> blocks;
+  };
+  std::vector<TermPlan> term_plans_;  ///< one per term (their storage reused)
+  /// Calls visit(i, i_end, j, j_end) for each run of rows [i, i_end) in one block and of columns
+  /// [j, j_end) in one block.
+  template <class Visit>
+  static void for_each_block_pair(const TermPlan& plan, const Visit& visit) {
+    for (size_t i = 0; i < plan.rows.size();) {
+      size_t i_end = i + 1;
+      while (i_end < plan.rows.size() && plan.rows[i_end].block == plan.rows[i].block) ++i_end;
+      for (size_t j = 0; j < plan.columns.size();) {
+        size_t j_end = j + 1;
+        while (j_end < plan.columns.size() && plan.columns[j_end].block == plan.columns[j].block) ++j_end;
+        visit(i, i_end, j, j_end);
+        j = j_end;
+      }
+      i = i_end;
+    }
+  }
+  /// The plan of term `t` on `matrix`'s pattern; false where a pair of blocks has no entry.
+  bool plan_term(const linalg::BlockMatrix& matrix, const linalg::RankOne& t, TermPlan& plan) const;
+  /// Adds term `t` into `matrix` (lower triangle) and upper_ by its plan.
+  void add_term(linalg::BlockMatrix& matrix, const linalg::RankOne& t, const TermPlan& plan);
   Eigen::SparseMatrix<double> general_matrix_;
   std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>> lu_;
   // Woodbury: Z = A⁻¹ U (one column per contact), V (dense), and the LU of I + Vᵀ Z.
