@@ -10,8 +10,8 @@
 #include "tsmframe/contact/sides.hpp"
 #include "tsmframe/contact/sliding.hpp"
 #include "tsmframe/contact/vertex.hpp"
-#include "tsmframe/util/parallel_for.hpp"
 #include "tsmframe/model/resting_contact.hpp"
+#include "tsmframe/util/parallel_for.hpp"
 
 namespace tsm::contact {
 namespace {
