@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -108,7 +109,7 @@ TEST(Restart, EitherStageOfAStagedRunGoesOnBitForBit) {
 }
 
 json example(const char* name) {
-  return json::parse(std::ifstream(std::string(TSMFRAME_SOURCE_DIR) + "/examples/" + name));
+  return json::parse(std::ifstream(std::filesystem::path(TSMFRAME_SOURCE_DIR) / "examples" / name));
 }
 
 TEST(Restart, AnArcLengthPathGoesOnBitForBitPastItsLimitPoints) {
