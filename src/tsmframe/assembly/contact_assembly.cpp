@@ -49,7 +49,8 @@ std::vector<ContactDirection> contact_directions(const Model& model, const DofMa
     std::vector<int> equation(g.size());
     for (size_t k = 0; k < g.size(); ++k) equation[k] = dofs.equation(g[k]);
     for (int p = 0; p < a.size(); ++p) {
-      directions.push_back({equation, r.point_u.col(p), r.point_stiffness(p, p), r.forces[3 + p]});
+      directions.push_back({equation, r.point_u.col(p), r.point_stiffness(p, p), r.forces[3 + p],
+                            static_cast<int>(&a - contacts.data()), r.point_stiffness.row(p)});
       frames.to_nodal(g, directions.back().u);
     }
   }

@@ -23,8 +23,10 @@ namespace tsm::assembly {
 struct ContactDirection {
   std::vector<int> equation;  ///< free equation of each entry of u, −1 where constrained
   Eigen::VectorXd u;
-  double stiffness = 0.0;  ///< 1/c
+  double stiffness = 0.0;  ///< 1/c (the diagonal entry of C⁻¹ where points share an element)
   double Y = 0.0;
+  int element = 0;                    ///< its contact element: the index in the contacts given
+  Eigen::RowVectorXd stiffness_row;   ///< its row of the element's point stiffness C⁻¹ (one entry per point)
 };
 
 /// A contact element's dofs: the beam element's two nodes, then each point's node (into `dofs`:

@@ -17,10 +17,32 @@ namespace tsm::contact {
 /// G's column j, Uᵀ K⁻¹ u_j (one entry per contact).
 using ForecastColumn = std::function<Eigen::VectorXd(int j)>;
 
+/// The points' stiffness: block diagonal, one block per contact element (its points coupled
+/// through the beam, C⁻¹ of the k-point law; 1/c for one point). Entries of a block are
+/// consecutive: block b holds entries first[b] … first[b + 1] − 1.
+struct PointStiffness {
+  std::vector<int> first{0};
+  std::vector<Eigen::MatrixXd> blocks;
+  /// One point per element: the blocks 1×1.
+  static PointStiffness diagonal(const Eigen::VectorXd& stiffness);
+  void add(const Eigen::MatrixXd& block);
+};
+
 /// Per contact entry whether it lets go: compression is −side · Y; `may_join` false keeps an
 /// entry out of S whatever it does (a vertex's two elements). Where the iteration has not
 /// settled after `rounds`, or S would grow beyond `largest_set` (its dense solve, |S|³, and one
 /// solve with K per member), only the entries that pull now.
+///
+/// Points coupled on an element: letting go of some of them, R, changes the law of the others,
+/// Q (their stiffness becomes C_QQ⁻¹): the state after it is the one where R's points stay in
+/// the model with a separation s_R each and zero force. With ψ = Z s over the elements that
+/// lose a point (Z their blocks), ΔD = −K⁻¹ U ψ and the forces become Y + ψ − Z G ψ; ψ solves
+/// (Y + ψ − Z G ψ)_S = 0 and (Z⁻¹ ψ)_Q = 0. A point of S stays let go where it separates
+/// (side · s < 0), another joins where its force Y + ψ − Z G ψ would pull. One point per element:
+/// ψ_S = −Y'_S above.
+std::vector<char> forecast_releases(const ForecastColumn& column, const PointStiffness& stiffness,
+                                    const Eigen::VectorXd& Y, const std::vector<int>& side,
+                                    const std::vector<char>& may_join, int rounds = 50, int largest_set = 400);
 std::vector<char> forecast_releases(const ForecastColumn& column, const Eigen::VectorXd& stiffness,
                                     const Eigen::VectorXd& Y, const std::vector<int>& side,
                                     const std::vector<char>& may_join, int rounds = 50, int largest_set = 400);

@@ -407,29 +407,22 @@ std::vector<int> TsmProblem::look_ahead_releases(State& state, bool& overwrote_t
   constexpr size_t fewest = 4;
   const std::vector<contact::ActiveContact> active = active_contacts(state);
   if (active.size() < fewest || !system_.follower_rank_one().empty()) return also;
-  // Contact k's entries in `active` (two at a vertex, which stay out of the forecast).
+  // The contacts' entries in the order of `active`'s points, which contact_directions keeps
+  // (two at a vertex, which stay out of the forecast). Points that share an element are coupled
+  // through it: the forecast takes the element's point stiffness C⁻¹ whole.
   std::vector<int> owner, side;
   std::vector<char> may_join;
   bool pulls = false;
-  for (size_t k = 0; k < state.contacts.size(); ++k) {
-    const contact::ContactState& c = state.contacts[k];
-    if (!c.active) continue;
-    owner.push_back(static_cast<int>(k));
-    side.push_back(c.side);
-    may_join.push_back(!c.vertex);
-    if (c.vertex) {
-      owner.push_back(static_cast<int>(k));
-      side.push_back(c.vertex->side);
-      may_join.push_back(0);
-      if (-c.side * c.Y < 0.0 || -c.vertex->side * c.vertex->Y < 0.0) return also;  // a vertex opens: as before
+  for (const contact::ActiveContact& a : active)
+    for (const contact::ActivePoint& p : a.points) {
+      const contact::ContactState& c = state.contacts[p.contact];
+      if (c.vertex && (-c.side * c.Y < 0.0 || -c.vertex->side * c.vertex->Y < 0.0)) return also;  // a vertex opens: as before
+      owner.push_back(p.contact);
+      side.push_back(p.vertex ? c.vertex->side : c.side);
+      may_join.push_back(!c.vertex);
+      pulls = pulls || c.force < 0.0;
     }
-    pulls = pulls || c.force < 0.0;
-  }
-  // Points that share an element are coupled through it (their stiffness is C⁻¹, not one 1/c
-  // each): the forecast's model of letting go does not hold there, and Newton settles alone.
-  if (!pulls || owner.size() != active.size() ||
-      std::any_of(active.begin(), active.end(), [](const contact::ActiveContact& a) { return a.size() > 1; }))
-    return also;
+  if (!pulls) return also;
   // The forecast is made along the chords' normals. Letting go of a point takes out its load
   // Y u and its stiffness u uᵀ/c; along the bent beam's normal its tangent also carries the
   // normal's turning, Y (g ∇w_αᵀ + ∇w_α gᵀ) with ∇w_α ≈ ½ c_α ∇Y = ½ c_α u/c: a term of the
@@ -466,10 +459,16 @@ std::vector<int> TsmProblem::look_ahead_releases(State& state, bool& overwrote_t
   if (!solver_.factorize(system_.tangent_for_factorisation(), symmetric_part ? std::vector<RankOne>{} : sliding))
     return also;
   const int n = static_cast<int>(directions.size());
-  Eigen::VectorXd stiffness(n), Y(n);
-  for (int j = 0; j < n; ++j) {
-    stiffness[j] = directions[j].stiffness;
-    Y[j] = directions[j].Y;
+  contact::PointStiffness stiffness;
+  Eigen::VectorXd Y(n);
+  for (int j = 0; j < n;) {  // an element's points, its block of C⁻¹
+    int end = j + 1;
+    while (end < n && directions[end].element == directions[j].element) ++end;
+    Eigen::MatrixXd block(end - j, end - j);
+    for (int i = j; i < end; ++i) block.row(i - j) = directions[i].stiffness_row;
+    stiffness.add(block);
+    for (int i = j; i < end; ++i) Y[i] = directions[i].Y;
+    j = end;
   }
   bool finite = true;
   const auto column = [&](int j) {  // Uᵀ K⁻¹ u_j: one solve
