@@ -1,6 +1,5 @@
 #include "tsmframe/linalg/block_ldlt.hpp"
 
-#include "tsmframe/util/first_touch.hpp"
 #include "tsmframe/util/parallel_for.hpp"
 
 #include <algorithm>
@@ -76,15 +75,9 @@ class RankThreeUpdate {
 }  // namespace
 
 void BlockLDLT::analyze(const BlockMatrix& a) {
-  const int n = size_ = a.size;
-  FilledPattern pattern = filled_pattern(a);
-  row_start_ = pattern.rows.start;
-  row_column_ = pattern.rows.column;
-  row_position_ = pattern.rows.position;
-  row_fill_ = std::move(pattern.row_fill);
-  util::assign_touched(slot_, n, -1);
-  schedule_ = schedule_block_ldlt(a, pattern.rows, pattern.parent);
-  if (schedule_.parallel_top) deferred_z_.resize(schedule_.deferred);  // the path rows' running sums, pass (1) to (2)
+  size_ = a.size;
+  analyze_rows(a, rows_);
+  if (rows_.schedule.parallel_top) deferred_z_.resize(rows_.schedule.deferred);  // the path rows' running sums, pass (1) to (2)
   else std::vector<Block>().swap(deferred_z_);
   dense_.resize(0, 0);
 }
@@ -99,19 +92,19 @@ TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, in
   // arithmetic is the same as in one call. With `defer_from`, updates into entries (k, r) of rows
   // r ≥ defer_from are left out and each entry's running sum z is kept in `deferred` instead
   // (apply_deferred adds them later, in the same order).
-  const int first = row_start_[k], last = row_start_[k + 1];
-  for (int t = first; t < last; ++t) slot[row_column_[t]] = row_position_[t];
-  if (t_begin == first && !row_fill_.empty())  // the row's first call: its fill starts at zero (no entry of A)
+  const int first = rows_.start[k], last = rows_.start[k + 1];
+  for (int t = first; t < last; ++t) slot[rows_.column[t]] = rows_.position[t];
+  if (t_begin == first && !rows_.fill.empty())  // the row's first call: its fill starts at zero (no entry of A)
     for (int t = first; t < last; ++t)
-      if (row_fill_[t]) a.value[row_position_[t]].setZero();
+      if (rows_.fill[t]) a.value[rows_.position[t]].setZero();
   // D_k is symmetric: only its upper triangle is formed (d00 d01 d02 d11 d12 d22).
   Block& diagonal = a.value[a.column[k]];
   double d00 = diagonal(0, 0), d01 = diagonal(0, 1), d02 = diagonal(0, 2), d11 = diagonal(1, 1), d12 = diagonal(1, 2),
          d22 = diagonal(2, 2);
   if (guard_inertia_ && t_begin == first) original_diagonal_[k] = {d00, d11, d22};  // what the pivot is measured against
   for (int t = t_begin; t < t_end; ++t) {
-    const int i = row_column_[t];
-    Block& z = a.value[row_position_[t]];
+    const int i = rows_.column[t];
+    Block& z = a.value[rows_.position[t]];
     const Block lki = z * a.value[a.column[i]];  // L(k, i) = z D_i⁻¹ (D_i⁻¹ on column i's diagonal)
     // D_k −= L(k, i) zᵀ (symmetric): the upper triangle only.
     d00 -= lki.row(0).dot(z.row(0));
@@ -122,7 +115,7 @@ TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, in
     d22 -= lki.row(2).dot(z.row(2));
     // Column i's rows r (i < r < k) update the running sums (k, r), streaming down the column:
     // they are the entries above (k, i) itself (rows ascending), all formed before row k.
-    const int end = row_position_[t];
+    const int end = rows_.position[t];
     const RankThreeUpdate update(z);
     for (int p = a.column[i] + 1; p < end && a.row[p] < defer_from; ++p) update.subtract_from(a.value[slot[a.row[p]]], a.value[p]);
     if (deferred) deferred[t - t_begin] = z;
@@ -132,7 +125,7 @@ TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, in
     Eigen::Map<Eigen::Vector3d> yk(forward + 3 * k);
     Eigen::Vector3d sum = yk;
     for (int t = t_begin; t < t_end; ++t)
-      sum.noalias() -= a.value[row_position_[t]] * Eigen::Map<const Eigen::Vector3d>(forward + 3 * row_column_[t]);
+      sum.noalias() -= a.value[rows_.position[t]] * Eigen::Map<const Eigen::Vector3d>(forward + 3 * rows_.column[t]);
     yk = sum;
   }
   if (!finish) {
@@ -152,10 +145,10 @@ TSM_BLOCK_KERNEL bool BlockLDLT::form_row(BlockMatrix& a, int k, int t_begin, in
 }
 
 TSM_BLOCK_KERNEL void BlockLDLT::apply_deferred(BlockMatrix& a, int k, int t_end, int defer_from, const Block* deferred, int* slot) const {
-  const int first = row_start_[k], last = row_start_[k + 1];
-  for (int t = first; t < last; ++t) slot[row_column_[t]] = row_position_[t];
+  const int first = rows_.start[k], last = rows_.start[k + 1];
+  for (int t = first; t < last; ++t) slot[rows_.column[t]] = rows_.position[t];
   for (int t = first; t < t_end; ++t) {
-    const int i = row_column_[t], end = row_position_[t];
+    const int i = rows_.column[t], end = rows_.position[t];
     int p = end;  // rows ascending: the deferred ones (≥ defer_from) end the stretch above (k, i)
     while (p > a.column[i] + 1 && a.row[p - 1] >= defer_from) --p;
     const RankThreeUpdate update(deferred[t - first]);
@@ -164,7 +157,7 @@ TSM_BLOCK_KERNEL void BlockLDLT::apply_deferred(BlockMatrix& a, int k, int t_end
 }
 
 bool BlockLDLT::factorize_row(BlockMatrix& a, int k, double* forward) {
-  return form_row(a, k, row_start_[k], row_start_[k + 1], forward, slot_.data(), true, std::numeric_limits<int>::max(), nullptr);
+  return form_row(a, k, rows_.start[k], rows_.start[k + 1], forward, rows_.slot.data(), true, std::numeric_limits<int>::max(), nullptr);
 }
 
 bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
@@ -175,16 +168,16 @@ bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
   double* forward = forward_rhs ? forward_rhs->data() : nullptr;
   // Rows of one subtree touch only that subtree's columns (their patterns are descendants):
   // the tasks run concurrently, each in ascending order.
-  const int tasks = static_cast<int>(schedule_.task_start.size()) - 1;
-  const bool tasks_ok = util::parallel_all_dynamic(0, tasks, schedule_.parallel_tasks, [&](int t) {
-    for (int r = schedule_.task_start[t]; r < schedule_.task_start[t + 1]; ++r)
-      if (!factorize_row(a, schedule_.task_rows[r], forward)) return false;
+  const int tasks = static_cast<int>(rows_.schedule.task_start.size()) - 1;
+  const bool tasks_ok = util::parallel_all_dynamic(0, tasks, rows_.schedule.parallel_tasks, [&](int t) {
+    for (int r = rows_.schedule.task_start[t]; r < rows_.schedule.task_start[t + 1]; ++r)
+      if (!factorize_row(a, rows_.schedule.task_rows[r], forward)) return false;
     return true;
   });
   if (!tasks_ok) return false;
   bool ok = true;
-  if (!schedule_.parallel_top) {  // no OpenMP construct per level: a path of rows pays nothing
-    for (const int k : schedule_.top_rows)
+  if (!rows_.schedule.parallel_top) {  // no OpenMP construct per level: a path of rows pays nothing
+    for (const int k : rows_.schedule.top_rows)
       if (!factorize_row(a, k, forward)) return false;
     return true;
   }
@@ -196,34 +189,34 @@ bool BlockLDLT::factorize(BlockMatrix& a, Eigen::VectorXd* forward_rhs) {
   // same order as row by row, so the result is the same bit for bit.
   const int threads = omp_get_max_threads();
   if (thread_slot_.size() < static_cast<size_t>(threads) * size_) thread_slot_.resize(static_cast<size_t>(threads) * size_);
-#pragma omp parallel if (schedule_.team)
-  for (const BlockLDLTSchedule::Stage& stage : schedule_.stages) {
+#pragma omp parallel if (rows_.schedule.team)
+  for (const BlockLDLTSchedule::Stage& stage : rows_.schedule.stages) {
     if (!stage.path) {
 #pragma omp for schedule(dynamic, 1) reduction(&& : ok)
-      for (int q = stage.begin; q < stage.end; ++q) ok = factorize_row(a, schedule_.top_rows[q], forward) && ok;
+      for (int q = stage.begin; q < stage.end; ++q) ok = factorize_row(a, rows_.schedule.top_rows[q], forward) && ok;
       continue;
     }
     int* slot = thread_slot_.data() + static_cast<size_t>(omp_get_thread_num()) * size_;
-    const int lowest = schedule_.top_rows[stage.begin];
+    const int lowest = rows_.schedule.top_rows[stage.begin];
     // Rows in runs of path_rows_per_thread: consecutive rows' entries in a column are neighbours in
     // memory (72-byte blocks share cache lines), so rows handed out one by one to alternating
     // threads wrote the same lines from both cores - slower on two threads than on one.
 #pragma omp for schedule(dynamic, path_rows_per_thread)
     for (int q = stage.begin; q < stage.end; ++q) {
-      const int k = schedule_.top_rows[q];
-      form_row(a, k, row_start_[k], schedule_.split[q], forward, slot, false, lowest, deferred_z_.data() + schedule_.deferred_start[q]);
+      const int k = rows_.schedule.top_rows[q];
+      form_row(a, k, rows_.start[k], rows_.schedule.split[q], forward, slot, false, lowest, deferred_z_.data() + rows_.schedule.deferred_start[q]);
     }
 #pragma omp for schedule(dynamic, path_rows_per_thread)
     for (int q = stage.begin; q < stage.end; ++q)
-      apply_deferred(a, schedule_.top_rows[q], schedule_.split[q], lowest, deferred_z_.data() + schedule_.deferred_start[q], slot);
+      apply_deferred(a, rows_.schedule.top_rows[q], rows_.schedule.split[q], lowest, deferred_z_.data() + rows_.schedule.deferred_start[q], slot);
     if (stage.dense) {
       if (!factorize_dense_path(a, stage, forward)) ok = false;  // the same on every thread
       continue;
     }
 #pragma omp single
     for (int q = stage.begin; q < stage.end && ok; ++q) {
-      const int k = schedule_.top_rows[q];
-      ok = form_row(a, k, schedule_.split[q], row_start_[k + 1], forward, slot_.data(), true, std::numeric_limits<int>::max(), nullptr);
+      const int k = rows_.schedule.top_rows[q];
+      ok = form_row(a, k, rows_.schedule.split[q], rows_.start[k + 1], forward, rows_.slot.data(), true, std::numeric_limits<int>::max(), nullptr);
     }
   }
   return ok;
@@ -235,35 +228,35 @@ bool BlockLDLT::factorize_dense_path(BlockMatrix& a, const BlockLDLTSchedule::St
   // Schur complement of everything below the path, which the dense factorisation completes.
   // The path's rows are numbered consecutively (analyze): row r's place in it is r − lowest, and
   // a row's entries from its split on are in the path's own columns.
-  const int rows = stage.end - stage.begin, lowest = schedule_.top_rows[stage.begin];
+  const int rows = stage.end - stage.begin, lowest = rows_.schedule.top_rows[stage.begin];
 #pragma omp single
   {
     dense_.setZero(3 * rows, 3 * rows);
     dense_original_.resize(rows);
     for (int q = stage.begin; q < stage.end; ++q) {
-      const int k = schedule_.top_rows[q], i = q - stage.begin;
+      const int k = rows_.schedule.top_rows[q], i = q - stage.begin;
       if (guard_inertia_) dense_original_[i] = original_diagonal_[k];
       dense_.block<3, 3>(3 * i, 3 * i) = a.value[a.column[k]].transpose();  // its lower triangle = the running upper one
-      for (int t = schedule_.split[q]; t < row_start_[k + 1]; ++t)
-        dense_.block<3, 3>(3 * i, 3 * (row_column_[t] - lowest)) = a.value[row_position_[t]];
+      for (int t = rows_.schedule.split[q]; t < rows_.start[k + 1]; ++t)
+        dense_.block<3, 3>(3 * i, 3 * (rows_.column[t] - lowest)) = a.value[rows_.position[t]];
     }
   }
   if (!dense_ldlt_.factorize(dense_, guard_inertia_ ? dense_original_.data() : nullptr)) return false;
 #pragma omp single
   {
   Inertia dense = dense_ldlt_.inertia();
-  if (dense.row >= 0) dense.row = schedule_.top_rows[stage.begin + dense.row];
+  if (dense.row >= 0) dense.row = rows_.schedule.top_rows[stage.begin + dense.row];
   dense_inertia_.add(dense);
   for (int q = stage.begin; q < stage.end; ++q) {
-    const int k = schedule_.top_rows[q], i = q - stage.begin;
+    const int k = rows_.schedule.top_rows[q], i = q - stage.begin;
     a.value[a.column[k]] = dense_.block<3, 3>(3 * i, 3 * i);
-    for (int t = schedule_.split[q]; t < row_start_[k + 1]; ++t)
-      a.value[row_position_[t]] = dense_.block<3, 3>(3 * i, 3 * (row_column_[t] - lowest));
+    for (int t = rows_.schedule.split[q]; t < rows_.start[k + 1]; ++t)
+      a.value[rows_.position[t]] = dense_.block<3, 3>(3 * i, 3 * (rows_.column[t] - lowest));
     if (forward) {  // y_k −= Σ L(k, r) y_r over the path's columns (the prefix's went in pass (1))
       Eigen::Map<Eigen::Vector3d> yk(forward + 3 * k);
       Eigen::Vector3d sum = yk;
-      for (int t = schedule_.split[q]; t < row_start_[k + 1]; ++t)
-        sum.noalias() -= a.value[row_position_[t]] * Eigen::Map<const Eigen::Vector3d>(forward + 3 * row_column_[t]);
+      for (int t = rows_.schedule.split[q]; t < rows_.start[k + 1]; ++t)
+        sum.noalias() -= a.value[rows_.position[t]] * Eigen::Map<const Eigen::Vector3d>(forward + 3 * rows_.column[t]);
       yk = sum;
     }
   }
@@ -278,30 +271,30 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
   // forward pass after the tasks (each row gathering from final columns), in the backward pass
   // before them. The partition depends only on the pattern: bit-identical for any thread count.
   const BlockMatrix& a = *factor_;
-  const int tasks = static_cast<int>(schedule_.task_start.size()) - 1;
+  const int tasks = static_cast<int>(rows_.schedule.task_start.size()) - 1;
   // L y = b
-  util::parallel_for_dynamic(0, tasks, schedule_.parallel_tasks, [&](int t) {
-    const int root = schedule_.task_rows[schedule_.task_start[t + 1] - 1];
-    for (int q = schedule_.task_start[t]; q < schedule_.task_start[t + 1]; ++q) {
-      const int i = schedule_.task_rows[q];
+  util::parallel_for_dynamic(0, tasks, rows_.schedule.parallel_tasks, [&](int t) {
+    const int root = rows_.schedule.task_rows[rows_.schedule.task_start[t + 1] - 1];
+    for (int q = rows_.schedule.task_start[t]; q < rows_.schedule.task_start[t + 1]; ++q) {
+      const int i = rows_.schedule.task_rows[q];
       const Eigen::Vector3d bi = b.segment<3>(3 * i);
       for (int p = a.column[i] + 1; p < a.column[i + 1] && a.row[p] <= root; ++p)
         b.segment<3>(3 * a.row[p]).noalias() -= a.value[p] * bi;
     }
   });
-  const int levels = static_cast<int>(schedule_.level_start.size()) - 1;
+  const int levels = static_cast<int>(rows_.schedule.level_start.size()) - 1;
   auto forward = [&](int k) {
     Eigen::Vector3d bk = b.segment<3>(3 * k);
-    for (int t = row_start_[k]; t < row_start_[k + 1]; ++t) bk.noalias() -= a.value[row_position_[t]] * b.segment<3>(3 * row_column_[t]);
+    for (int t = rows_.start[k]; t < rows_.start[k + 1]; ++t) bk.noalias() -= a.value[rows_.position[t]] * b.segment<3>(3 * rows_.column[t]);
     b.segment<3>(3 * k) = bk;
   };
-  if (!schedule_.parallel_top_levels) {
-    for (const int k : schedule_.top_rows) forward(k);
+  if (!rows_.schedule.parallel_top_levels) {
+    for (const int k : rows_.schedule.top_rows) forward(k);
   } else {
 #pragma omp parallel
     for (int l = 0; l < levels; ++l) {
 #pragma omp for schedule(dynamic, 1)
-      for (int q = schedule_.level_start[l]; q < schedule_.level_start[l + 1]; ++q) forward(schedule_.top_rows[q]);
+      for (int q = rows_.schedule.level_start[l]; q < rows_.schedule.level_start[l + 1]; ++q) forward(rows_.schedule.top_rows[q]);
     }
   }
   finish_solve(b);
@@ -309,8 +302,8 @@ void BlockLDLT::solve_in_place(Eigen::VectorXd& b) const {
 
 void BlockLDLT::finish_solve(Eigen::VectorXd& b) const {
   const BlockMatrix& a = *factor_;
-  const int tasks = static_cast<int>(schedule_.task_start.size()) - 1;
-  const int levels = static_cast<int>(schedule_.level_start.size()) - 1;
+  const int tasks = static_cast<int>(rows_.schedule.task_start.size()) - 1;
+  const int levels = static_cast<int>(rows_.schedule.level_start.size()) - 1;
   // D z = y and Lᵀ x = z in one pass: x_i = D_i⁻¹ y_i − Σ L(p, i)ᵀ x_p, a dot product down each
   // column (D_i⁻¹ heads it), the rows above the tasks first.
   auto backward = [&](int i) {
@@ -318,17 +311,17 @@ void BlockLDLT::finish_solve(Eigen::VectorXd& b) const {
     for (int p = a.column[i] + 1; p < a.column[i + 1]; ++p) xi.noalias() -= a.value[p].transpose() * b.segment<3>(3 * a.row[p]);
     b.segment<3>(3 * i) = xi;
   };
-  if (!schedule_.parallel_top_levels) {
-    for (auto k = schedule_.top_rows.rbegin(); k != schedule_.top_rows.rend(); ++k) backward(*k);
+  if (!rows_.schedule.parallel_top_levels) {
+    for (auto k = rows_.schedule.top_rows.rbegin(); k != rows_.schedule.top_rows.rend(); ++k) backward(*k);
   } else {
 #pragma omp parallel
     for (int l = levels - 1; l >= 0; --l) {
 #pragma omp for schedule(dynamic, 1)
-      for (int q = schedule_.level_start[l]; q < schedule_.level_start[l + 1]; ++q) backward(schedule_.top_rows[q]);
+      for (int q = rows_.schedule.level_start[l]; q < rows_.schedule.level_start[l + 1]; ++q) backward(rows_.schedule.top_rows[q]);
     }
   }
-  util::parallel_for_dynamic(0, tasks, schedule_.parallel_tasks, [&](int t) {
-    for (int q = schedule_.task_start[t + 1] - 1; q >= schedule_.task_start[t]; --q) backward(schedule_.task_rows[q]);
+  util::parallel_for_dynamic(0, tasks, rows_.schedule.parallel_tasks, [&](int t) {
+    for (int q = rows_.schedule.task_start[t + 1] - 1; q >= rows_.schedule.task_start[t]; --q) backward(rows_.schedule.task_rows[q]);
   });
 }
 

@@ -58,18 +58,18 @@ class BlockLDLT {
   int negative_pivots() const { return inertia().negative; }
 
   /// Subtrees factorised (and solved) as parallel tasks, and the rows above them.
-  int task_count() const { return schedule_.task_count(); }
-  int rows_above_tasks() const { return static_cast<int>(schedule_.top_rows.size()); }
+  int task_count() const { return rows_.schedule.task_count(); }
+  int rows_above_tasks() const { return static_cast<int>(rows_.schedule.top_rows.size()); }
   /// Rows above the tasks formed in passes, as paths of the tree (see factorize).
   int rows_in_paths() const {
     int rows = 0;
-    for (const BlockLDLTSchedule::Stage& s : schedule_.stages) rows += schedule_.parallel_top && s.path ? s.end - s.begin : 0;
+    for (const BlockLDLTSchedule::Stage& s : rows_.schedule.stages) rows += rows_.schedule.parallel_top && s.path ? s.end - s.begin : 0;
     return rows;
   }
   /// Rows of those paths whose block among themselves is factorised as a dense matrix.
   int rows_in_dense_paths() const {
     int rows = 0;
-    for (const BlockLDLTSchedule::Stage& s : schedule_.stages) rows += s.dense ? s.end - s.begin : 0;
+    for (const BlockLDLTSchedule::Stage& s : rows_.schedule.stages) rows += s.dense ? s.end - s.begin : 0;
     return rows;
   }
 
@@ -85,19 +85,12 @@ class BlockLDLT {
   std::vector<Eigen::Vector3d> original_diagonal_;
   std::vector<Eigen::Vector3d> dense_original_;  ///< original_diagonal_ of a dense path's rows, in its order
   const BlockMatrix* factor_ = nullptr;  ///< the matrix holding L and D⁻¹ after factorize
-  // Row k of A's lower triangle (the entries (k, i), i < k, one in each column i): row_start_[k]
-  // .. row_start_[k+1] in row_position_ (their index in value), columns ascending. Row k of L
-  // has the same pattern.
-  std::vector<int> row_start_;
-  std::vector<int> row_position_;
-  std::vector<int> row_column_;  ///< i of each entry
-  std::vector<unsigned char> row_fill_;  ///< whether each entry is fill (zeroed as its row starts); empty: none
-  std::vector<int> slot_;        ///< during row k: column i → index in value of the entry (k, i)
-  // Parallel factorisation: disjoint subtrees of the elimination tree touch disjoint rows and
-  // columns, so they are factorised concurrently; the rows above them follow level by level, a
-  // level's rows concurrently where levels hold several. Every row is computed with the same
-  // arithmetic in the same order whatever the number of threads: results are bit-identical.
-  BlockLDLTSchedule schedule_;
+  // A's filled lower triangle by rows (row k of L has the same pattern), the slot map and the
+  // schedule. Parallel factorisation: disjoint subtrees of the elimination tree touch disjoint
+  // rows and columns, so they are factorised concurrently; the rows above them follow level by
+  // level, a level's rows concurrently where levels hold several. Every row is computed with the
+  // same arithmetic in the same order whatever the number of threads: results are bit-identical.
+  FactorRows rows_;
   std::vector<int> thread_slot_;  ///< one slot map per thread, for the path rows' prefixes
     std::vector<Block> deferred_z_;    ///< running sums z of the path rows' prefix entries
   Eigen::MatrixXd dense_;            ///< a dense path's block, gathered, factorised and put back

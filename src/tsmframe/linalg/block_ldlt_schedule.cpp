@@ -1,7 +1,9 @@
 #include "tsmframe/linalg/block_ldlt_schedule.hpp"
 
 #include <algorithm>
+#include <utility>
 
+#include "tsmframe/util/first_touch.hpp"
 #include "tsmframe/util/parallel_for.hpp"
 
 namespace tsm::linalg {
@@ -184,6 +186,16 @@ BlockLDLTSchedule schedule_block_ldlt(const BlockMatrix& a, const BlockRows& row
   s.team = n >= util::smallest_shared_model;
   s.parallel_top_levels = s.parallel_top && 2 * shared >= static_cast<int>(s.top_rows.size()) && s.team;
   return s;
+}
+
+void analyze_rows(const BlockMatrix& matrix, FactorRows& rows) {
+  FilledPattern pattern = filled_pattern(matrix);
+  rows.schedule = schedule_block_ldlt(matrix, pattern.rows, pattern.parent);
+  rows.start = std::move(pattern.rows.start);
+  rows.column = std::move(pattern.rows.column);
+  rows.position = std::move(pattern.rows.position);
+  rows.fill = std::move(pattern.row_fill);
+  util::assign_touched(rows.slot, static_cast<std::size_t>(matrix.size), -1);
 }
 
 }  // namespace tsm::linalg

@@ -43,4 +43,18 @@ struct BlockLDLTSchedule {
 /// tree `parent`.
 BlockLDLTSchedule schedule_block_ldlt(const BlockMatrix& matrix, const BlockRows& rows, const std::vector<int>& parent);
 
+/// What a factorisation by rows keeps of its pattern (BlockLDLT, BlockLU): the filled lower
+/// triangle by rows — row k's entries (k, i), i < k, are start[k] .. start[k+1] in position
+/// (their index in value) with their columns i ascending in column, and whether each is fill
+/// (zeroed as its row starts) — a slot map (during row k: column i → the entry (k, i)) and the
+/// schedule of its rows.
+struct FactorRows {
+  std::vector<int> start, position, column;
+  std::vector<unsigned char> fill;
+  std::vector<int> slot;
+  BlockLDLTSchedule schedule;
+};
+/// `rows` for `matrix` (filled_pattern's checks; storage reused).
+void analyze_rows(const BlockMatrix& matrix, FactorRows& rows);
+
 }  // namespace tsm::linalg

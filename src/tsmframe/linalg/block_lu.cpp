@@ -3,20 +3,13 @@
 #include <Eigen/LU>
 #include <cmath>
 
-#include "tsmframe/util/first_touch.hpp"
 #include "tsmframe/util/parallel_for.hpp"
 
 namespace tsm::linalg {
 
 void BlockLU::analyze(const BlockMatrix& a) {
-  const int n = size_ = a.size;
-  FilledPattern pattern = filled_pattern(a);
-  row_start_ = pattern.rows.start;
-  row_column_ = pattern.rows.column;
-  row_position_ = pattern.rows.position;
-  row_fill_ = std::move(pattern.row_fill);
-  util::assign_touched(slot_, n, -1);
-  schedule_ = schedule_block_ldlt(a, pattern.rows, pattern.parent);
+  size_ = a.size;
+  analyze_rows(a, rows_);
 }
 
 bool BlockLU::factorize_row(BlockMatrix& a, std::vector<Block>& upper, int k) {
@@ -24,16 +17,16 @@ bool BlockLU::factorize_row(BlockMatrix& a, std::vector<Block>& upper, int k) {
   // the running sums zl = A(k, i) − Σ_j L(k, j) D_j U(j, i) and zu = A(i, k)ᵀ − Σ_j U(j, k)ᵀ
   // D_jᵀ L(i, j)ᵀ, and become L(k, i) = zl D_i⁻¹ and U(i, k)ᵀ = zu D_i⁻ᵀ. The diagonal block
   // becomes D_k⁻¹, D_k = A(k, k) − Σ_i L(k, i) D_i U(i, k).
-  const int first = row_start_[k], last = row_start_[k + 1];
-  int* slot = slot_.data();
-  for (int t = first; t < last; ++t) slot[row_column_[t]] = row_position_[t];
-  if (!row_fill_.empty())
+  const int first = rows_.start[k], last = rows_.start[k + 1];
+  int* slot = rows_.slot.data();
+  for (int t = first; t < last; ++t) slot[rows_.column[t]] = rows_.position[t];
+  if (!rows_.fill.empty())
     for (int t = first; t < last; ++t)
-      if (row_fill_[t]) a.value[row_position_[t]].setZero(), upper[row_position_[t]].setZero();
+      if (rows_.fill[t]) a.value[rows_.position[t]].setZero(), upper[rows_.position[t]].setZero();
   Block& diagonal = a.value[a.column[k]];
   Block d = diagonal;
   for (int t = first; t < last; ++t) {
-    const int i = row_column_[t], p = row_position_[t];
+    const int i = rows_.column[t], p = rows_.position[t];
     Block& zl = a.value[p];
     Block& zu = upper[p];
     const Block& inverse = a.value[a.column[i]];  // D_i⁻¹
@@ -63,14 +56,14 @@ bool BlockLU::factorize(BlockMatrix& a, std::vector<Block>& upper) {
   upper_ = &upper;
   // Rows of one subtree touch only that subtree's columns: the tasks run concurrently, each in
   // ascending order; the rows above them follow in order.
-  const int tasks = schedule_.task_count();
-  const bool tasks_ok = util::parallel_all_dynamic(0, tasks, schedule_.parallel_tasks, [&](int t) {
-    for (int r = schedule_.task_start[t]; r < schedule_.task_start[t + 1]; ++r)
-      if (!factorize_row(a, upper, schedule_.task_rows[r])) return false;
+  const int tasks = rows_.schedule.task_count();
+  const bool tasks_ok = util::parallel_all_dynamic(0, tasks, rows_.schedule.parallel_tasks, [&](int t) {
+    for (int r = rows_.schedule.task_start[t]; r < rows_.schedule.task_start[t + 1]; ++r)
+      if (!factorize_row(a, upper, rows_.schedule.task_rows[r])) return false;
     return true;
   });
   if (!tasks_ok) return false;
-  for (const int k : schedule_.top_rows)
+  for (const int k : rows_.schedule.top_rows)
     if (!factorize_row(a, upper, k)) return false;
   return true;
 }

@@ -31,10 +31,7 @@ class BlockLU {
 
  private:
   int size_ = 0;
-  std::vector<int> row_start_, row_position_, row_column_;  ///< the lower triangle by rows (BlockRows)
-  std::vector<unsigned char> row_fill_;                     ///< per row entry: fill (zeroed as its row starts)
-  std::vector<int> slot_;  ///< during row k: column i → entry (k, i) (tasks own disjoint columns)
-  BlockLDLTSchedule schedule_;
+  FactorRows rows_;  ///< the filled lower triangle by rows, the slot map (tasks own disjoint columns), the schedule
   const BlockMatrix* lower_ = nullptr;
   const std::vector<Block>* upper_ = nullptr;
 
