@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "tsmframe/contact/contact_response.hpp"
-#include "tsmframe/contact/deflected_normal_element.hpp"
 #include "tsmframe/contact/multi_point_cantilever_frame.hpp"
 #include "tsmframe/contact/multi_point_deflected_normal.hpp"
 
@@ -12,15 +11,14 @@ namespace {
 
 /// The three-node element's response in the k-point form (k = 1), value for value, into `m`
 /// (Eigen keeps a vector's or a matrix's storage where the size stays).
-void as_multi_point(const ContactElementData& data, const ContactResponse& r, bool with_tangent, MultiPointResponse& m) {
+void as_multi_point(const ContactResponse& r, bool with_tangent, MultiPointResponse& m) {
   m.chord = r.chord;
   m.alpha.setConstant(1, r.alpha);
   m.normal.setConstant(1, r.normal);
   m.deformations = r.deformations;
   m.forces = r.forces;
   m.nodal_forces = r.nodal_forces;
-  const bool deflected = data.frame == ContactFrame::chord && data.normal == ContactNormal::deflected;
-  m.force_per_Y.setConstant(1, deflected ? deflected_normal(data, r).direction.norm() : 1.0);
+  m.force_per_Y.setConstant(1, r.force_per_Y);
   m.point_u = r.point_u;
   m.point_stiffness.setConstant(1, 1, r.point_stiffness);
   m.sliding_u = r.sliding_u;
@@ -66,7 +64,7 @@ void active_contact_response(const ActiveContact& contact, const Eigen::VectorXd
   if (contact.size() == 1) {
     const Vector9 d9 = d;
     const ContactElementData& data = contact.data.front();
-    as_multi_point(data, contact_response(data, d9, previous_rotation, with_tangent), with_tangent, out);
+    as_multi_point(contact_response(data, d9, previous_rotation, with_tangent), with_tangent, out);
     return;
   }
   const MultiPointElementData data = multi_point_data(contact);

@@ -75,6 +75,8 @@ struct ContactResponse {
   /// point_stiffness = 1/c — what letting go of the contact takes out (Newton's look-ahead).
   Vector9 point_u = Vector9::Zero();
   double point_stiffness = 0.0;
+  /// |force on c| / |Y|: 1 along the chord's normal, |ν| = √(1 + w'²) along the bent beam's.
+  double force_per_Y = 1.0;
   Matrix9 tangent;        ///< ∂(J S)/∂D (when asked for) = symmetric_tangent + sliding_u sliding_vᵀ
   Matrix9 symmetric_tangent;  ///< J (∂S/∂d) Jᵀ + K_G
   Vector9 sliding_u = Vector9::Zero();  ///< the sliding term is the rank-one u vᵀ: u = J ∂S/∂α …

@@ -136,6 +136,8 @@ ContactResponse deflected_normal_response(const ContactElementData& data, const 
   const LawRates rates = law_rates(law, r.deformations.segment<2>(1), Y);
   const Slope w = shape_slope(data, r, law, rates);
   const double T = Y * w.value;
+  const Vector2d e(r.chord.cos, r.chord.sin), n(-r.chord.sin, r.chord.cos);
+  r.force_per_Y = (n - (w.value / r.chord.length) * e).norm();  // |ν|, N3–N4
   const Vector9 g = alpha_gradient(r.chord, r.alpha, r.normal);
   r.nodal_forces -= T * g;  // N8: J_ν S = J S − T ∂α/∂x
   const Vector9 point_chord = r.point_u;

@@ -1,7 +1,5 @@
 #include "tsmframe/contact/release_forecast.hpp"
 
-#include <algorithm>
-
 #include <Eigen/LU>
 
 namespace tsm::contact {
@@ -42,16 +40,15 @@ std::vector<char> forecast_releases(const ForecastColumn& column, const PointSti
   std::vector<char> released = pulling;
   for (int round = 0; round < rounds; ++round) {
     // E: every point of an element that loses one, S's first (in order), then the others (Q).
-    std::vector<int> E;
-    std::vector<char> in_E(n, 0);
+    std::vector<int> E, place(n, -1);  // place: an entry's index in E, −1 outside
     for (int i = 0; i < n; ++i)
-      if (released[i]) E.push_back(i), in_E[i] = 1;
+      if (released[i]) place[i] = static_cast<int>(E.size()), E.push_back(i);
     const int m_S = static_cast<int>(E.size());
     if (m_S > largest_set) break;
     for (int a = 0; a < m_S; ++a) {
       const int b = block_of[E[a]];
       for (int c = stiffness.first[b]; c < stiffness.first[b + 1]; ++c)
-        if (!in_E[c]) E.push_back(c), in_E[c] = 1;
+        if (place[c] < 0) place[c] = static_cast<int>(E.size()), E.push_back(c);
     }
     const int m = static_cast<int>(E.size());
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m, m);
@@ -85,7 +82,7 @@ std::vector<char> forecast_releases(const ForecastColumn& column, const PointSti
       if (released[i] || !may_join[i]) continue;
       double y = Y[i];
       for (int b = 0; b < m; ++b) y -= ZG(i, E[b]) * psi[b];
-      if (in_E[i]) y += psi[std::find(E.begin(), E.end(), i) - E.begin()];
+      if (place[i] >= 0) y += psi[place[i]];
       next[i] = -side[i] * y < 0.0;
     }
     if (next == released) return released;
