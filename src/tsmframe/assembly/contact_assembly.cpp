@@ -1,5 +1,7 @@
 #include "tsmframe/assembly/contact_assembly.hpp"
 
+#include "tsmframe/contact/contact_response.hpp"
+
 namespace tsm::assembly {
 
 std::vector<int> contact_dofs(const Element& e, const contact::ActiveContact& contact) {
@@ -35,6 +37,18 @@ void contact_element_response(const Model& model, const contact::ActiveContact& 
   contact_dofs(model.elements[a.element], a, g);
   gather(displacements, g, d);
   contact::active_contact_response(a, d, previous_rotations[a.element], with_tangent, response);
+}
+
+void contact_element_response(const Model& model, const contact::ActiveContact& a, const Eigen::VectorXd& displacements,
+                      const std::vector<double>& previous_rotations, bool with_tangent, contact::ContactResponse& response) {
+  const Element& e = model.elements[a.element];
+  contact::Vector9 d;
+  for (int k = 0; k < dofs_per_node; ++k) {
+    d[k] = displacements[dofs_per_node * e.start + k];
+    d[3 + k] = displacements[dofs_per_node * e.end + k];
+    d[6 + k] = displacements[dofs_per_node * a.points.front().node + k];
+  }
+  response = contact::contact_response(a.data.front(), d, previous_rotations[a.element], with_tangent);
 }
 
 std::vector<ContactDirection> contact_directions(const Model& model, const DofMap& dofs, const NodalFrames& frames,

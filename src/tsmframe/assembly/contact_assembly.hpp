@@ -43,6 +43,9 @@ void gather(const Eigen::VectorXd& displacements, const std::vector<int>& dofs, 
 /// several threads at once.
 void contact_element_response(const Model& model, const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
                       const std::vector<double>& previous_rotations, bool with_tangent, contact::MultiPointResponse& response);
+/// The same for a contact of one point, in the three-node element's fixed-size form.
+void contact_element_response(const Model& model, const contact::ActiveContact& contact, const Eigen::VectorXd& displacements,
+                      const std::vector<double>& previous_rotations, bool with_tangent, contact::ContactResponse& response);
 
 /// Each active contact point's (in `contacts`' order, points in order) load direction and
 /// stiffness at `displacements` (chord rotations of that state's evaluation).

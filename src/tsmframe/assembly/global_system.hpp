@@ -170,8 +170,10 @@ class GlobalSystem {
   /// node has no block or repeats. Read-only: formed with the responses, in parallel.
   void contact_blocks(const contact::ActiveContact& contact, std::vector<int>& blocks) const;
   void prefetch_contact_blocks(const std::vector<int>& blocks) const;
-  void add_contact(const contact::ActiveContact& contact, const contact::MultiPointResponse& response,
-                   const std::vector<int>& blocks, bool with_tangent, Evaluation& out);
+  /// (Response: a contact of one point's ContactResponse, of several points' MultiPointResponse.)
+  template <class Response>
+  void add_contact(const contact::ActiveContact& contact, const Response& response, const std::vector<int>& blocks,
+                   bool with_tangent, Evaluation& out);
   NodalFrames frames_;                              ///< the skew rollers' frames (empty: none)
   FollowerLoads follower_loads_;                    ///< the members' pressure (assembly/follower_loads)
   NodalSprings springs_;                            ///< springs to the ground (assembly/nodal_springs)
@@ -247,6 +249,7 @@ class GlobalSystem {
   /// responses, a contact element's dofs, nodes and equations, and how many of contact_rank_one_
   /// the evaluation has filled.
   std::vector<contact::MultiPointResponse> contact_responses_;
+  std::vector<contact::ContactResponse> point_responses_;  ///< … those of one point, in their fixed-size form
   std::vector<std::vector<int>> contact_blocks_;  ///< contact_blocks of each response in contact_responses_
   std::vector<int> contact_dofs_, contact_equations_;
   size_t contact_rank_ones_ = 0;

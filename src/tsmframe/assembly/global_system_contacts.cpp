@@ -10,6 +10,19 @@
 #include "tsmframe/util/parallel_for.hpp"
 
 namespace tsm::assembly {
+namespace {
+
+// Point p's values in either response: one point's scalars and vectors, or k points' columns.
+double point_alpha(const contact::ContactResponse& r, int) { return r.alpha; }
+double point_alpha(const contact::MultiPointResponse& r, int p) { return r.alpha[p]; }
+double point_force_per_Y(const contact::ContactResponse& r, int) { return r.force_per_Y; }
+double point_force_per_Y(const contact::MultiPointResponse& r, int p) { return r.force_per_Y[p]; }
+const contact::Vector9& sliding_u(const contact::ContactResponse& r, int) { return r.sliding_u; }
+const contact::Vector9& sliding_v(const contact::ContactResponse& r, int) { return r.sliding_v; }
+auto sliding_u(const contact::MultiPointResponse& r, int p) { return r.sliding_u.col(p); }
+auto sliding_v(const contact::MultiPointResponse& r, int p) { return r.sliding_v.col(p); }
+
+}  // namespace
 
 void GlobalSystem::ensure_contact_pattern(const std::vector<contact::ActiveContact>& contacts) {
   // The pairs the contacts join, each contact node with its element's nodes and the other points
@@ -79,16 +92,17 @@ void GlobalSystem::prefetch_contact_blocks(const std::vector<int>& blocks) const
     }
 }
 
-void GlobalSystem::add_contact(const contact::ActiveContact& a, const contact::MultiPointResponse& r,
-                               const std::vector<int>& blocks, bool with_tangent, Evaluation& out) {
+template <class Response>
+void GlobalSystem::add_contact(const contact::ActiveContact& a, const Response& r, const std::vector<int>& blocks,
+                               bool with_tangent, Evaluation& out) {
   const Element& e = model_.elements[a.element];
   std::vector<int>& g = contact_dofs_;
   contact_dofs(e, a, g);
   const int size = static_cast<int>(g.size());
   out.chord_rotations[a.element] = r.chord.rotation;
   for (int p = 0; p < a.size(); ++p)
-    out.contacts.push_back({a.points[p].contact, a.points[p].vertex, r.alpha[p], r.forces[3 + p], r.force_per_Y[p],
-                            r.nodal_forces.segment<2>(6 + 3 * p)});
+    out.contacts.push_back({a.points[p].contact, a.points[p].vertex, point_alpha(r, p), r.forces[3 + p],
+                            point_force_per_Y(r, p), r.nodal_forces.template segment<2>(6 + 3 * p)});
   for (int k = 0; k < size; ++k) out.internal_force[g[k]] += r.nodal_forces[k];
   if (!with_tangent) return;
   // The symmetric part joins the node blocks (i, j, then each point's node; each node pair once,
@@ -99,7 +113,7 @@ void GlobalSystem::add_contact(const contact::ActiveContact& a, const contact::M
     for (int q = p; q < size / dofs_per_node; ++q) {
       const int slot = blocks[pair++];
       if (slot < 0) continue;
-      const auto value = r.symmetric_tangent.block<3, 3>(3 * p, 3 * q);
+      const auto value = r.symmetric_tangent.template block<3, 3>(3 * p, 3 * q);
       if (slot % 2 == 0) tangent_.value[slot / 2] += value;
       else tangent_.value[slot / 2] += value.transpose();
     }
@@ -107,12 +121,12 @@ void GlobalSystem::add_contact(const contact::ActiveContact& a, const contact::M
   equation.resize(g.size());
   for (int k = 0; k < size; ++k) equation[k] = dofs_.equation(g[k]);
   for (int p = 0; p < a.size(); ++p)
-    if (r.sliding_u.col(p).squaredNorm() > 0.0 && r.sliding_v.col(p).squaredNorm() > 0.0) {
+    if (sliding_u(r, p).squaredNorm() > 0.0 && sliding_v(r, p).squaredNorm() > 0.0) {
       if (contact_rank_ones_ == contact_rank_one_.size()) contact_rank_one_.emplace_back();
       linalg::RankOne& term = contact_rank_one_[contact_rank_ones_++];  // its storage reused
       term.equation.assign(equation.begin(), equation.end());
-      term.u = r.sliding_u.col(p);
-      term.v = r.sliding_v.col(p);
+      term.u = sliding_u(r, p);
+      term.v = sliding_v(r, p);
       frames_.to_nodal(g, term.u);
       frames_.to_nodal(g, term.v);
     }
@@ -134,10 +148,12 @@ void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const
   constexpr size_t chunk = 256;
   for (size_t begin = 0; begin < contacts.size(); begin += chunk) {
     const size_t count = std::min(chunk, contacts.size() - begin);
-    if (contact_responses_.size() < count) contact_responses_.resize(count), contact_blocks_.resize(count);
+    if (contact_responses_.size() < count)
+      contact_responses_.resize(count), point_responses_.resize(count), contact_blocks_.resize(count);
     util::parallel_for_dynamic(size_t{0}, count, count >= 16, [&](size_t i) {
-      contact_element_response(model_, contacts[begin + i], displacements, previous_rotations, with_tangent,
-                               contact_responses_[i]);
+      const contact::ActiveContact& a = contacts[begin + i];
+      if (a.size() == 1) contact_element_response(model_, a, displacements, previous_rotations, with_tangent, point_responses_[i]);
+      else contact_element_response(model_, a, displacements, previous_rotations, with_tangent, contact_responses_[i]);
       if (with_tangent) contact_blocks(contacts[begin + i], contact_blocks_[i]);
     });
     // The blocks are scattered through the tangent (numbered for the factorisation): each
@@ -145,7 +161,9 @@ void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const
     constexpr size_t prefetch_distance = 4;
     for (size_t i = 0; i < count; ++i) {
       if (with_tangent && i + prefetch_distance < count) prefetch_contact_blocks(contact_blocks_[i + prefetch_distance]);
-      add_contact(contacts[begin + i], contact_responses_[i], contact_blocks_[i], with_tangent, out);
+      const contact::ActiveContact& a = contacts[begin + i];
+      if (a.size() == 1) add_contact(a, point_responses_[i], contact_blocks_[i], with_tangent, out);
+      else add_contact(a, contact_responses_[i], contact_blocks_[i], with_tangent, out);
       replaced_[contacts[begin + i].element] = 0;
     }
   }

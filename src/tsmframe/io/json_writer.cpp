@@ -1,5 +1,6 @@
 #include "tsmframe/io/json_writer.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -57,7 +58,14 @@ JsonWriter& JsonWriter::end_array() {
 
 JsonWriter& JsonWriter::key(const std::string& name) {
   separate();
-  out_ << nlohmann::json(name).dump() << ':';
+  // A key of printable ASCII without quote or backslash is its own JSON string (the common
+  // case, written as is); any other goes through the JSON library's escaping.
+  const bool plain = std::all_of(name.begin(), name.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return u >= 0x20 && u < 0x7f && c != '"' && c != '\\';
+  });
+  if (plain) out_ << '"' << name << "\":";
+  else out_ << nlohmann::json(name).dump() << ':';
   after_key_ = true;
   return *this;
 }
