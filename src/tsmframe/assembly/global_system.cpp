@@ -350,19 +350,18 @@ void GlobalSystem::evaluate_contact_change(const Eigen::VectorXd& displacements,
   // The nodes whose sums change: every node of an old or a new contact element (a contact that
   // stays is added again too: its sums are formed again from their start).
   std::vector<int> nodes;
-  const std::vector<contact::ActiveContact>& last = last_contacts_;
-  for (const std::vector<contact::ActiveContact>* set : {&last, &contacts})
-    for (const contact::ActiveContact& a : *set) {
-      const Element& e = model_.elements[a.element];
-      const auto mark = [&](int node) {
-        if (contact_node_[node]) return;
-        contact_node_[node] = 1;
-        nodes.push_back(node);
-      };
-      mark(e.start);
-      mark(e.end);
-      for (const contact::ActivePoint& p : a.points) mark(p.node);
-    }
+  const auto mark = [&](int node) {
+    if (contact_node_[node]) return;
+    contact_node_[node] = 1;
+    nodes.push_back(node);
+  };
+  for (const int node : last_contact_nodes_) mark(node);
+  for (const contact::ActiveContact& a : contacts) {
+    const Element& e = model_.elements[a.element];
+    mark(e.start);
+    mark(e.end);
+    for (const contact::ActivePoint& p : a.points) mark(p.node);
+  }
   for (const contact::ActiveContact& a : contacts) replaced_[a.element] = 1;
   // What no element writes starts from zero (the contacts add to it), as in evaluate().
   for (const int node : unwritten_nodes_)

@@ -263,7 +263,7 @@ class GlobalSystem {
   // What a contact change needs of the last evaluation (evaluate_contact_change).
   std::uint64_t evaluations_ = 0;  ///< evaluations so far: each one's Evaluation::id
   std::uint64_t tangent_of_ = 0;   ///< the id of the evaluation the tangent belongs to (0: none)
-  std::vector<contact::ActiveContact> last_contacts_;  ///< the contacts it was evaluated with
+  std::vector<int> last_contact_nodes_;  ///< the nodes of the contacts it was evaluated with (each contact's i, j, points)
   std::vector<int> chunk_rank_;              ///< per chunk, its place in the loop's order
   std::vector<int> node_element_start_;      ///< node k: node_elements_[start[k] .. start[k+1])
   std::vector<int> node_elements_;           ///< places q, per node in the loop's order

@@ -172,7 +172,13 @@ void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const
   if (with_tangent) mask_constrained_dofs();
   out.id = ++evaluations_;
   tangent_of_ = with_tangent ? out.id : 0;
-  last_contacts_ = contacts;
+  last_contact_nodes_.clear();
+  for (const contact::ActiveContact& a : contacts) {
+    const Element& e = model_.elements[a.element];
+    last_contact_nodes_.push_back(e.start);
+    last_contact_nodes_.push_back(e.end);
+    for (const contact::ActivePoint& p : a.points) last_contact_nodes_.push_back(p.node);
+  }
 }
 
 }  // namespace tsm::assembly

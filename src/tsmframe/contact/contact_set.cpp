@@ -62,6 +62,13 @@ bool ContactSet::bends_normals() const {
 
 std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<ContactState>& states, bool along_chords) const {
   std::vector<ActiveContact> active;
+  active_contacts(states, along_chords, active);
+  return active;
+}
+
+void ContactSet::active_contacts(const std::vector<ContactState>& states, bool along_chords,
+                                 std::vector<ActiveContact>& active) const {
+  size_t used = 0;  // active's first `used` are this call's; those beyond keep their storage till then
   std::vector<int> place;  // per element: its place in `active`, −1 none (made only when needed)
   // The points are grouped by element first; what each point's element is made of is formed
   // after, in parallel (a contact element's data costs more than its place).
@@ -73,8 +80,11 @@ std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<Contact
   const auto add_point = [&](int k, bool vertex, int element, int side, bool chord) {
     if (place.empty()) place.assign(geometry_.model().elements.size(), -1);
     if (place[element] < 0) {
-      place[element] = static_cast<int>(active.size());
-      active.push_back({element, {}, {}});
+      place[element] = static_cast<int>(used);
+      if (used == active.size()) active.emplace_back();
+      ActiveContact& a = active[used++];
+      a.element = element;
+      a.points.clear();
     }
     ActiveContact& a = active[place[element]];
     pending.push_back({place[element], a.size(), k, element, side, chord});
@@ -90,6 +100,7 @@ std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<Contact
     add_point(k, false, s.element, s.side, vertex);
     if (vertex) add_point(k, true, s.vertex->element, s.vertex->side, true);
   }
+  active.resize(used);
   for (ActiveContact& a : active) a.data.resize(a.points.size());
   util::parallel_for_static(size_t{0}, pending.size(), pending.size() >= 1024, [&](size_t q) {
     const Pending& p = pending[q];
@@ -104,7 +115,6 @@ std::vector<ActiveContact> ContactSet::active_contacts(const std::vector<Contact
     if (along_chords ||
         std::any_of(a.points.begin(), a.points.end(), [&](const ActivePoint& p) { return states[p.contact].entering; }))
       for (ContactElementData& d : a.data) d.normal = ContactNormal::chord;
-  return active;
 }
 
 void ContactSet::record(const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states) const {

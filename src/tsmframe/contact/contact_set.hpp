@@ -60,6 +60,8 @@ class ContactSet {
   /// entering point (ContactState::entering) along the chord's normal; with `along_chords`,
   /// every point.
   std::vector<ActiveContact> active_contacts(const std::vector<ContactState>& states, bool along_chords = false) const;
+  /// The same into `active`, whose elements' storage is reused (formed again at every pass).
+  void active_contacts(const std::vector<ContactState>& states, bool along_chords, std::vector<ActiveContact>& active) const;
   /// Reads the evaluations of the active contacts into their states (α, Y, compression, push)
   /// without changing the active set: the evaluation that stands.
   void record(const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states) const;

@@ -76,7 +76,8 @@ bool TsmProblem::evaluate(State& state, Proximity proximity, bool contacts_only)
   bool changed = bends_normals_ && was_along_chords && !along_chords_;
   bool moved = false;  // contact nodes put on the surface they landed on: every element again
   for (int pass = 0;; ++pass) {
-    const std::vector<contact::ActiveContact> active = active_contacts(state);
+    std::vector<contact::ActiveContact>& active = active_;
+    if (contacts_) contacts_->active_contacts(state.contacts, along_chords_, active);
     // The rotations are continued in place (one vector, not two): lent to the evaluation.
     std::swap(state.chord_rotations, eval_.chord_rotations);
     if (pass == 0 ? contacts_only : !moved) system_.evaluate_contact_change(u, eval_.chord_rotations, eval_, active);

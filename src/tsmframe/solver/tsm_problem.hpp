@@ -127,6 +127,7 @@ class TsmProblem final : public Problem {
   /// no follower load's skew terms in it).
   Factorisation factorisation(bool ok, bool symmetric) const;
   assembly::Evaluation eval_;
+  std::vector<contact::ActiveContact> active_;  ///< evaluate()'s contact elements, their storage reused pass by pass
   Eigen::VectorXd kept_rhs_;  ///< a right-hand side kept for a second factorisation (with the sliding terms)
   int analysed_pattern_ = -1;  ///< pattern version the linear solver has analysed
 };
