@@ -2,11 +2,16 @@
 
 namespace tsm::contact {
 
-void ChordFrames::form() {
-  const Model& model = geometry_.model();
-  frames_.resize(model.elements.size());
-  for (const int e : geometry_.candidate_elements())
-    frames_[e] = element::chord_frame(geometry_.initial(e), element_displacements(model.elements[e], displacements_));
+void ChordFrames::start() {
+  const size_t n = geometry_.model().elements.size();
+  frames_.resize(n);
+  formed_.assign(n, 0);
+}
+
+void ChordFrames::form(int element) {
+  frames_[element] = element::chord_frame(geometry_.initial(element),
+                                          element_displacements(geometry_.model().elements[element], displacements_));
+  formed_[element] = 1;
 }
 
 }  // namespace tsm::contact

@@ -1,8 +1,9 @@
 #pragma once
-// Every candidate element's current chord frame, formed once per pass over the contacts when
-// first asked for: detection and the reference sides take α of each node on every candidate,
-// and α alone (the same arithmetic as ContactGeometry::locate's) rules out all but the few
-// elements whose span holds the node.
+// The candidate elements' current chord frames, each formed once per pass over the contacts
+// when first asked for: detection and the reference sides take α of each node on its candidate
+// elements, and α alone (the same arithmetic as ContactGeometry::locate's) rules out all but the
+// few elements whose span holds the node. Where few nodes are looked for (a press whose contacts
+// are nearly all in touch), few frames are formed.
 
 #include <Eigen/Core>
 #include <vector>
@@ -17,15 +18,18 @@ class ChordFrames {
   ChordFrames(const ContactGeometry& geometry, const Eigen::VectorXd& displacements)
       : geometry_(geometry), displacements_(displacements) {}
   const element::ChordFrame& operator()(int element) {
-    if (frames_.empty()) form();
+    if (formed_.empty()) start();
+    if (!formed_[element]) form(element);
     return frames_[element];
   }
 
  private:
-  void form();
+  void start();
+  void form(int element);
   const ContactGeometry& geometry_;
   const Eigen::VectorXd& displacements_;
   std::vector<element::ChordFrame> frames_;
+  std::vector<char> formed_;  ///< per element: frames_ holds its frame
 };
 
 }  // namespace tsm::contact
