@@ -1,6 +1,7 @@
 #include "tsmframe/assembly/contact_assembly.hpp"
 
 #include "tsmframe/contact/contact_response.hpp"
+#include "tsmframe/util/parallel_for.hpp"
 
 namespace tsm::assembly {
 
@@ -54,20 +55,29 @@ void contact_element_response(const Model& model, const contact::ActiveContact& 
 std::vector<ContactDirection> contact_directions(const Model& model, const DofMap& dofs, const NodalFrames& frames,
                                                  const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                                                  const std::vector<contact::ActiveContact>& contacts) {
-  std::vector<ContactDirection> directions;
-  directions.reserve(contacts.size());
-  for (const contact::ActiveContact& a : contacts) {
+  // Each contact's points' directions have their places (`first`), formed in parallel.
+  std::vector<size_t> first(contacts.size() + 1, 0);
+  for (size_t i = 0; i < contacts.size(); ++i) first[i + 1] = first[i] + static_cast<size_t>(contacts[i].size());
+  std::vector<ContactDirection> directions(first.back());
+  util::parallel_for_dynamic(size_t{0}, contacts.size(), contacts.size() >= 64, [&](size_t i) {
+    const contact::ActiveContact& a = contacts[i];
     const std::vector<int> g = contact_dofs(model.elements[a.element], a);
-    const contact::MultiPointResponse r =
-        contact::active_contact_response(a, gather(displacements, g), rotations[a.element], false);
     std::vector<int> equation(g.size());
     for (size_t k = 0; k < g.size(); ++k) equation[k] = dofs.equation(g[k]);
-    for (int p = 0; p < a.size(); ++p) {
-      directions.push_back({equation, r.point_u.col(p), r.point_stiffness(p, p), r.forces[3 + p],
-                            static_cast<int>(&a - contacts.data()), r.point_stiffness.row(p)});
-      frames.to_nodal(g, directions.back().u);
+    const auto put = [&](int p, const auto& u, double stiffness, double Y, Eigen::RowVectorXd row) {
+      ContactDirection& d = directions[first[i] + static_cast<size_t>(p)];
+      d = {equation, u, stiffness, Y, static_cast<int>(i), std::move(row)};
+      frames.to_nodal(g, d.u);
+    };
+    if (a.size() == 1) {  // the three-node element's fixed-size form, as the evaluation's
+      contact::ContactResponse r;
+      contact_element_response(model, a, displacements, rotations, false, r);
+      put(0, r.point_u, r.point_stiffness, r.forces[3], Eigen::RowVectorXd::Constant(1, r.point_stiffness));
+      return;
     }
-  }
+    const contact::MultiPointResponse r = contact::active_contact_response(a, gather(displacements, g), rotations[a.element], false);
+    for (int p = 0; p < a.size(); ++p) put(p, r.point_u.col(p), r.point_stiffness(p, p), r.forces[3 + p], r.point_stiffness.row(p));
+  });
   return directions;
 }
 
