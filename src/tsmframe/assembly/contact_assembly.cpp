@@ -52,6 +52,24 @@ void contact_element_response(const Model& model, const contact::ActiveContact& 
   response = contact::contact_response(a.data.front(), d, previous_rotations[a.element], with_tangent);
 }
 
+void keep(const contact::ActiveContact& contact, const contact::ContactResponse& r, std::uint64_t id,
+          KeptPointResponse& kept) {
+  kept.evaluation = id;
+  kept.element = contact.element;
+  kept.offset = contact.data.front().offset;
+  kept.normal = contact.data.front().normal;
+  kept.chord = r.chord;
+  kept.alpha = r.alpha;
+  kept.force_per_Y = r.force_per_Y;
+  kept.forces = r.forces;
+  kept.nodal_forces = r.nodal_forces;
+  kept.sliding_u = r.sliding_u;
+  kept.sliding_v = r.sliding_v;
+  int pair = 0;
+  for (int p = 0; p < 3; ++p)
+    for (int q = p; q < 3; ++q) kept.blocks[pair++] = r.symmetric_tangent.block<3, 3>(3 * p, 3 * q);
+}
+
 std::vector<ContactDirection> contact_directions(const Model& model, const DofMap& dofs, const NodalFrames& frames,
                                                  const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                                                  const std::vector<contact::ActiveContact>& contacts) {

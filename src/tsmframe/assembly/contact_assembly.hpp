@@ -6,6 +6,8 @@
 // sliding term as a rank-one term beside them.
 
 #include <Eigen/Core>
+#include <array>
+#include <cstdint>
 #include <vector>
 
 #include "tsmframe/assembly/dof_map.hpp"
@@ -15,6 +17,31 @@
 #include "tsmframe/model/nodal_frames.hpp"
 
 namespace tsm::assembly {
+
+/// What the assembly adds of a one-point contact's response (GlobalSystem::add_contact), kept per
+/// contact from one evaluation to the next: at the same displacements (a contact change) a
+/// contact whose element, offset (its side) and normal stay gives the same response — its
+/// chord's rotation, continued from the one it gave, within an ulp — and only the contacts that
+/// changed are formed again.
+struct KeptPointResponse {
+  std::uint64_t evaluation = 0;  ///< the Evaluation::id it was formed in or carried into (0: none)
+  int element = -1;
+  double offset = 0.0;
+  ContactNormal normal = ContactNormal::chord;
+  element::Chord chord;
+  double alpha = 0.0, force_per_Y = 1.0;
+  contact::Vector4 forces;
+  contact::Vector9 nodal_forces, sliding_u, sliding_v;
+  std::array<Eigen::Matrix3d, 6> blocks;  ///< symmetric_tangent's node blocks (p, q ≥ p) in that order
+  /// Formed for `contact` (one point, not a vertex's second) in the evaluation before `id`.
+  bool stands_for(const contact::ActiveContact& contact, std::uint64_t id) const {
+    const contact::ContactElementData& data = contact.data.front();
+    return evaluation + 1 == id && element == contact.element && offset == data.offset && normal == data.normal;
+  }
+};
+/// `response` (of `contact`'s element, formed in evaluation `id`) kept.
+void keep(const contact::ActiveContact& contact, const contact::ContactResponse& response, std::uint64_t id,
+          KeptPointResponse& kept);
 
 /// A contact point's load seen from the free equations (contact_directions): Y acts as Y · u on
 /// its element's nodes, and where it is its element's only point its stiffness part is

@@ -287,7 +287,8 @@ double GlobalSystem::end_rotation(int q, const Eigen::VectorXd& displacements,
 }
 
 void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
-                            bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts) {
+                            bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts,
+                            bool same_displacements) {
   if (with_tangent) ensure_contact_pattern(contacts);
   for (const contact::ActiveContact& a : contacts) replaced_[a.element] = 1;
   out.contacts.clear();
@@ -333,7 +334,7 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
       follower_loads_.skew_terms(load_factor_, displacements, follower_rank_one_);
     }
   }
-  finish_evaluation(displacements, previous_rotations, with_tangent, out, contacts);
+  finish_evaluation(displacements, previous_rotations, with_tangent, out, contacts, same_displacements);
 }
 
 void GlobalSystem::evaluate_contact_change(const Eigen::VectorXd& displacements,
@@ -343,7 +344,9 @@ void GlobalSystem::evaluate_contact_change(const Eigen::VectorXd& displacements,
   ensure_contact_pattern(contacts);
   // A skew roller's frames turn the sums as a whole, after the loop: they are formed again whole.
   if (tangent_of_ == 0 || out.id != tangent_of_ || pattern_version_ != version || !frames_.empty()) {
-    evaluate(displacements, previous_rotations, true, out, contacts);
+    // At the same displacements (only the pattern or the frames ask for it), the contacts' kept
+    // responses still stand.
+    evaluate(displacements, previous_rotations, true, out, contacts, tangent_of_ != 0 && out.id == tangent_of_);
     return;
   }
   if (node_element_start_.empty()) list_node_elements();
@@ -399,7 +402,7 @@ void GlobalSystem::evaluate_contact_change(const Eigen::VectorXd& displacements,
   for (const int node : nodes) contact_node_[node] = 0;
   out.contacts.clear();
   contact_rank_ones_ = 0;
-  finish_evaluation(displacements, previous_rotations, true, out, contacts);
+  finish_evaluation(displacements, previous_rotations, true, out, contacts, true);
 }
 
 void GlobalSystem::list_node_elements() {

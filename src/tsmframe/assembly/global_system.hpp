@@ -70,7 +70,9 @@ class GlobalSystem {
   /// evaluation yields for the solver — forces, loads, tangent, sliding terms, the prescribed
   /// coupling — is in the node's frame (t, n).
   void evaluate(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
-                bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts = {});
+                bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts = {}) {
+    evaluate(displacements, previous_rotations, with_tangent, out, contacts, false);
+  }
   /// The same evaluation with another contact set, at the state of the last evaluate() with
   /// tangent into `out` (same displacements and previous rotations; the tangent not handed out for
   /// factorisation since). Only the elements at the nodes of the old and the new contacts are
@@ -142,8 +144,14 @@ class GlobalSystem {
   /// max |θ_i|, |θ_j| of place q's element (0 if a contact element stands in), nothing written.
   double end_rotation(int q, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations) const;
   /// The contacts' sums after the elements: contact elements, masks of the constrained dofs.
+  /// evaluate(), told whether the displacements are the last evaluation's (a contact change).
+  void evaluate(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations, bool with_tangent,
+                Evaluation& out, const std::vector<contact::ActiveContact>& contacts, bool same_displacements);
+  /// With `same_displacements` (a contact change), a one-point contact whose kept response
+  /// stands for it is not formed again.
   void finish_evaluation(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
-                         bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts);
+                         bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts,
+                         bool same_displacements = false);
   /// Per node, the places q of its elements in the loop's order (for contact changes; built on
   /// the first one).
   void list_node_elements();
@@ -250,6 +258,7 @@ class GlobalSystem {
   /// the evaluation has filled.
   std::vector<contact::MultiPointResponse> contact_responses_;
   std::vector<contact::ContactResponse> point_responses_;  ///< … those of one point, in their fixed-size form
+  std::vector<KeptPointResponse> kept_responses_;  ///< per contact: its one-point response, kept (finish_evaluation)
   std::vector<std::vector<int>> contact_blocks_;  ///< contact_blocks of each response in contact_responses_
   std::vector<int> contact_dofs_, contact_equations_;
   size_t contact_rank_ones_ = 0;

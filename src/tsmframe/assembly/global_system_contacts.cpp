@@ -21,6 +21,21 @@ const contact::Vector9& sliding_u(const contact::ContactResponse& r, int) { retu
 const contact::Vector9& sliding_v(const contact::ContactResponse& r, int) { return r.sliding_v; }
 auto sliding_u(const contact::MultiPointResponse& r, int p) { return r.sliding_u.col(p); }
 auto sliding_v(const contact::MultiPointResponse& r, int p) { return r.sliding_v.col(p); }
+double point_alpha(const KeptPointResponse& r, int) { return r.alpha; }
+double point_force_per_Y(const KeptPointResponse& r, int) { return r.force_per_Y; }
+const contact::Vector9& sliding_u(const KeptPointResponse& r, int) { return r.sliding_u; }
+const contact::Vector9& sliding_v(const KeptPointResponse& r, int) { return r.sliding_v; }
+// The symmetric tangent's node block (p, q ≥ p), the `pair`-th in that order.
+template <class Response>
+auto node_block(const Response& r, int p, int q, int) { return r.symmetric_tangent.template block<3, 3>(3 * p, 3 * q); }
+const Eigen::Matrix3d& node_block(const KeptPointResponse& r, int, int, int pair) { return r.blocks[pair]; }
+// The full tangent's entry (k, b): what a prescribed displacement couples (no response is kept
+// in a model with one).
+template <class Response>
+double tangent_entry(const Response& r, int k, int b) { return r.tangent(k, b); }
+double tangent_entry(const KeptPointResponse&, int, int) {
+  throw std::logic_error("GlobalSystem: a kept contact response where displacements are prescribed");
+}
 
 }  // namespace
 
@@ -111,9 +126,9 @@ void GlobalSystem::add_contact(const contact::ActiveContact& a, const Response& 
   int pair = 0;
   for (int p = 0; p < size / dofs_per_node; ++p)
     for (int q = p; q < size / dofs_per_node; ++q) {
-      const int slot = blocks[pair++];
+      const int slot = blocks[pair];
+      const auto value = node_block(r, p, q, pair++);
       if (slot < 0) continue;
-      const auto value = r.symmetric_tangent.template block<3, 3>(3 * p, 3 * q);
       if (slot % 2 == 0) tangent_.value[slot / 2] += value;
       else tangent_.value[slot / 2] += value.transpose();
     }
@@ -134,17 +149,31 @@ void GlobalSystem::add_contact(const contact::ActiveContact& a, const Response& 
   for (int b = 0; b < size; ++b) {
     const double dp = model_.reference_prescribed[g[b]];
     if (dp == 0.0 || equation[b] >= 0) continue;
-    for (int k = 0; k < size; ++k) add_coupling(g[k], r.tangent(k, b) * dp, out.prescribed_coupling);
+    for (int k = 0; k < size; ++k) add_coupling(g[k], tangent_entry(r, k, b) * dp, out.prescribed_coupling);
   }
 }
 
 void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
-                                     bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts) {
+                                     bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts,
+                                     bool same_displacements) {
   out.largest_end_rotation = 0.0;  // a maximum: the same whatever the order
   for (const double largest : chunk_largest_end_rotation_) out.largest_end_rotation = std::max(out.largest_end_rotation, largest);
   // The contact elements' responses, each a function of its own dofs, are formed in parallel a
   // chunk at a time and added in the contacts' order: the sums are the same on any number of
   // threads, and a chunk's responses are all that is held at once.
+  // A one-point contact's response is kept (KeptPointResponse, per contact): a contact change at
+  // the same displacements forms only the contacts that changed. Not where displacements are
+  // prescribed (their coupling reads the full tangent).
+  const std::uint64_t id = evaluations_ + 1;
+  const bool keep_responses = with_tangent && !has_prescribed_;
+  if (keep_responses)
+    for (const contact::ActiveContact& a : contacts)
+      if (a.size() == 1 && static_cast<size_t>(a.points.front().contact) >= kept_responses_.size())
+        kept_responses_.resize(static_cast<size_t>(a.points.front().contact) + 1);
+  const auto kept = [&](const contact::ActiveContact& a) -> KeptPointResponse* {
+    const contact::ActivePoint& p = a.points.front();
+    return keep_responses && a.size() == 1 && !p.vertex ? &kept_responses_[p.contact] : nullptr;
+  };
   constexpr size_t chunk = 256;
   for (size_t begin = 0; begin < contacts.size(); begin += chunk) {
     const size_t count = std::min(chunk, contacts.size() - begin);
@@ -152,8 +181,12 @@ void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const
       contact_responses_.resize(count), point_responses_.resize(count), contact_blocks_.resize(count);
     util::parallel_for_dynamic(size_t{0}, count, count >= 16, [&](size_t i) {
       const contact::ActiveContact& a = contacts[begin + i];
-      if (a.size() == 1) contact_element_response(model_, a, displacements, previous_rotations, with_tangent, point_responses_[i]);
-      else contact_element_response(model_, a, displacements, previous_rotations, with_tangent, contact_responses_[i]);
+      KeptPointResponse* k = kept(a);
+      if (k && same_displacements && k->stands_for(a, id)) k->evaluation = id;
+      else if (a.size() == 1) {
+        contact_element_response(model_, a, displacements, previous_rotations, with_tangent, point_responses_[i]);
+        if (k) keep(a, point_responses_[i], id, *k);
+      } else contact_element_response(model_, a, displacements, previous_rotations, with_tangent, contact_responses_[i]);
       if (with_tangent) contact_blocks(contacts[begin + i], contact_blocks_[i]);
     });
     // The blocks are scattered through the tangent (numbered for the factorisation): each
@@ -162,7 +195,8 @@ void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const
     for (size_t i = 0; i < count; ++i) {
       if (with_tangent && i + prefetch_distance < count) prefetch_contact_blocks(contact_blocks_[i + prefetch_distance]);
       const contact::ActiveContact& a = contacts[begin + i];
-      if (a.size() == 1) add_contact(a, point_responses_[i], contact_blocks_[i], with_tangent, out);
+      if (const KeptPointResponse* k = kept(a)) add_contact(a, *k, contact_blocks_[i], with_tangent, out);
+      else if (a.size() == 1) add_contact(a, point_responses_[i], contact_blocks_[i], with_tangent, out);
       else add_contact(a, contact_responses_[i], contact_blocks_[i], with_tangent, out);
       replaced_[contacts[begin + i].element] = 0;
     }

@@ -23,13 +23,15 @@ constexpr double state_per_node = 48.0, state_per_element = 32.0;
 constexpr double per_step = 400.0, step_per_monitored = 24.0, step_per_moved = 8.0, step_per_contact = 48.0;
 // A contact: its state, its geometry's settings and its step's points, and its reference at the
 // step's start — the candidates near its node and its side of each (~64 of them, 4¼ bytes each):
-// ~900 bytes; its point at every Newton iterate of a step (48 bytes). Per candidate a side, two
-// bits, where an iterate moves the node beyond the broad phase's reach or the node lets go
-// (contact/sides.hpp; counted for every contact at once), and for a node let go off a free end its
-// place in each candidate chord's frame (16 bytes; counted for `released_places` contacts at once).
+// ~900 bytes; its element's response as the assembly adds it, kept for the next contact change
+// (assembly::KeptPointResponse, 784 bytes); its point at every Newton iterate of a step (48
+// bytes). Per candidate a side, two bits, where an iterate moves the node beyond the broad
+// phase's reach or the node lets go (contact/sides.hpp; counted for every contact at once), and
+// for a node let go off a free end its place in each candidate chord's frame (16 bytes; counted
+// for `released_places` contacts at once).
 // Per group of contacts that may touch the same elements (model/candidate_groups) one table: the
 // candidates' places (an int per element of the model), and per candidate its index and Ψ (12 bytes).
-constexpr double contact_fixed = 900.0, contact_per_candidate = 0.25, contact_per_iterate = 48.0;
+constexpr double contact_fixed = 900.0 + 784.0, contact_per_candidate = 0.25, contact_per_iterate = 48.0;
 constexpr double place_per_candidate = 16.0, released_places = 64.0;
 constexpr double table_per_element = 4.0, table_per_candidate = 12.0;
 // Once per model with contacts: each element's initial chord and the elements at each node; the

@@ -7,6 +7,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <ostream>
 #include <utility>
 #include <vector>
 
@@ -59,8 +60,15 @@ void expect_same_evaluation(const tsm::assembly::GlobalSystem& patched, const ts
 }
 
 // With a follower load (a pressure on the beam) too: its coupling blocks join the elements
-// formed again; its skew terms stay.
-class ContactChange : public ::testing::TestWithParam<double> {};
+// formed again; its skew terms stay. Without a prescribed displacement the contacts' responses
+// are kept from one evaluation to the next (KeptPointResponse): a contact that stays where it
+// was is not formed again, one that changed element is.
+struct Change {
+  double pressure = 0.0;
+  bool prescribed = true;
+};
+void PrintTo(const Change& c, std::ostream* os) { *os << "pressure " << c.pressure << (c.prescribed ? ", a prescribed move" : ""); }
+class ContactChange : public ::testing::TestWithParam<Change> {};
 
 TEST_P(ContactChange, FormsBitForBitWhatAFullEvaluationForms) {
   // A clamped beam of 6 elements; node 100, the free bottom of a post clamped at its top (all its
@@ -70,14 +78,15 @@ TEST_P(ContactChange, FormsBitForBitWhatAFullEvaluationForms) {
   b.A = 1e3;
   b.element = "timoshenko";
   json m = beam_model(b);
-  if (GetParam() != 0.0) m["members"][0]["load"] = {{"pressure", GetParam()}};
+  if (GetParam().pressure != 0.0) m["members"][0]["load"] = {{"pressure", GetParam().pressure}};
   m["nodes"].push_back({{"id", 100}, {"x", 0.45}, {"y", 0.0}});
   m["nodes"].push_back({{"id", 11}, {"x", 0.45}, {"y", 0.5}});
   m["nodes"].push_back({{"id", 200}, {"x", 0.75}, {"y", -0.1}});
   m["members"].push_back({{"from", 11}, {"to", 100}, {"divisions", 2}, {"material", "m"}, {"section", "s"}});
   m["supports"] = json::array({{{"node", 1}, {"type", "fixed"}}, {{"node", 11}, {"type", "fixed"}},
                                {{"node", 200}, {"fix", {"ux", "rz"}}}});
-  m["prescribed"] = json::array({{{"node", 200}, {"uy", 0.2}}});
+  if (GetParam().prescribed) m["prescribed"] = json::array({{{"node", 200}, {"uy", 0.2}}});
+  else m["supports"][2]["fix"] = {"ux", "uy", "rz"};  // held where D puts it
   m["contacts"] = json::array({{{"node", 100}, {"members", json::array({0})}}, {{"node", 200}, {"members", json::array({0})}}});
   const tsm::Model model = tsm::io::read_model(m);
   const tsm::assembly::DofMap dofs(model);
@@ -125,6 +134,7 @@ TEST_P(ContactChange, FormsBitForBitWhatAFullEvaluationForms) {
   expect_same_evaluation(patched, p, full, f);
 }
 
-INSTANTIATE_TEST_SUITE_P(WithoutAndWithAPressure, ContactChange, ::testing::Values(0.0, 0.3));
+INSTANTIATE_TEST_SUITE_P(WithoutAndWithAPressureAndAPrescribedMove, ContactChange,
+                         ::testing::Values(Change{0.0, true}, Change{0.3, true}, Change{0.0, false}, Change{0.3, false}));
 
 }  // namespace
