@@ -21,8 +21,9 @@ contacts. Wall time and peak memory of the whole command (/usr/bin/time), one ru
 row, builds alternating.
 
   /usr/bin/python3 bench/contact_scale.py BUILD [OLD_BUILD] [--rows press:501,press:701,continuous:50,pipeline:1000]
+      [--repeat N] [--threads T]   (N alternating runs of each row per build and their medians)
 """
-import argparse, json, os, subprocess, tempfile, time
+import argparse, json, os, statistics, subprocess, tempfile, time
 
 
 def model(kind, size, contacts=True):
@@ -93,11 +94,11 @@ def pipeline(elements, lift=0.5, contacts=True):
     return m
 
 
-def run(binary, path):
+def run(binary, path, threads=None):
     out = tempfile.mkdtemp(prefix="contact-scale-")
     start = time.time()
-    p = subprocess.run(["/usr/bin/time", "-f", "%M", binary, "run", path, "--out", out, "-q"],
-                       capture_output=True, text=True)
+    command = [binary, "run", path, "--out", out, "-q"] + (["--threads", str(threads)] if threads else [])
+    p = subprocess.run(["/usr/bin/time", "-f", "%M"] + command, capture_output=True, text=True)
     wall = time.time() - start
     peak_mb = int(p.stderr.strip().splitlines()[-1]) / 1024.0
     try:
@@ -115,6 +116,9 @@ def main():
     a.add_argument("build")
     a.add_argument("old", nargs="?")
     a.add_argument("--rows", default="press:501,press:701,press:1001,continuous:50")
+    a.add_argument("--repeat", type=int, default=1,
+                   help="runs of each row per build, alternating; then each build's median seconds")
+    a.add_argument("--threads", type=int, help="threads for both builds (default: all cores)")
     args = a.parse_args()
     builds = [("new", args.build)] + ([("old", args.old)] if args.old else [])
     print(f"{'model':<16} {'build':<5} {'status':<14} {'steps':>5} {'its':>5} {'s':>7} {'MB':>6} "
@@ -127,14 +131,21 @@ def main():
             paths[contacts] = os.path.join(work, f"{kind}-{size}-{'contact' if contacts else 'free'}.json")
             shape = pipeline(int(size), contacts=contacts) if kind == "pipeline" else model(kind, int(size), contacts)
             json.dump(shape, open(paths[contacts], "w"))
-        for name, build in (builds[::-1] if len(builds) == 2 else builds):  # old first, then new
-            binary = os.path.join(build, "tsmframe")
-            r = run(binary, paths[True])
-            free = run(binary, paths[False])
-            per = 1e3 * r["wall"] / max(r["iterations"], 1)
-            free_per = 1e3 * free["wall"] / max(free["iterations"], 1)
-            print(f"{kind + ' ' + size:<16} {name:<5} {r['status']:<14} {r['steps']:>5} {r['iterations']:>5} "
-                  f"{r['wall']:>7.2f} {r['peak']:>6.0f} {per:>7.2f} {free_per:>10.3f} {per / free_per:>6.1f}", flush=True)
+        walls = {name: [] for name, _ in builds}
+        for _ in range(args.repeat):
+            for name, build in (builds[::-1] if len(builds) == 2 else builds):  # old first, then new
+                binary = os.path.join(build, "tsmframe")
+                r = run(binary, paths[True], args.threads)
+                free = run(binary, paths[False], args.threads)
+                walls[name].append(r["wall"])
+                per = 1e3 * r["wall"] / max(r["iterations"], 1)
+                free_per = 1e3 * free["wall"] / max(free["iterations"], 1)
+                print(f"{kind + ' ' + size:<16} {name:<5} {r['status']:<14} {r['steps']:>5} {r['iterations']:>5} "
+                      f"{r['wall']:>7.2f} {r['peak']:>6.0f} {per:>7.2f} {free_per:>10.3f} {per / free_per:>6.1f}", flush=True)
+        if args.repeat > 1:
+            for name, w in walls.items():
+                print(f"{kind + ' ' + size:<16} {name:<5} median {statistics.median(w):.2f} s of {len(w)} runs "
+                      f"({min(w):.2f} … {max(w):.2f})", flush=True)
 
 
 if __name__ == "__main__":
