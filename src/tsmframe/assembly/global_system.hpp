@@ -143,12 +143,12 @@ class GlobalSystem {
                           bool with_tangent, Evaluation& out);
   /// max |θ_i|, |θ_j| of place q's element (0 if a contact element stands in), nothing written.
   double end_rotation(int q, const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations) const;
-  /// The contacts' sums after the elements: contact elements, masks of the constrained dofs.
   /// evaluate(), told whether the displacements are the last evaluation's (a contact change).
   void evaluate(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations, bool with_tangent,
                 Evaluation& out, const std::vector<contact::ActiveContact>& contacts, bool same_displacements);
-  /// With `same_displacements` (a contact change), a one-point contact whose kept response
-  /// stands for it is not formed again.
+  /// The contacts' sums after the elements: contact elements, masks of the constrained dofs. With
+  /// `same_displacements` (a contact change), a one-point contact whose kept response stands for
+  /// it is not formed again.
   void finish_evaluation(const Eigen::VectorXd& displacements, const std::vector<double>& previous_rotations,
                          bool with_tangent, Evaluation& out, const std::vector<contact::ActiveContact>& contacts,
                          bool same_displacements = false);
