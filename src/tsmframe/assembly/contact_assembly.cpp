@@ -44,11 +44,8 @@ void contact_element_response(const Model& model, const contact::ActiveContact& 
                       const std::vector<double>& previous_rotations, bool with_tangent, contact::ContactResponse& response) {
   const Element& e = model.elements[a.element];
   contact::Vector9 d;
-  for (int k = 0; k < dofs_per_node; ++k) {
-    d[k] = displacements[dofs_per_node * e.start + k];
-    d[3 + k] = displacements[dofs_per_node * e.end + k];
-    d[6 + k] = displacements[dofs_per_node * a.points.front().node + k];
-  }
+  d << element_displacements(displacements, e.start, e.end),
+      displacements.segment<dofs_per_node>(dofs_per_node * a.points.front().node);
   response = contact::contact_response(a.data.front(), d, previous_rotations[a.element], with_tangent);
 }
 
