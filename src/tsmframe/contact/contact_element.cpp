@@ -31,7 +31,10 @@ ChordFrameLaw chord_frame_law(const ContactElementData& data, double alpha) {
 ContactResponse chord_frame_response(const ContactElementData& data, const Vector9& d, double previous_rotation,
                                      bool with_tangent) {
   ContactResponse r = chord_frame_parts(data, d, previous_rotation, with_tangent);
-  if (with_tangent) r.tangent = r.symmetric_tangent + r.sliding_u * r.sliding_v.transpose();
+  if (data.friction.mu != 0.0) add_friction(data, 0.0, Vector9::Zero(), with_tangent, r);
+  if (!with_tangent) return r;
+  r.tangent = r.symmetric_tangent + r.sliding_u * r.sliding_v.transpose();
+  if (data.friction.mu != 0.0) r.tangent.noalias() += r.friction_u * r.friction_v.transpose();
   return r;
 }
 

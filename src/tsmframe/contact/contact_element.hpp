@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "tsmframe/contact/contact_force_law.hpp"
+#include "tsmframe/contact/friction.hpp"
 #include "tsmframe/element/chord.hpp"
 #include "tsmframe/model/model.hpp"
 
@@ -50,6 +51,7 @@ struct ContactElementData {
   /// How the element's ends are joined to its nodes: 0 rigidly, ∞ by a hinge (a member's
   /// "release"), 1/k by a rotational spring ("end_springs"); see connected_law. Chord frame only.
   double flexibility_i = 0.0, flexibility_j = 0.0;
+  FrictionData friction;  ///< Coulomb friction at the point (μ = 0: none; friction.hpp)
   bool connected() const { return flexibility_i != 0.0 || flexibility_j != 0.0; }
 };
 
@@ -81,6 +83,9 @@ struct ContactResponse {
   Matrix9 symmetric_tangent;  ///< J (∂S/∂d) Jᵀ + K_G
   Vector9 sliding_u = Vector9::Zero();  ///< the sliding term is the rank-one u vᵀ: u = J ∂S/∂α …
   Vector9 sliding_v = Vector9::Zero();  ///< … v = ∂α/∂x (both zero without the sliding term)
+  /// Friction (friction.hpp; zero and `none` at μ = 0): tangent += friction_u friction_vᵀ.
+  FrictionResult friction;
+  Vector9 friction_u = Vector9::Zero(), friction_v = Vector9::Zero();
 };
 
 /// The element in the chord frame (Eq. 6–9; `data.frame` is not read here).

@@ -142,7 +142,10 @@ ContactResponse deflected_normal_response(const ContactElementData& data, const 
   r.nodal_forces -= T * g;  // N8: J_ν S = J S − T ∂α/∂x
   const Vector9 point_chord = r.point_u;
   r.point_u -= w.value * g;  // J_ν (0, h, 1)ᵀ
-  if (!with_tangent) return r;
+  if (!with_tangent) {
+    if (data.friction.mu != 0.0) add_friction(data, w.value, Vector9::Zero(), false, r);
+    return r;
+  }
 
   // N14: K = K_chord − ∂α/∂x (∇T)ᵀ − T ∂²α, ∇T = w_α ∇Y + Y ∇w_α; N15 splits it.
   const Vector9 dw = contact_equilibrium_matrix(r.chord, r.alpha) * w.d.transpose() + w.d_alpha * g;  // ∇w_α
@@ -153,7 +156,9 @@ ContactResponse deflected_normal_response(const ContactElementData& data, const 
     r.sliding_u += (w.value / c) * r.point_u - w.value * rates.dY_dalpha * g + Y * dw;
     r.sliding_v = g;
   }
+  if (data.friction.mu != 0.0) add_friction(data, w.value, dw, true, r);
   r.tangent = r.symmetric_tangent + r.sliding_u * r.sliding_v.transpose();
+  if (data.friction.mu != 0.0) r.tangent.noalias() += r.friction_u * r.friction_v.transpose();
   return r;
 }
 
