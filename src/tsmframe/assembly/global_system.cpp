@@ -292,7 +292,7 @@ void GlobalSystem::evaluate(const Eigen::VectorXd& displacements, const std::vec
   if (with_tangent) ensure_contact_pattern(contacts);
   for (const contact::ActiveContact& a : contacts) replaced_[a.element] = 1;
   out.contacts.clear();
-  if (with_tangent) contact_rank_ones_ = 0;  // filled again by the contacts (finish_evaluation)
+  if (with_tangent) contact_rank_ones_ = friction_rank_ones_ = 0;  // filled again by the contacts (finish_evaluation)
   const int n_elements = static_cast<int>(model_.elements.size());
   // The elements' first writers assign (mark_first_writers): only what no element writes is cleared.
   util::resize_touched(out.internal_force, model_.dof_count());
@@ -401,7 +401,7 @@ void GlobalSystem::evaluate_contact_change(const Eigen::VectorXd& displacements,
   }
   for (const int node : nodes) contact_node_[node] = 0;
   out.contacts.clear();
-  contact_rank_ones_ = 0;
+  contact_rank_ones_ = friction_rank_ones_ = 0;
   finish_evaluation(displacements, previous_rotations, true, out, contacts, true);
 }
 

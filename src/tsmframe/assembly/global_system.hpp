@@ -112,6 +112,10 @@ class GlobalSystem {
   /// The contact elements' sliding terms from the same evaluation: K_ff = tangent() + Σ u vᵀ
   /// (their symmetric parts are in tangent()).
   const std::vector<linalg::RankOne>& contact_rank_one() const { return contact_rank_one_; }
+  /// The slipping and sticking contacts' friction terms (friction.hpp, F14), not optional like
+  /// the sliding terms: a slipping point's friction follows its normal force, as stiff as the
+  /// contact itself.
+  const std::vector<linalg::RankOne>& friction_rank_one() const { return friction_rank_one_; }
   /// Each active contact's (in `contacts`' order) point load direction and stiffness at `displacements`.
   std::vector<ContactDirection> contact_directions(const Eigen::VectorXd& displacements, const std::vector<double>& rotations,
                                                    const std::vector<contact::ActiveContact>& contacts) const;
@@ -262,6 +266,8 @@ class GlobalSystem {
   std::vector<std::vector<int>> contact_blocks_;  ///< contact_blocks of each response in contact_responses_
   std::vector<int> contact_dofs_, contact_equations_;
   size_t contact_rank_ones_ = 0;
+  std::vector<linalg::RankOne> friction_rank_one_;
+  size_t friction_rank_ones_ = 0;
   std::vector<std::pair<int, int>> contact_pairs_;  ///< node pairs joined only by contact elements
   bool forget_contact_pairs_ = false;                ///< see forget_contact_pairs()
   int pattern_version_ = 0;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <type_traits>
 
 #include "tsmframe/assembly/contact_assembly.hpp"
 #include "tsmframe/contact/active_contact.hpp"
@@ -25,6 +26,10 @@ double point_alpha(const KeptPointResponse& r, int) { return r.alpha; }
 double point_force_per_Y(const KeptPointResponse& r, int) { return r.force_per_Y; }
 const contact::Vector9& sliding_u(const KeptPointResponse& r, int) { return r.sliding_u; }
 const contact::Vector9& sliding_v(const KeptPointResponse& r, int) { return r.sliding_v; }
+// Friction (one point, chord frame): the return map's result; none elsewhere.
+contact::FrictionResult point_friction(const contact::ContactResponse& r, int) { return r.friction; }
+template <class Response>
+contact::FrictionResult point_friction(const Response&, int) { return {}; }
 // The symmetric tangent's node block (p, q ≥ p), the `pair`-th in that order.
 template <class Response>
 auto node_block(const Response& r, int p, int q, int) { return r.symmetric_tangent.template block<3, 3>(3 * p, 3 * q); }
@@ -117,7 +122,7 @@ void GlobalSystem::add_contact(const contact::ActiveContact& a, const Response& 
   out.chord_rotations[a.element] = r.chord.rotation;
   for (int p = 0; p < a.size(); ++p)
     out.contacts.push_back({a.points[p].contact, a.points[p].vertex, point_alpha(r, p), r.forces[3 + p],
-                            point_force_per_Y(r, p), r.nodal_forces.template segment<2>(6 + 3 * p)});
+                            point_force_per_Y(r, p), r.nodal_forces.template segment<2>(6 + 3 * p), point_friction(r, p)});
   for (int k = 0; k < size; ++k) out.internal_force[g[k]] += r.nodal_forces[k];
   if (!with_tangent) return;
   // The symmetric part joins the node blocks (i, j, then each point's node; each node pair once,
@@ -135,16 +140,26 @@ void GlobalSystem::add_contact(const contact::ActiveContact& a, const Response& 
   std::vector<int>& equation = contact_equations_;
   equation.resize(g.size());
   for (int k = 0; k < size; ++k) equation[k] = dofs_.equation(g[k]);
-  for (int p = 0; p < a.size(); ++p)
-    if (sliding_u(r, p).squaredNorm() > 0.0 && sliding_v(r, p).squaredNorm() > 0.0) {
-      if (contact_rank_ones_ == contact_rank_one_.size()) contact_rank_one_.emplace_back();
-      linalg::RankOne& term = contact_rank_one_[contact_rank_ones_++];  // its storage reused
-      term.equation.assign(equation.begin(), equation.end());
-      term.u = sliding_u(r, p);
-      term.v = sliding_v(r, p);
-      frames_.to_nodal(g, term.u);
-      frames_.to_nodal(g, term.v);
-    }
+  const auto add_rank_one = [&](const auto& u, const auto& v, std::vector<linalg::RankOne>& terms, size_t& count) {
+    if (u.squaredNorm() == 0.0 || v.squaredNorm() == 0.0) return;
+    if (count == terms.size()) terms.emplace_back();
+    linalg::RankOne& term = terms[count++];  // its storage reused
+    term.equation.assign(equation.begin(), equation.end());
+    term.u = u;
+    term.v = v;
+    frames_.to_nodal(g, term.u);
+    frames_.to_nodal(g, term.v);
+  };
+  // A frictional point's sliding term joins its friction term: its normal force's rate along the
+  // beam is its friction force's too, not optional.
+  for (int p = 0; p < a.size(); ++p) {
+    const bool frictional = point_friction(r, p).status != contact::FrictionStatus::none &&
+                            point_friction(r, p).status != contact::FrictionStatus::open;
+    add_rank_one(sliding_u(r, p), sliding_v(r, p), frictional ? friction_rank_one_ : contact_rank_one_,
+                 frictional ? friction_rank_ones_ : contact_rank_ones_);
+  }
+  if constexpr (std::is_same_v<Response, contact::ContactResponse>)
+    add_rank_one(r.friction_u, r.friction_v, friction_rank_one_, friction_rank_ones_);
   if (!has_prescribed_) return;
   for (int b = 0; b < size; ++b) {
     const double dp = model_.reference_prescribed[g[b]];
@@ -172,7 +187,9 @@ void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const
         kept_responses_.resize(static_cast<size_t>(a.points.front().contact) + 1);
   const auto kept = [&](const contact::ActiveContact& a) -> KeptPointResponse* {
     const contact::ActivePoint& p = a.points.front();
-    return keep_responses && a.size() == 1 && !p.vertex ? &kept_responses_[p.contact] : nullptr;
+    // Not a frictional one: its response reads its anchor, which an update may set.
+    return keep_responses && a.size() == 1 && !p.vertex && a.data.front().friction.mu == 0.0 ? &kept_responses_[p.contact]
+                                                                                                  : nullptr;
   };
   constexpr size_t chunk = 256;
   for (size_t begin = 0; begin < contacts.size(); begin += chunk) {
@@ -201,7 +218,7 @@ void GlobalSystem::finish_evaluation(const Eigen::VectorXd& displacements, const
       replaced_[contacts[begin + i].element] = 0;
     }
   }
-  if (with_tangent) contact_rank_one_.resize(contact_rank_ones_);
+  if (with_tangent) contact_rank_one_.resize(contact_rank_ones_), friction_rank_one_.resize(friction_rank_ones_);
   if (!frames_.empty()) turn_to_nodal_frames(out, with_tangent);
   if (with_tangent) mask_constrained_dofs();
   out.id = ++evaluations_;

@@ -37,6 +37,14 @@ ContactGeometry::ContactGeometry(const Model& model) : model_(model) {
     for (const int f : table->elements) candidate[f] = 1;
   for (int k = 0; k < n_elements; ++k)
     if (candidate[k]) candidate_elements_.push_back(k);
+  if (std::any_of(model.contacts.begin(), model.contacts.end(), [](const ContactSpec& c) { return c.friction > 0.0; })) {
+    std::vector<double> along(model.member_count, 0.0);  // a member's elements run from its start, in order
+    arc_start_.resize(n_elements);
+    for (int k = 0; k < n_elements; ++k) {
+      arc_start_[k] = along[model.elements[k].member];
+      along[model.elements[k].member] += initial_[k].length;
+    }
+  }
 }
 
 CandidateTable ContactGeometry::table_of(const ContactSpec& c) const {
@@ -93,14 +101,16 @@ ContactCandidates ContactGeometry::candidates_of(const ContactSpec& c, const Can
     s.own.push_back({std::cos(initial_[e].angle), std::sin(initial_[e].angle), section.EA, section.EI, initial_[e].length});
   }
   s.sliding_term = c.sliding_tangent;
+  s.friction = c.friction;
   s.frame = c.frame;
   s.normal = c.normal;
   return s;
 }
 
-double ContactGeometry::cap_compliance(const ContactCandidates& contact, int element) const {
+double ContactGeometry::cap_compliance(const ContactCandidates& contact, int element, bool along_chord) const {
   const double angle = initial_[element].angle;
-  const Eigen::Vector2d normal(-std::sin(angle), std::cos(angle));
+  const Eigen::Vector2d normal = along_chord ? Eigen::Vector2d(std::cos(angle), std::sin(angle))
+                                             : Eigen::Vector2d(-std::sin(angle), std::cos(angle));
   double stiffest = 0.0;
   for (const ContactCandidates::Own& o : contact.own) {
     const double along = o.cos * normal.x() + o.sin * normal.y();
@@ -180,6 +190,12 @@ ContactElementData ContactGeometry::element_data(const ContactCandidates& contac
   data.frame = contact.frame;
   data.normal = contact.normal;
   std::tie(data.flexibility_i, data.flexibility_j) = end_flexibilities(element);
+  if (contact.friction > 0.0) {  // the anchor is the state's (ContactSet::active_contacts)
+    data.friction.mu = contact.friction;
+    data.friction.side = side;
+    data.friction.arc_start = arc_start_[element];
+    data.friction.min_compliance = cap_compliance(contact, element, true);
+  }
   return data;
 }
 

@@ -64,6 +64,7 @@ struct ContactCandidates {
   };
   std::vector<Own> own;
   bool sliding_term = true;
+  double friction = 0.0;  ///< Coulomb's μ (0: none)
   ContactFrame frame = ContactFrame::chord;
   ContactNormal normal = ContactNormal::chord;
   bool is_candidate(int element) const { return candidate_index[element] >= 0; }
@@ -110,6 +111,8 @@ class ContactGeometry {
   NodeOnElement on_chord(const ContactCandidates& contact, int element, const Eigen::VectorXd& displacements) const;
   /// What the contact element of `contact` on `element`, the node on `side` of it, is made of.
   ContactElementData element_data(const ContactCandidates& contact, int element, int side) const;
+  /// The arc length along its member, as drawn, of a point at α on `element` (F5).
+  double arc_length(int element, double alpha) const { return arc_start_[element] + initial_[element].length * alpha; }
   /// The compliance floor's edge δ of a contact (its own, or the default).
   static double edge_of(const ContactCandidates& contact);
 
@@ -122,7 +125,7 @@ class ContactGeometry {
   /// element holding the contact node across that element (as drawn: EA/l0 along the element's
   /// axis, 12EI/l0³ across it, mixed by the angle to the touched element's normal); 0 where no
   /// element holds the node (a rigid pusher: no cap).
-  double cap_compliance(const ContactCandidates& contact, int element) const;
+  double cap_compliance(const ContactCandidates& contact, int element, bool along_chord = false) const;
   CandidateTable table_of(const ContactSpec& spec) const;
   CandidateLink link(const CandidateTable& table, int element, int node) const;
   ContactCandidates candidates_of(const ContactSpec& spec, const CandidateTable& table) const;
@@ -134,6 +137,8 @@ class ContactGeometry {
   std::vector<element::InitialChord> initial_;
   std::vector<int> node_start_, node_elements_;  ///< elements at each node (CSR)
   std::vector<int> candidate_elements_;
+  /// Per element, the length of its member as drawn before it (F5; only where a contact has friction).
+  std::vector<double> arc_start_;
   double touch_tolerance_ = 0.0;
 };
 

@@ -1,6 +1,7 @@
 #include "tsmframe/contact/contact_set.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "tsmframe/contact/broad_phase.hpp"
 #include "tsmframe/contact/chord_frames.hpp"
@@ -75,6 +76,7 @@ void ContactSet::active_contacts(const std::vector<ContactState>& states, bool a
   struct Pending {
     int slot, point, contact, element, side;
     bool chord;  ///< the point pushes along its chord's normal whatever its contact asks (a vertex's)
+    bool second;  ///< a vertex's second element
   };
   std::vector<Pending> pending;
   const auto add_point = [&](int k, bool vertex, int element, int side, bool chord) {
@@ -87,7 +89,7 @@ void ContactSet::active_contacts(const std::vector<ContactState>& states, bool a
       a.points.clear();
     }
     ActiveContact& a = active[place[element]];
-    pending.push_back({place[element], a.size(), k, element, side, chord});
+    pending.push_back({place[element], a.size(), k, element, side, chord, vertex});
     a.points.push_back({k, vertex, geometry_.contact(k).node});
   };
   for (int k = 0; k < contact_count(); ++k) {
@@ -107,6 +109,7 @@ void ContactSet::active_contacts(const std::vector<ContactState>& states, bool a
     ContactElementData& data = active[p.slot].data[p.point];
     data = geometry_.element_data(geometry_.contact(p.contact), p.element, p.side);
     if (p.chord) data.normal = ContactNormal::chord;
+    if (data.friction.mu > 0.0) anchor(states[p.contact], p.element, p.second, data.friction);
   });
   // An element a point enters pushes along its chord's normal at all its points: the entering
   // point's Y, read from how far the predictor ran its node through the beam, would turn the
@@ -115,6 +118,18 @@ void ContactSet::active_contacts(const std::vector<ContactState>& states, bool a
     if (along_chords ||
         std::any_of(a.points.begin(), a.points.end(), [&](const ActivePoint& p) { return states[p.contact].entering; }))
       for (ContactElementData& d : a.data) d.normal = ContactNormal::chord;
+}
+
+void ContactSet::anchor(const ContactState& state, int element, bool second, FrictionData& friction) const {
+  // At a vertex friction acts on the contact's own element, along its chord, and not on the
+  // second (the arc length runs on through the beam node). An anchor on another member is not
+  // carried across the joint yet (F10): the point anchors again where it is.
+  if (second) {
+    friction.mu = 0.0;
+    return;
+  }
+  friction.anchored = state.friction.anchored && state.friction.member == geometry_.model().elements[element].member;
+  friction.anchor = state.friction.anchor;
 }
 
 void ContactSet::record(const std::vector<ContactEvaluation>& evaluated, std::vector<ContactState>& states) const {
@@ -126,6 +141,7 @@ void ContactSet::record(const std::vector<ContactEvaluation>& evaluated, std::ve
     state.force = -state.side * state.Y * e.force_per_Y;
     state.push[0] = e.push.x();
     state.push[1] = e.push.y();
+    if (geometry_.contact(e.contact).friction > 0.0) record_friction(e, state);
   }
   for (const ContactEvaluation& e : evaluated)  // a vertex's second element, with its first read
     if (e.vertex) read_vertex(geometry_.model(), e.Y, e.push, states[e.contact]);
@@ -261,13 +277,39 @@ void ContactSet::restore(const StepStart& start, std::vector<ContactState>& stat
   }
 }
 
+void ContactSet::record_friction(const ContactEvaluation& e, ContactState& state) const {
+  FrictionState& f = state.friction;
+  const FrictionResult& r = e.friction;
+  f.status = r.status == FrictionStatus::none ? FrictionStatus::off : r.status;  // none: a vertex, or k points
+  f.Z = r.Z;
+  f.tangential = r.tangential;
+  f.trial_anchor = r.trial_anchor;
+  if (f.status == FrictionStatus::off) f.anchored = false;
+  if (f.status == FrictionStatus::unanchored) {  // the touching iterate: anchored here for the rest of the step
+    f.anchored = true;
+    f.anchor = r.arc;
+    f.member = geometry_.model().elements[state.element].member;
+  }
+  if (f.status == FrictionStatus::stick || f.status == FrictionStatus::slip)
+    state.force = -state.side * r.normal_Y * e.force_per_Y;  // the normal force, friction's share taken out (F2)
+}
+
 void ContactSet::accept(const StepStart& start, std::vector<ContactState>& states) const {
   const Eigen::VectorXd& D = start.displacements;
   ChordFrames frames(geometry_, D);
   const CandidateChords chords(geometry_, D);
   for (int k = 0; k < contact_count(); ++k) {
     states[k].step = StepMemory{};
+    if (FrictionState& f = states[k].friction;
+        states[k].active && (f.status == FrictionStatus::stick || f.status == FrictionStatus::slip)) {
+      f.slip += std::abs(f.trial_anchor - f.anchor);  // the step's slip: the anchor moves where the map left it
+      f.anchor = f.trial_anchor;
+    }
+    states[k].friction.step_status = states[k].friction.status;
     if (states[k].active) continue;
+    // Apart at a converged state: a node that touches again starts afresh. (Within a step an
+    // iterate that lets go and touches again keeps the step's anchor.)
+    states[k].friction = FrictionState{};
     reset_near_sides(geometry_, geometry_.contact(k), start, chords, frames, states[k]);
   }
 }

@@ -33,6 +33,7 @@ struct ContactEvaluation {
   double Y = 0.0;
   double force_per_Y = 1.0;  ///< MultiPointResponse::force_per_Y: the compression is −side · Y · this
   Eigen::Vector2d push = Eigen::Vector2d::Zero();  ///< the element's nodal force on the contact node: Y n, or Y ν
+  FrictionResult friction;  ///< friction.hpp (status `none` at μ = 0)
 };
 
 /// Changes made by one update().
@@ -115,6 +116,13 @@ class ContactSet {
   void update_active(const ContactCandidates& contact, const Eigen::VectorXd& displacements,
                      const std::vector<double>& rotations, bool at_convergence, ContactState& state,
                      Occupancy& occupancy, ContactChanges& changes) const;
+
+  /// A frictional point's anchor from its state (FrictionData::anchored, anchor), on `element`
+  /// (`second`: a vertex's second element, which takes none).
+  void anchor(const ContactState& state, int element, bool second, FrictionData& friction) const;
+  /// A frictional contact's evaluation into its state: the return map's result, the anchor set
+  /// at the iterate that touched, the compression of the normal force alone.
+  void record_friction(const ContactEvaluation& evaluation, ContactState& state) const;
 
   ContactGeometry geometry_;
 };

@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "tsmframe/contact/friction.hpp"
 #include "tsmframe/contact/side_table.hpp"
 
 namespace tsm::contact {
@@ -91,6 +92,23 @@ struct StepMemory {
   int blocked_element = -1;
 };
 
+/// A frictional contact's history (docs/friction.md §6): its anchor on the member, fixed within a
+/// step and moved by accept() to where the converged iterate left it, and what the last
+/// evaluation found.
+struct FrictionState {
+  bool anchored = false;
+  int member = -1;           ///< the member the anchor is on
+  double anchor = 0.0;       ///< s_a: the anchor's arc length along the member as drawn (F5)
+  double slip = 0.0;         ///< the slip accumulated since the contact touched: Σ |Δs_a|
+  FrictionStatus status = FrictionStatus::none;  ///< at the last evaluation
+  /// At the iterate that converged the step (accept()): what a converged state reports — an
+  /// evaluation after it, from the moved anchor, finds a slipping point on the cone's edge.
+  FrictionStatus step_status = FrictionStatus::none;
+  double tangential = 0.0;   ///< the friction force along the beam's tangent, signed along e (Z q)
+  double Z = 0.0;            ///< its share along e (F2)
+  double trial_anchor = 0.0; ///< where the last evaluation's return map left the anchor
+};
+
 struct ContactState {
   bool active = false;
   int element = -1;   ///< element carrying the contact (index), −1 when inactive
@@ -110,6 +128,7 @@ struct ContactState {
   /// to the chord's normal (ContactSet::active_contacts; an iterate the landing cut short turns
   /// every point, without marking them).
   bool entering = false;
+  FrictionState friction;  ///< μ > 0 only
   ContactReference reference;
   StepMemory step;
 };

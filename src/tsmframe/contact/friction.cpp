@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "tsmframe/contact/contact_element.hpp"
 #include "tsmframe/contact/deflected_normal_element.hpp"
@@ -21,23 +22,26 @@ FrictionResult return_map(const FrictionData& f, double Y, double slope, double 
   out.arc = arc;
   out.normal_Y = Y;
   out.trial_anchor = arc;
-  if (!f.anchored) {
-    out.status = FrictionStatus::unanchored;
-    return out;
-  }
   const double pressure = -f.side * Y;  // p₀: the law's compression
   if (pressure <= 0.0) {
     out.status = FrictionStatus::open;
     return out;
   }
-  const double gap = arc - f.anchor;  // g_T (F7)
+  // Touched at this iterate: anchored where it is, so Z = 0 with the stick's stiffness (without
+  // it Newton's next iterate would move the point freely, and off the narrow stick zone).
+  const double anchor = f.anchored ? f.anchor : arc;
+  const double gap = arc - anchor;  // g_T (F7)
   const double trial = gap / compliance;
   const double direction = gap >= 0.0 ? 1.0 : -1.0;                   // ς
   const double D = 1.0 - f.side * direction * f.mu * slope;            // F8
-  if (std::abs(trial) <= f.mu * pressure / D) {                       // F9, step 4
-    out.status = FrictionStatus::stick;
+  // F9, step 4. A step starts with a slipping point's anchor where its force is on the cone's
+  // edge: it sticks there, g_T's rounding (arc lengths' last bits, against a stick zone
+  // μ p c_T wide) allowed for — a slip tangent would let the predictor move the point freely.
+  const double rounding = 8.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(arc), std::abs(anchor));
+  if (std::abs(gap) <= f.mu * pressure / D * compliance + rounding) {
+    out.status = f.anchored ? FrictionStatus::stick : FrictionStatus::unanchored;
     out.Z = trial;
-    out.trial_anchor = f.anchor;
+    out.trial_anchor = anchor;
   } else {                                                             // F9, step 5
     out.status = FrictionStatus::slip;
     out.Z = direction * f.mu * pressure / D;
@@ -56,7 +60,7 @@ void add_friction(const ContactElementData& data, double w_alpha, const Vector9&
   const TangentialCompliance cT = tangential_compliance(data.section.EA, l0, r.alpha, data.edge, f.min_compliance);
   const double slope = w_alpha / l;
   r.friction = return_map(f, Y, slope, f.arc_start + l0 * r.alpha, cT.value);
-  if (r.friction.status != FrictionStatus::stick && r.friction.status != FrictionStatus::slip) return;
+  if (r.friction.status == FrictionStatus::open) return;
   const double Z = r.friction.Z;
   const double A = l + w_alpha * w_alpha / l;  // F3
   const Vector9 g = alpha_gradient(r.chord, r.alpha, r.normal);
@@ -68,7 +72,7 @@ void add_friction(const ContactElementData& data, double w_alpha, const Vector9&
   const Vector9 grad_A = (1.0 - slope * slope) * grad_l + (2.0 * slope) * grad_w_alpha;  // F11
   add_alpha_hessian(r.symmetric_tangent, Z * A, r.chord, r.alpha, r.normal);
   r.friction_u = g;
-  if (r.friction.status == FrictionStatus::stick) {  // F12: ∇Z = k_s g, its A k_s g gᵀ symmetric
+  if (r.friction.status != FrictionStatus::slip) {  // stick (or touching here): F12: ∇Z = k_s g, its A k_s g gᵀ symmetric
     const double k_s = (l0 - Z * cT.d_alpha) / cT.value;
     r.symmetric_tangent.noalias() += (A * k_s) * g * g.transpose();
     r.friction_v = Z * grad_A;

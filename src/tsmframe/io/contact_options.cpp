@@ -28,6 +28,12 @@ void read_contact_law_options(const nlohmann::json& entry, const std::string& pa
     spec.max_stiffness_ratio = *ratio;
   }
   if (entry.contains("sliding_tangent")) spec.sliding_tangent = boolean(entry["sliding_tangent"], child(path, "sliding_tangent"));
+  if (auto mu = optional_number(entry, "friction", path)) {
+    if (!(*mu >= 0.0 && *mu <= 10.0)) fail(child(path, "friction"), "must lie between 0 and 10 (Coulomb's coefficient)");
+    if (*mu > 0.0 && spec.frame == ContactFrame::cantilever)
+      fail(child(path, "friction"), "friction is not in the cantilever frame yet (use the chord frame)");
+    spec.friction = *mu;
+  }
   if (auto gap = optional_number(entry, "gap", path)) {
     if (*gap < 0.0) fail(child(path, "gap"), "must not be negative");
     spec.gap = *gap;

@@ -352,7 +352,7 @@ class Reader {
       const json& c = contacts[k];
       contact_entries_.push_back(static_cast<int>(model_.contacts.size()));
       expect_object(c, path);
-      check_keys(c, path, {"node", "nodes", "members", "between", "element", "frame", "normal", "gap", "edge", "max_stiffness_ratio", "sliding_tangent"});
+      check_keys(c, path, {"node", "nodes", "members", "between", "element", "frame", "normal", "gap", "edge", "max_stiffness_ratio", "sliding_tangent", "friction"});
       if (c.contains("between")) {
         read_between(c, path);
         continue;

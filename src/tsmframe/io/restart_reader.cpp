@@ -93,6 +93,21 @@ void read_arc_length(const json& state, const std::string& path, const Model& mo
     out.arc_length.previous_increment = read_triples(arc["previous_increment"], child(at, "previous_increment"), model);
 }
 
+/// A frictional contact's history: its anchor on its member and the slip so far. A state written
+/// without it (a run without friction) cannot tell where the contact sticks: refused.
+void read_friction(const json& c, const std::string& at, const Model& model, contact::FrictionState& f) {
+  if (!c.contains("friction"))
+    fail(at, "no friction history here, and this model's contact has friction: restart from a run with the same friction");
+  const json& h = c["friction"];
+  const std::string fat = child(at, "friction");
+  f.anchored = boolean(h.at("anchored"), child(fat, "anchored"));
+  f.slip = required_number(h, "slip", fat);
+  if (!f.anchored) return;
+  f.member = static_cast<int>(bounded_integer(h.at("member"), child(fat, "member"), 1, model.member_count)) - 1;
+  f.anchor = required_number(h, "anchor", fat);
+  f.status = f.step_status = contact::FrictionStatus::stick;  // what the step found is told again by its first evaluation
+}
+
 /// Each contact's state at the kept step (element ids made indices).
 void read_contacts(const json& contacts, const std::string& path, const Model& model, solver::State& state) {
   expect_array(contacts, path);
@@ -127,6 +142,7 @@ void read_contacts(const json& contacts, const std::string& path, const Model& m
                                  static_cast<int>(bounded_integer(v.at("side"), child(vat, "side"), -1, 1)),
                                  required_number(v, "Y", vat)};
     }
+    if (model.contacts[k].friction > 0.0) read_friction(c, at, model, s.friction);
   }
 }
 

@@ -53,6 +53,19 @@ void write_section_forces(JsonWriter& w, const Model& model, const solver::StepR
   w.end_object();
 }
 
+/// A frictional contact's status as results.json names it.
+const char* friction_name(contact::FrictionStatus status) {
+  switch (status) {
+    case contact::FrictionStatus::stick: return "stick";
+    case contact::FrictionStatus::slip: return "slip";
+    case contact::FrictionStatus::open: return "open";
+    case contact::FrictionStatus::unanchored: return "touching";
+    case contact::FrictionStatus::off: return "off";
+    case contact::FrictionStatus::none: break;
+  }
+  return "none";
+}
+
 /// What a run restarted from this step needs beside its displacements (restart_reader.hpp).
 void write_restart_state(JsonWriter& w, const Model& model, const solver::StepRecord& step) {
   w.key("state").begin_object();
@@ -70,6 +83,11 @@ void write_restart_state(JsonWriter& w, const Model& model, const solver::StepRe
       if (c.vertex) {
         w.key("vertex").begin_object().key("element").value(model.elements[c.vertex->element].id);
         w.key("side").value(c.vertex->side).key("Y").value(c.vertex->Y).end_object();
+      }
+      if (const contact::FrictionState& f = c.friction; f.status != contact::FrictionStatus::none) {
+        w.key("friction").begin_object().key("anchored").value(f.anchored);
+        if (f.anchored) w.key("member").value(f.member + 1).key("anchor").value(f.anchor);
+        w.key("slip").value(f.slip).key("status").value(friction_name(f.step_status)).end_object();
       }
     }
     w.end_object();
@@ -150,6 +168,8 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
       w.key("xi").value(c.alpha);
       w.key("force").value(c.force);
       if (c.partner >= 0) w.key("also").value(model.elements[c.partner].id);
+      if (c.friction != contact::FrictionStatus::none)
+        w.key("friction").value(friction_name(c.friction)).key("tangential").value(c.tangential).key("slip").value(c.slip);
       w.end_object();
     }
     w.end_array();

@@ -91,6 +91,8 @@ struct ContactSpec {
   /// that keeps rounding resolvable on far stiffer members.
   double max_stiffness_ratio = 1e4;
   bool sliding_tangent = true;  ///< consistent tangent (false: leave the sliding term out)
+  /// Coulomb's μ along the touched beam (docs/friction.md; 0: frictionless, today's contact).
+  double friction = 0.0;
   /// Per member: Ψ for a "timoshenko" override (members drawn as Euler–Bernoulli included).
   std::vector<double> member_shear_flexibility;
 };

@@ -61,6 +61,7 @@ std::vector<contact::ContactState> kept_contacts(const std::vector<contact::Cont
     kept[k].push[1] = c.push[1];
     kept[k].vertex = c.vertex;
     kept[k].entering = c.entering;
+    kept[k].friction = c.friction;
   }
   return kept;
 }

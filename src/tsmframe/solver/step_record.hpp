@@ -29,6 +29,11 @@ struct ContactPoint {
   /// The push the contact node gives the beam (at a vertex, both elements'), along the normal
   /// its contact asks for.
   Eigen::Vector2d push = Eigen::Vector2d::Zero();
+  /// Friction (μ > 0): stick or slip at the step, the force along the beam's tangent (signed
+  /// along the touched element's direction) and the slip since the contact touched.
+  contact::FrictionStatus friction = contact::FrictionStatus::none;
+  double tangential = 0.0;
+  double slip = 0.0;
 };
 
 struct StepRecord {

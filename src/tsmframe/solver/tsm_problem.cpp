@@ -163,22 +163,29 @@ Factorisation TsmProblem::factorize(const State& state, bool with_optional_terms
     system_.evaluate(physical(state), state.chord_rotations, true, scratch, active);
   };
   // K_ff = tangent + the sliding terms in use (all, or none); with `rhs`, solved for it in place.
-  // A follower load's skew terms always join.
-  const std::vector<RankOne>& skew = system_.follower_rank_one();
+  // A follower load's skew terms and friction's always join.
+  const std::vector<RankOne>& follower_terms = system_.follower_rank_one();
+  const std::vector<RankOne>& friction_terms = system_.friction_rank_one();
+  std::vector<RankOne> always;  // only in a model with both
+  if (!follower_terms.empty() && !friction_terms.empty()) {
+    always = follower_terms;
+    always.insert(always.end(), friction_terms.begin(), friction_terms.end());
+  }
+  const std::vector<RankOne>& skew = friction_terms.empty() ? follower_terms : follower_terms.empty() ? friction_terms : always;
   const std::vector<RankOne>& contact = system_.contact_rank_one();
-  const bool follower = !skew.empty();
+  const bool skewed = !skew.empty();
   std::vector<RankOne> both;  // only in a model with both
-  if (follower && !contact.empty()) {
+  if (skewed && !contact.empty()) {
     both = skew;
     both.insert(both.end(), contact.begin(), contact.end());
   }
-  const std::vector<RankOne>& sliding = !follower ? contact : contact.empty() ? skew : both;
+  const std::vector<RankOne>& sliding = !skewed ? contact : contact.empty() ? skew : both;
   BlockMatrix& K = system_.tangent_for_factorisation();
   const auto attempt = [&](const std::vector<RankOne>& terms, Eigen::VectorXd* x) {
     const bool ok = x ? solver_.factorize_and_solve(K, terms, *x, refill) : solver_.factorize(K, terms, refill);
-    // With a follower load's skew terms the tangent is not symmetric: its symmetric part's
-    // inertia tells nothing of stability (a non-conservative load).
-    return factorisation(ok, !follower);
+    // With a follower load's skew terms or friction's the tangent is not symmetric: its symmetric
+    // part's inertia tells nothing of stability (a non-conservative load, a path-dependent one).
+    return factorisation(ok, !skewed);
   };
   if (contact.empty()) return attempt(sliding, rhs);
   if (with_optional_terms && stability && contact.size() > LinearSolver::most_rank_one) {
@@ -516,9 +523,14 @@ std::vector<ContactPoint> TsmProblem::contact_points(const State& state) const {
   std::vector<ContactPoint> points;
   for (const contact::ContactState& c : state.contacts) {
     ContactPoint p;
-    if (c.active)
+    if (c.active) {
       p = {c.element, c.alpha, c.force, c.Y, c.vertex ? c.vertex->element : -1, c.vertex ? c.vertex->Y : 0.0,
            Eigen::Vector2d(c.push[0], c.push[1])};
+      const contact::FrictionState& f = c.friction;
+      p.friction = f.step_status != contact::FrictionStatus::none ? f.step_status : f.status;
+      p.tangential = f.tangential;
+      p.slip = f.slip;
+    }
     points.push_back(p);
   }
   return points;

@@ -13,6 +13,7 @@
 #include "tsmframe/assembly/dof_map.hpp"
 #include "tsmframe/assembly/global_system.hpp"
 #include "tsmframe/contact/contact_set.hpp"
+#include "tsmframe/contact/friction.hpp"
 
 namespace {
 
@@ -82,6 +83,50 @@ TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
     EXPECT_LE((K - fd).norm(), 1e-6 * fd.norm()) << element;
     EXPECT_GT((K - K.transpose()).norm(), 1e-8 * K.norm()) << "the sliding term makes it non-symmetric";
   }
+}
+
+TEST(ContactAssembly, TangentWithFrictionMatchesFiniteDifferencesInStickAndInSlip) {
+  // The pusher pressed in as above, with Coulomb friction and its anchor put behind or ahead of
+  // the point: sticking (a quarter of the bound) and slipping (three times it), either way.
+  for (const char* element : {"euler-bernoulli", "timoshenko"})
+    for (const double share : {0.25, -0.25, 3.0, -3.0}) {
+      nlohmann::json json = post_on_cantilever(element, 0.45);
+      json["contacts"][0]["friction"] = 0.3;
+      const tsm::Model model = tsm::io::read_model(json);
+      tsm::assembly::DofMap dofs(model);
+      tsm::assembly::GlobalSystem system(model, dofs);
+      tsm::contact::ContactSet tracker(model);
+      std::vector<tsm::contact::ContactState> states = tracker.initial_states();
+      const Eigen::VectorXd D = post_pressed_in(model);
+      std::vector<double> rotations(model.elements.size(), 0.0);
+      tsm::assembly::Evaluation e;
+      system.evaluate(D, rotations, true, e);
+      tracker.update(D, e.chord_rotations, e.contacts, states, false, tsm::contact::unloaded_start(model));
+      ASSERT_TRUE(states[0].active);
+      states[0].entering = false;
+      // Where the point is: evaluated once unanchored (it anchors there), then the anchor moved.
+      system.evaluate(D, e.chord_rotations, true, e, tracker.active_contacts(states));
+      tracker.record(e.contacts, states);
+      tsm::contact::FrictionState& f = states[0].friction;
+      ASSERT_TRUE(f.anchored);
+      const double compression = -states[0].side * e.contacts[0].Y;
+      ASSERT_GT(compression, 1.0);
+      const auto active = tracker.active_contacts(states);
+      const tsm::contact::ContactElementData& data = active[0].data.front();
+      const double c_T = tsm::contact::tangential_compliance(data.section.EA, data.initial.length, e.contacts[0].alpha,
+                                                             data.edge, data.friction.min_compliance).value;
+      f.anchor -= share * 0.3 * compression * c_T;
+      const auto moved = tracker.active_contacts(states);
+      system.evaluate(D, e.chord_rotations, true, e, moved);
+      ASSERT_EQ(e.contacts[0].friction.status,
+                std::abs(share) < 1 ? tsm::contact::FrictionStatus::stick : tsm::contact::FrictionStatus::slip);
+      std::vector<tsm::linalg::RankOne> terms = system.contact_rank_one();
+      ASSERT_FALSE(system.friction_rank_one().empty());
+      terms.insert(terms.end(), system.friction_rank_one().begin(), system.friction_rank_one().end());
+      const Eigen::MatrixXd K = dense_tangent(dofs, system.tangent(), terms);
+      const Eigen::MatrixXd fd = finite_difference_tangent(system, dofs, D, e.chord_rotations, moved);
+      EXPECT_LE((K - fd).norm(), 1e-6 * fd.norm()) << element << " share " << share;
+    }
 }
 
 // ---- The pattern's contact pairs ----
