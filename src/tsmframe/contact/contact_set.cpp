@@ -306,6 +306,7 @@ void ContactSet::accept(const StepStart& start, std::vector<ContactState>& state
       f.anchor = f.trial_anchor;
     }
     states[k].friction.step_status = states[k].friction.status;
+    states[k].friction.step_tangential = states[k].friction.tangential;
     if (states[k].active) continue;
     // Apart at a converged state: a node that touches again starts afresh. (Within a step an
     // iterate that lets go and touches again keeps the step's anchor.)

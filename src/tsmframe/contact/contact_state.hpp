@@ -102,8 +102,10 @@ struct FrictionState {
   double slip = 0.0;         ///< the slip accumulated since the contact touched: Σ |Δs_a|
   FrictionStatus status = FrictionStatus::none;  ///< at the last evaluation
   /// At the iterate that converged the step (accept()): what a converged state reports — an
-  /// evaluation after it, from the moved anchor, finds a slipping point on the cone's edge.
+  /// evaluation after it, from the moved anchor, finds a slipping point sticking on the cone's
+  /// edge, its force read from a difference of arc lengths at round-off.
   FrictionStatus step_status = FrictionStatus::none;
+  double step_tangential = 0.0;
   double tangential = 0.0;   ///< the friction force along the beam's tangent, signed along e (Z q)
   double Z = 0.0;            ///< its share along e (F2)
   double trial_anchor = 0.0; ///< where the last evaluation's return map left the anchor

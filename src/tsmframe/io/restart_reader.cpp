@@ -1,8 +1,10 @@
 #include "tsmframe/io/restart_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "tsmframe/io/friction_names.hpp"
 #include "tsmframe/io/input_error.hpp"
 #include "tsmframe/io/input_file.hpp"
 #include "tsmframe/io/json_input.hpp"
@@ -102,10 +104,14 @@ void read_friction(const json& c, const std::string& at, const Model& model, con
   const std::string fat = child(at, "friction");
   f.anchored = boolean(h.at("anchored"), child(fat, "anchored"));
   f.slip = required_number(h, "slip", fat);
+  f.step_tangential = required_number(h, "tangential", fat);
+  const std::string status = string(h.at("status"), child(fat, "status"));
+  const auto named = std::find(friction_names.begin(), friction_names.end(), status);
+  if (named == friction_names.end()) fail(child(fat, "status"), "unknown friction status " + quote_text(status));
+  f.status = f.step_status = static_cast<contact::FrictionStatus>(named - friction_names.begin());
   if (!f.anchored) return;
   f.member = static_cast<int>(bounded_integer(h.at("member"), child(fat, "member"), 1, model.member_count)) - 1;
   f.anchor = required_number(h, "anchor", fat);
-  f.status = f.step_status = contact::FrictionStatus::stick;  // what the step found is told again by its first evaluation
 }
 
 /// Each contact's state at the kept step (element ids made indices).

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "tsmframe/io/element_curves.hpp"
+#include "tsmframe/io/friction_names.hpp"
 #include "tsmframe/io/section_diagrams.hpp"
 #include "tsmframe/io/json_writer.hpp"
 #include "tsmframe/io/mesh_json.hpp"
@@ -53,19 +54,6 @@ void write_section_forces(JsonWriter& w, const Model& model, const solver::StepR
   w.end_object();
 }
 
-/// A frictional contact's status as results.json names it.
-const char* friction_name(contact::FrictionStatus status) {
-  switch (status) {
-    case contact::FrictionStatus::stick: return "stick";
-    case contact::FrictionStatus::slip: return "slip";
-    case contact::FrictionStatus::open: return "open";
-    case contact::FrictionStatus::unanchored: return "touching";
-    case contact::FrictionStatus::off: return "off";
-    case contact::FrictionStatus::none: break;
-  }
-  return "none";
-}
-
 /// What a run restarted from this step needs beside its displacements (restart_reader.hpp).
 void write_restart_state(JsonWriter& w, const Model& model, const solver::StepRecord& step) {
   w.key("state").begin_object();
@@ -87,7 +75,8 @@ void write_restart_state(JsonWriter& w, const Model& model, const solver::StepRe
       if (const contact::FrictionState& f = c.friction; f.status != contact::FrictionStatus::none) {
         w.key("friction").begin_object().key("anchored").value(f.anchored);
         if (f.anchored) w.key("member").value(f.member + 1).key("anchor").value(f.anchor);
-        w.key("slip").value(f.slip).key("status").value(friction_name(f.step_status)).end_object();
+        w.key("slip").value(f.slip).key("status").value(std::string(friction_name(f.step_status)));
+        w.key("tangential").value(f.step_tangential).end_object();
       }
     }
     w.end_object();
@@ -169,7 +158,7 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
       w.key("force").value(c.force);
       if (c.partner >= 0) w.key("also").value(model.elements[c.partner].id);
       if (c.friction != contact::FrictionStatus::none)
-        w.key("friction").value(friction_name(c.friction)).key("tangential").value(c.tangential).key("slip").value(c.slip);
+        w.key("friction").value(std::string(friction_name(c.friction))).key("tangential").value(c.tangential).key("slip").value(c.slip);
       w.end_object();
     }
     w.end_array();

@@ -317,6 +317,12 @@ std::vector<std::pair<int, int>> TsmProblem::accept(State& state) {
   if (contacts_) {
     state.contact_references = contact::step_start(physical(state), state.chord_rotations);
     contacts_->accept(state.contact_references, state.contacts);
+    // A slipping contact's anchor has moved: the next step starts from the tangent with it (it
+    // sticks there), as a run restarted from this state does, not from the converged iterate's.
+    if (std::any_of(state.contacts.begin(), state.contacts.end(), [](const contact::ContactState& c) {
+          return c.active && c.friction.step_status == contact::FrictionStatus::slip;
+        }))
+      evaluate(state);
   }
   return slid_off;
 }
@@ -527,8 +533,9 @@ std::vector<ContactPoint> TsmProblem::contact_points(const State& state) const {
       p = {c.element, c.alpha, c.force, c.Y, c.vertex ? c.vertex->element : -1, c.vertex ? c.vertex->Y : 0.0,
            Eigen::Vector2d(c.push[0], c.push[1])};
       const contact::FrictionState& f = c.friction;
-      p.friction = f.step_status != contact::FrictionStatus::none ? f.step_status : f.status;
-      p.tangential = f.tangential;
+      const bool accepted = f.step_status != contact::FrictionStatus::none;
+      p.friction = accepted ? f.step_status : f.status;
+      p.tangential = accepted ? f.step_tangential : f.tangential;
       p.slip = f.slip;
     }
     points.push_back(p);
