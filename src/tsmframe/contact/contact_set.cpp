@@ -285,7 +285,7 @@ void ContactSet::record_friction(const ContactEvaluation& e, ContactState& state
   f.tangential = r.tangential;
   f.trial_anchor = r.trial_anchor;
   if (f.status == FrictionStatus::off) f.anchored = false;
-  if (f.status == FrictionStatus::unanchored) {  // the touching iterate: anchored here for the rest of the step
+  if (!f.anchored && f.status == FrictionStatus::stick) {  // the touching iterate: anchored here for the rest of the step
     f.anchored = true;
     f.anchor = r.arc;
     f.member = geometry_.model().elements[state.element].member;

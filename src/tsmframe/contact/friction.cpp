@@ -39,7 +39,7 @@ FrictionResult return_map(const FrictionData& f, double Y, double slope, double 
   // μ p c_T wide) allowed for — a slip tangent would let the predictor move the point freely.
   const double rounding = 8.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(arc), std::abs(anchor));
   if (std::abs(gap) <= f.mu * pressure / D * compliance + rounding) {
-    out.status = f.anchored ? FrictionStatus::stick : FrictionStatus::unanchored;
+    out.status = FrictionStatus::stick;
     out.Z = trial;
     out.trial_anchor = anchor;
   } else {                                                             // F9, step 5

@@ -23,7 +23,6 @@ using Vector9 = Eigen::Matrix<double, 9, 1>;
 /// Where the return map left a point.
 enum class FrictionStatus : std::uint8_t {
   none,        ///< μ = 0: frictionless, nothing formed
-  unanchored,  ///< no anchor yet (touched at this iterate): anchored at this point, Z = 0 with the stick's stiffness
   open,        ///< the law would pull (p₀ ≤ 0): Z = 0
   stick,
   slip,

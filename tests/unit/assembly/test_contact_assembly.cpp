@@ -104,7 +104,7 @@ TEST(ContactAssembly, TangentWithFrictionMatchesFiniteDifferencesInStickAndInSli
       tracker.update(D, e.chord_rotations, e.contacts, states, false, tsm::contact::unloaded_start(model));
       ASSERT_TRUE(states[0].active);
       states[0].entering = false;
-      // Where the point is: evaluated once unanchored (it anchors there), then the anchor moved.
+      // Where the point is: evaluated once without an anchor (it anchors there), then the anchor moved.
       system.evaluate(D, e.chord_rotations, true, e, tracker.active_contacts(states));
       tracker.record(e.contacts, states);
       tsm::contact::FrictionState& f = states[0].friction;

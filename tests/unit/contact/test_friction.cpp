@@ -102,7 +102,10 @@ TEST(Friction, ReturnMapSticksInsideTheConeAndSlipsOnIt) {
   EXPECT_NEAR(std::abs(tilted.Z), f.mu * (-f.side * tilted.normal_Y), 1e-14);
   EXPECT_NEAR(tilted.tangential, tilted.Z * std::sqrt(1 + w * w), 1e-15);
   f.anchored = false;
-  EXPECT_EQ(return_map(f, Y, 0.0, 2.1, c_T).status, FrictionStatus::unanchored);
+  const FrictionResult touching = return_map(f, Y, 0.0, 2.1, c_T);  // anchored where it touches
+  EXPECT_EQ(touching.status, FrictionStatus::stick);
+  EXPECT_EQ(touching.Z, 0.0);
+  EXPECT_EQ(touching.trial_anchor, 2.1);
   f.anchored = true;
   EXPECT_EQ(return_map(f, -Y, 0.0, 2.1, c_T).status, FrictionStatus::open);  // it would pull
 }

@@ -5,7 +5,7 @@
 //     element ends, and sticks again on reversal until the top has come back twice the
 //     threshold's deflection; the same from a restart in the middle of the drag, bit for bit;
 // (c) a stiff block pulled along a foundation: its nodes start to slip one by one at the loads a
-//     ladder of springs gives (the stick compliance c_T), gross slip at μ Σ P.
+//     ladder of springs gives (the stick compliance c_T), the last holding what the others leave.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -139,6 +139,77 @@ TEST(Friction, ARestartInTheMiddleOfTheDragGoesOnBitForBit) {
     EXPECT_EQ(a.contacts[0].tangential, b.contacts[0].tangential) << "step " << b.step;
     EXPECT_EQ(a.contacts[0].slip, b.contacts[0].slip) << "step " << b.step;
     EXPECT_EQ(a.contacts[0].friction, b.contacts[0].friction) << "step " << b.step;
+  }
+}
+
+/// (c) A straight block of 5 nodes (4 elements of h = 0.1, EA_b = 1e4) resting with a gap of 1 cm
+/// on a foundation of 10 pinned elements (l0 = 0.1, EA = 1e5), each node at the middle of one and
+/// pressed by P = 1 (μ = 0.3), then pulled at its right end by H. Each sticking node is a spring
+/// k_n = 1/c_T = EA/(¼ l0) along the foundation, joined to the next by k_s = EA_b/h: the force
+/// entering at the first sticking node j splits by the ladder K_last = k_n,
+/// K_i = k_n + k_s K_i+1/(k_s + K_i+1); node j starts to slip at H_j = μ P j + μ P K_j/k_n (F16).
+json pulled_block(const std::vector<double>& path) {
+  json nodes = json::array(), members = json::array(), supports = json::array(), loads = json::array();
+  for (int i = 0; i <= 10; ++i) {
+    nodes.push_back({{"id", i + 1}, {"x", 0.1 * i}, {"y", 0.0}});
+    supports.push_back({{"node", i + 1}, {"type", "pinned"}});
+    if (i < 10) members.push_back({{"from", i + 1}, {"to", i + 2}, {"material", "f"}, {"section", "f"}});
+  }
+  for (int k = 0; k < 5; ++k) {
+    nodes.push_back({{"id", 21 + k}, {"x", 0.25 + 0.1 * k}, {"y", 0.01}});
+    loads.push_back({{"node", 21 + k}, {"fy", -1.0}});
+    if (k < 4) members.push_back({{"from", 21 + k}, {"to", 22 + k}, {"material", "b"}, {"section", "b"}});
+  }
+  return {{"materials", {{"f", {{"E", 1e5}}}, {"b", {{"E", 1e4}}}}},
+          {"sections", {{"f", {{"A", 1.0}, {"I", 1.0}}}, {"b", {{"A", 1.0}, {"I", 1e-3}}}}},
+          {"nodes", nodes},
+          {"members", members},
+          {"supports", supports},
+          {"springs", json::array({{{"node", 21}, {"kx", 1e-3}}})},  // the block held along x before it touches
+          {"contacts", json::array({{{"nodes", {21, 22, 23, 24, 25}},
+                                     {"members", {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}},
+                                     {"friction", 0.3},
+                                     {"gap", 0.01}}})},
+          {"stages", json::array({{{"loads", loads}, {"control", {{"type", "load"}, {"steps", 1}}}},
+                                  {{"loads", json::array({{{"node", 25}, {"fx", 1.0}}})},
+                                   {"control", {{"type", "load"}, {"steps", 1}, {"path", path}}}}})}};
+}
+
+TEST(Friction, ABlockPulledAlongAFoundationSlipsNodeByNodeAtTheLadderLoads) {
+  const double k_n = 1e5 / (0.25 * 0.1), k_s = 1e4 / 0.1, muP = 0.3;
+  std::array<double, 5> K{};  // from the pulled end: K[0] the first node's
+  K[4] = k_n;
+  for (int i = 3; i >= 0; --i) K[i] = k_n + k_s * K[i + 1] / (k_s + K[i + 1]);
+  std::vector<double> path;  // just below and just above each node's start of slip
+  for (int j = 0; j < 4; ++j) {
+    const double H_j = muP * j + muP * K[j] / k_n;
+    path.push_back(H_j - 2e-3);
+    path.push_back(H_j + 2e-3);
+  }
+  path.push_back(1.45);  // four slipping, the last holding 0.25
+  EXPECT_NEAR(muP * K[0] / k_n, 0.3073213, 1e-7);
+  tsm::Model model;
+  const tsm::solver::RunResult result = run(pulled_block(path), model);
+  ASSERT_EQ(result.status, tsm::solver::Status::converged) << result.message;
+  ASSERT_EQ(result.steps.size(), path.size() + 1);
+  for (size_t q = 0; q < path.size(); ++q) {
+    const tsm::solver::StepRecord& s = result.steps[q + 1];
+    const double H = s.load_factor;
+    const int slipping = q == path.size() - 1 ? 4 : static_cast<int>((q + 1) / 2);
+    double total = 0.0;
+    for (int k = 0; k < 5; ++k) {  // contacts in model order: node 21 (far end) … 25 (pulled)
+      const tsm::solver::ContactPoint& c = s.contacts[static_cast<size_t>(4 - k)];  // k-th from the pulled end
+      total += c.tangential;
+      if (k < slipping) {
+        EXPECT_EQ(c.friction, FrictionStatus::slip) << "H " << H << " node " << k;
+        EXPECT_NEAR(c.tangential, 0.3 * c.force, 1e-9) << "H " << H << " node " << k;
+      } else {
+        EXPECT_EQ(c.friction, FrictionStatus::stick) << "H " << H << " node " << k;
+      }
+      if (k == slipping && k < 4)  // the first sticking node takes its ladder share of what is left
+        EXPECT_NEAR(c.tangential, (H - muP * slipping) * k_n / K[k], 1e-4 * muP) << "H " << H;
+    }
+    EXPECT_NEAR(total, H, 1e-7) << "H " << H;
   }
 }
 
