@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "tsmframe/io/friction_names.hpp"
 #include "tsmframe/io/results_writer.hpp"
 #include "tsmframe/io/section_diagrams.hpp"
 #include "src/bindings.hpp"
@@ -182,11 +183,13 @@ void add_states(py::dict& out, const Model& model, const solver::RunResult& resu
   out["reactions"] = array<double>({K, n, 3}, reactions);
 }
 
-/// Per converged step and contact: element id (0: none), the vertex's other element id, α, force.
+/// Per converged step and contact: element id (0: none), the vertex's other element id, α, force,
+/// and friction's force along the beam, slip so far and status ("" without friction).
 void add_contacts(py::dict& out, const Model& model, const solver::RunResult& result) {
   const py::ssize_t c = count(model.contacts.size());
   std::vector<int> element, also;
-  std::vector<double> alpha, force;
+  std::vector<double> alpha, force, tangential, slip;
+  py::list status;
   py::ssize_t C = 0;  // converged steps, where the model has contacts (else no rows)
   for (const solver::StepRecord& s : result.steps) {
     if (!s.converged || c == 0) continue;
@@ -197,12 +200,19 @@ void add_contacts(py::dict& out, const Model& model, const solver::RunResult& re
       also.push_back(p.partner >= 0 ? model.elements[p.partner].id : 0);
       alpha.push_back(p.element >= 0 ? p.alpha : 0.0);
       force.push_back(p.element >= 0 ? p.force : 0.0);
+      const bool frictional = p.element >= 0 && p.friction != contact::FrictionStatus::none;
+      tangential.push_back(frictional ? p.tangential : 0.0);
+      slip.push_back(frictional ? p.slip : 0.0);
+      status.append(frictional ? std::string(io::friction_name(p.friction)) : std::string());
     }
   }
   out["contact_element"] = array<int>({C, c}, element);
   out["contact_also"] = array<int>({C, c}, also);
   out["contact_alpha"] = array<double>({C, c}, alpha);
   out["contact_force"] = array<double>({C, c}, force);
+  out["contact_tangential"] = array<double>({C, c}, tangential);
+  out["contact_slip"] = array<double>({C, c}, slip);
+  out["contact_friction"] = py::module_::import("numpy").attr("array")(status, "U5").attr("reshape")(C, c);
 }
 
 /// What `tsmframe run` writes: results.json and steps.csv.

@@ -366,6 +366,11 @@ class Result:
     contact_nodes (c,), contact_element (C, c) element id or 0, contact_alpha (C, c), contact_force (C, c),
     contact_also (C, c)        at a vertex (a point resting on a beam node, both elements in contact):
                                the other element's id, else 0
+    contact_tangential (C, c), contact_slip (C, c), contact_friction (C, c)
+                               with "friction": the friction force along the beam (signed along the touched
+                               element's direction), the slip since the contact touched, and "stick" or
+                               "slip" ("" without friction; "off" where it is not formed yet: an element
+                               several points share)
     results_json, steps_csv    exactly what `tsmframe run` writes
     curves(k)                  (m, segments + 1, 2): every element's deflected curve at state k (hinges and
                                end springs included), computed by the solver's own shape functions

@@ -52,13 +52,17 @@ def _contacts(document):
     C, c = len(converged), len(nodes)
     element, also = np.zeros((C, c), dtype=np.int32), np.zeros((C, c), dtype=np.int32)
     alpha, force = np.zeros((C, c)), np.zeros((C, c))
+    tangential, slip, friction = np.zeros((C, c)), np.zeros((C, c)), np.full((C, c), "", dtype="U5")
     for k, s in enumerate(converged):
         for p in s.get("contacts", []):
             j = column[p["node"]]
             element[k, j], also[k, j] = p["element"], p.get("also", 0)
             alpha[k, j], force[k, j] = p["xi"], p["force"]
+            if "friction" in p:
+                tangential[k, j], slip[k, j], friction[k, j] = p["tangential"], p["slip"], p["friction"]
     return {"contact_nodes": np.array(nodes, dtype=np.int32), "contact_element": element, "contact_also": also,
-            "contact_alpha": alpha, "contact_force": force}
+            "contact_alpha": alpha, "contact_force": force, "contact_tangential": tangential, "contact_slip": slip,
+            "contact_friction": friction}
 
 
 def _buckling(document, index):

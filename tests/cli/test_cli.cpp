@@ -264,6 +264,27 @@ TEST_F(Cli, BadInputNamesFilePathAndReason) {
          m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"max_stiffness_ratio", 0.5}}});
        },
        "contacts[0].max_stiffness_ratio: must be at least 1"},
+      {"negative friction",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});
+         m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
+         m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"friction", -0.2}}});
+       },
+       "contacts[0].friction: must lie between 0 and 10"},
+      {"friction as text",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});
+         m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
+         m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"friction", "0.3"}}});
+       },
+       "contacts[0].friction: "},
+      {"friction in the cantilever frame",
+       [](json& m) {
+         m["nodes"].push_back({{"id", 5}, {"x", 1.0}, {"y", -0.1}});
+         m["supports"].push_back({{"node", 5}, {"type", "fixed"}});
+         m["contacts"] = json::array({{{"node", 5}, {"members", "all"}, {"frame", "cantilever"}, {"friction", 0.3}}});
+       },
+       "contacts[0].friction: friction is not in the cantilever frame yet"},
       {"a free contact node drawn off its gap",  // only its uy free, 0.1 above the beam, gap 0.05
        [](json& m) {
          m["nodes"].push_back({{"id", 5}, {"x", 1.5}, {"y", 0.1}});

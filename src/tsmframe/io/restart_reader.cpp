@@ -110,7 +110,7 @@ void read_friction(const json& c, const std::string& at, const Model& model, con
   if (named == friction_names.end()) fail(child(fat, "status"), "unknown friction status " + quote_text(status));
   f.status = f.step_status = static_cast<contact::FrictionStatus>(named - friction_names.begin());
   if (!f.anchored) return;
-  f.member = static_cast<int>(bounded_integer(h.at("member"), child(fat, "member"), 1, model.member_count)) - 1;
+  f.member = static_cast<int>(bounded_integer(h.at("member"), child(fat, "member"), 0, model.member_count - 1));
   f.anchor = required_number(h, "anchor", fat);
 }
 

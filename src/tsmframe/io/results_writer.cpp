@@ -74,7 +74,7 @@ void write_restart_state(JsonWriter& w, const Model& model, const solver::StepRe
       }
       if (const contact::FrictionState& f = c.friction; f.status != contact::FrictionStatus::none) {
         w.key("friction").begin_object().key("anchored").value(f.anchored);
-        if (f.anchored) w.key("member").value(f.member + 1).key("anchor").value(f.anchor);
+        if (f.anchored) w.key("member").value(f.member).key("anchor").value(f.anchor);
         w.key("slip").value(f.slip).key("status").value(std::string(friction_name(f.step_status)));
         w.key("tangential").value(f.step_tangential).end_object();
       }
