@@ -369,8 +369,7 @@ class Result:
     contact_tangential (C, c), contact_slip (C, c), contact_friction (C, c)
                                with "friction": the friction force along the beam (signed along the touched
                                element's direction), the slip since the contact touched, and "stick" or
-                               "slip" ("" without friction; "off" where it is not formed yet: an element
-                               several points share)
+                               "slip" ("" without friction)
     results_json, steps_csv    exactly what `tsmframe run` writes
     curves(k)                  (m, segments + 1, 2): every element's deflected curve at state k (hinges and
                                end springs included), computed by the solver's own shape functions

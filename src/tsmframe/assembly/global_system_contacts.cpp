@@ -26,10 +26,12 @@ double point_alpha(const KeptPointResponse& r, int) { return r.alpha; }
 double point_force_per_Y(const KeptPointResponse& r, int) { return r.force_per_Y; }
 const contact::Vector9& sliding_u(const KeptPointResponse& r, int) { return r.sliding_u; }
 const contact::Vector9& sliding_v(const KeptPointResponse& r, int) { return r.sliding_v; }
-// Friction (one point, chord frame): the return map's result; none elsewhere.
+// Friction: the return map's result (none in a kept response: no frictional one is kept).
 contact::FrictionResult point_friction(const contact::ContactResponse& r, int) { return r.friction; }
-template <class Response>
-contact::FrictionResult point_friction(const Response&, int) { return {}; }
+contact::FrictionResult point_friction(const contact::MultiPointResponse& r, int p) {
+  return r.friction.empty() ? contact::FrictionResult{} : r.friction[static_cast<size_t>(p)];
+}
+contact::FrictionResult point_friction(const KeptPointResponse&, int) { return {}; }
 // The symmetric tangent's node block (p, q ≥ p), the `pair`-th in that order.
 template <class Response>
 auto node_block(const Response& r, int p, int q, int) { return r.symmetric_tangent.template block<3, 3>(3 * p, 3 * q); }
@@ -160,6 +162,9 @@ void GlobalSystem::add_contact(const contact::ActiveContact& a, const Response& 
   }
   if constexpr (std::is_same_v<Response, contact::ContactResponse>)
     add_rank_one(r.friction_u, r.friction_v, friction_rank_one_, friction_rank_ones_);
+  if constexpr (std::is_same_v<Response, contact::MultiPointResponse>)
+    for (Eigen::Index p = 0; p < r.friction_u.cols(); ++p)
+      add_rank_one(r.friction_u.col(p), r.friction_v.col(p), friction_rank_one_, friction_rank_ones_);
   if (!has_prescribed_) return;
   for (int b = 0; b < size; ++b) {
     const double dp = model_.reference_prescribed[g[b]];

@@ -23,6 +23,9 @@ void as_multi_point(const ContactResponse& r, bool with_tangent, MultiPointRespo
   m.point_stiffness.setConstant(1, 1, r.point_stiffness);
   m.sliding_u = r.sliding_u;
   m.sliding_v = r.sliding_v;
+  m.friction.assign(1, r.friction);
+  m.friction_u = r.friction_u;
+  m.friction_v = r.friction_v;
   if (with_tangent) {
     m.tangent = r.tangent;
     m.symmetric_tangent = r.symmetric_tangent;
@@ -45,7 +48,7 @@ MultiPointElementData multi_point_data(const ActiveContact& contact) {
   data.flexibility_j = first.flexibility_j;
   data.frame = first.frame;  // every point's (occupancy.hpp)
   for (const ContactElementData& point : contact.data) {
-    data.points.push_back({point.contact_start, point.offset, point.normal});
+    data.points.push_back({point.contact_start, point.offset, point.normal, point.friction});
     data.min_compliance = std::max(data.min_compliance, point.min_compliance);
     data.sliding_term = data.sliding_term && point.sliding_term;
   }

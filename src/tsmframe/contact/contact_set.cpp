@@ -114,8 +114,13 @@ void ContactSet::active_contacts(const std::vector<ContactState>& states, bool a
   // An element a point enters pushes along its chord's normal at all its points: the entering
   // point's Y, read from how far the predictor ran its node through the beam, would turn the
   // others' normals too.
+  // So does an element of several points one of which has friction: the k-point element's
+  // friction is written along the chords' normals (friction.hpp).
+  const auto frictional = [](const ActiveContact& a) {
+    return a.size() > 1 && std::any_of(a.data.begin(), a.data.end(), [](const ContactElementData& d) { return d.friction.mu > 0.0; });
+  };
   for (ActiveContact& a : active)
-    if (along_chords ||
+    if (along_chords || frictional(a) ||
         std::any_of(a.points.begin(), a.points.end(), [&](const ActivePoint& p) { return states[p.contact].entering; }))
       for (ContactElementData& d : a.data) d.normal = ContactNormal::chord;
 }
@@ -280,11 +285,10 @@ void ContactSet::restore(const StepStart& start, std::vector<ContactState>& stat
 void ContactSet::record_friction(const ContactEvaluation& e, ContactState& state) const {
   FrictionState& f = state.friction;
   const FrictionResult& r = e.friction;
-  f.status = r.status == FrictionStatus::none ? FrictionStatus::off : r.status;  // none: a vertex, or k points
+  f.status = r.status;
   f.Z = r.Z;
   f.tangential = r.tangential;
   f.trial_anchor = r.trial_anchor;
-  if (f.status == FrictionStatus::off) f.anchored = false;
   if (!f.anchored && f.status == FrictionStatus::stick) {  // the touching iterate: anchored here for the rest of the step
     f.anchored = true;
     f.anchor = r.arc;

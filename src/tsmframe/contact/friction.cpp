@@ -6,8 +6,50 @@
 
 #include "tsmframe/contact/contact_element.hpp"
 #include "tsmframe/contact/deflected_normal_element.hpp"
+#include "tsmframe/contact/multi_point_element.hpp"
 
 namespace tsm::contact {
+namespace {
+
+/// One point's friction on the translations of i, j and its node (the 9-vector's places): the
+/// return map's result and what the force f += Z A g and its tangent are made of (F3, F11–F13).
+struct PointFriction {
+  FrictionResult result;
+  double A = 0.0;            ///< l + w_α²/l
+  Vector9 g, grad_A;         ///< ∂α/∂x, ∇A
+  double stick_stiffness = 0.0;  ///< k_s (stick): ∇Z = k_s g
+  /// slip: ∇Z = slip_rate · (Z ∇w' − ∇Y); the Z ∇w' part here (∇Y is the caller's, over its dofs)
+  double slip_rate = 0.0;
+  Vector9 slope_part = Vector9::Zero();
+  bool acts() const { return result.status == FrictionStatus::stick || result.status == FrictionStatus::slip; }
+};
+
+PointFriction point_friction(const FrictionData& f, const element::InitialChord& initial, double EA, double edge,
+                             const element::Chord& chord, double alpha, double rho, double Y, double w_alpha,
+                             const Vector9& grad_w_alpha) {
+  PointFriction p;
+  const double l0 = initial.length, l = chord.length;
+  const TangentialCompliance cT = tangential_compliance(EA, l0, alpha, edge, f.min_compliance);
+  const double slope = w_alpha / l;
+  p.result = return_map(f, Y, slope, f.arc_start + l0 * alpha, cT.value);
+  if (!p.acts()) return p;
+  p.A = l + w_alpha * w_alpha / l;  // F3
+  p.g = alpha_gradient(chord, alpha, rho);
+  const Eigen::Vector2d e(chord.cos, chord.sin);
+  const Vector9 grad_l = spread(-e, e, Eigen::Vector2d::Zero());
+  p.grad_A = (1.0 - slope * slope) * grad_l + (2.0 * slope) * grad_w_alpha;  // F11
+  const double Z = p.result.Z;
+  if (p.result.status == FrictionStatus::stick) {
+    p.stick_stiffness = (l0 - Z * cT.d_alpha) / cT.value;  // F12
+    return p;
+  }
+  const double direction = Z > 0.0 ? 1.0 : -1.0;
+  p.slip_rate = direction * f.mu * f.side / (1.0 - f.side * direction * f.mu * slope);  // F13
+  p.slope_part = (Z / l) * (grad_w_alpha - slope * grad_l);
+  return p;
+}
+
+}  // namespace
 
 TangentialCompliance tangential_compliance(double EA, double l0, double alpha, double edge, double min_compliance) {
   const double axial = alpha * (1.0 - alpha) * l0 / EA;  // c_ax: a bar held at both ends, loaded at α (F6)
@@ -56,39 +98,76 @@ void add_friction(const ContactElementData& data, double w_alpha, const Vector9&
                   ContactResponse& r) {
   const FrictionData& f = data.friction;
   if (f.mu == 0.0) return;
-  const double l0 = data.initial.length, l = r.chord.length, Y = r.forces[3];
-  const TangentialCompliance cT = tangential_compliance(data.section.EA, l0, r.alpha, data.edge, f.min_compliance);
-  const double slope = w_alpha / l;
-  r.friction = return_map(f, Y, slope, f.arc_start + l0 * r.alpha, cT.value);
-  if (r.friction.status == FrictionStatus::open) return;
-  const double Z = r.friction.Z;
-  const double A = l + w_alpha * w_alpha / l;  // F3
-  const Vector9 g = alpha_gradient(r.chord, r.alpha, r.normal);
-  r.nodal_forces += (Z * A) * g;
+  const double Y = r.forces[3];
+  const PointFriction p = point_friction(f, data.initial, data.section.EA, data.edge, r.chord, r.alpha, r.normal, Y,
+                                         w_alpha, grad_w_alpha);
+  r.friction = p.result;
+  if (!p.acts()) return;
+  const double Z = p.result.Z;
+  r.nodal_forces += (Z * p.A) * p.g;
   if (!with_tangent) return;
-
-  const Eigen::Vector2d e(r.chord.cos, r.chord.sin);
-  const Vector9 grad_l = spread(-e, e, Eigen::Vector2d::Zero());
-  const Vector9 grad_A = (1.0 - slope * slope) * grad_l + (2.0 * slope) * grad_w_alpha;  // F11
-  add_alpha_hessian(r.symmetric_tangent, Z * A, r.chord, r.alpha, r.normal);
-  r.friction_u = g;
-  if (r.friction.status != FrictionStatus::slip) {  // stick (or touching here): F12: ∇Z = k_s g, its A k_s g gᵀ symmetric
-    const double k_s = (l0 - Z * cT.d_alpha) / cT.value;
-    r.symmetric_tangent.noalias() += (A * k_s) * g * g.transpose();
-    r.friction_v = Z * grad_A;
+  add_alpha_hessian(r.symmetric_tangent, Z * p.A, r.chord, r.alpha, r.normal);
+  r.friction_u = p.g;
+  if (p.result.status == FrictionStatus::stick) {  // ∇Z = k_s g: A k_s g gᵀ symmetric
+    r.symmetric_tangent.noalias() += (p.A * p.stick_stiffness) * p.g * p.g.transpose();
+    r.friction_v = Z * p.grad_A;
     return;
   }
-  // F13: ∇Z = (ς μ σ / D)(Z ∇w' − ∇Y), ∇Y = p_c / c + Y_α g, ∇w' = (∇w_α − w' ∇l) / l.
+  // ∇Y = p_c / c + Y_α g (the chord's point load, the law's α-rate).
   const PointLoadLaw& law = r.law.connected;
   const double c = law.compliance;
   const double Y_alpha = (law.dh_i * r.deformations[1] + law.dh_j * r.deformations[2] - Y * law.dcompliance) / c;
   const Vector9 point_chord = contact_equilibrium_matrix(r.chord, r.alpha) * Vector4(0.0, law.h_i, law.h_j, 1.0);
-  const Vector9 grad_Y = point_chord / c + Y_alpha * g;
-  const Vector9 grad_slope = (grad_w_alpha - slope * grad_l) / l;
-  const double direction = Z > 0.0 ? 1.0 : -1.0;
-  const double D = 1.0 - f.side * direction * f.mu * slope;
-  const Vector9 grad_Z = (direction * f.mu * f.side / D) * (Z * grad_slope - grad_Y);
-  r.friction_v = A * grad_Z + Z * grad_A;
+  const Vector9 grad_Y = point_chord / c + Y_alpha * p.g;
+  r.friction_v = p.A * p.slip_rate * (p.slope_part - grad_Y) + Z * p.grad_A;
+}
+
+void add_multi_point_friction(const MultiPointElementData& data, const Eigen::MatrixXd& dpoint_forces,
+                              bool with_tangent, MultiPointResponse& r) {
+  const int k = data.size(), size = 3 * (2 + k);
+  r.friction.assign(static_cast<size_t>(k), FrictionResult{});
+  r.friction_u = Eigen::MatrixXd::Zero(size, k);
+  r.friction_v = Eigen::MatrixXd::Zero(size, k);
+  const auto places = [](int point) { return std::array<int, 9>{0, 1, 2, 3, 4, 5, 6 + 3 * point, 7 + 3 * point, 8 + 3 * point}; };
+  const auto widen = [&](const Vector9& local, int point) {  // the 9 places of i, j, c_p in the element's dofs
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(size);
+    const std::array<int, 9> at = places(point);
+    for (int a = 0; a < 9; ++a) v[at[a]] += local[a];
+    return v;
+  };
+  std::vector<Eigen::VectorXd> g(static_cast<size_t>(k));  // every point's ∂α/∂x: ∇Y_p reads them all
+  for (int q = 0; q < k; ++q) g[q] = widen(alpha_gradient(r.chord, r.alpha[q], r.normal[q]), q);
+  for (int p = 0; p < k; ++p) {
+    const FrictionData& f = data.points[p].friction;
+    if (f.mu == 0.0) continue;
+    // Every point of a frictional element pushes along its chord's normal (w' = 0; active_contacts).
+    const PointFriction pf = point_friction(f, data.initial, data.section.EA, data.edge, r.chord, r.alpha[p],
+                                            r.normal[p], r.forces[3 + p], 0.0, Vector9::Zero());
+    r.friction[p] = pf.result;
+    if (!pf.acts()) continue;
+    const double Z = pf.result.Z;
+    r.nodal_forces += (Z * pf.A) * g[p];
+    if (!with_tangent) continue;
+    Matrix9 hessian = Matrix9::Zero();
+    add_alpha_hessian(hessian, Z * pf.A, r.chord, r.alpha[p], r.normal[p]);
+    if (pf.result.status == FrictionStatus::stick) hessian.noalias() += (pf.A * pf.stick_stiffness) * pf.g * pf.g.transpose();
+    const std::array<int, 9> at = places(p);
+    for (int a = 0; a < 9; ++a)
+      for (int b = 0; b < 9; ++b) {
+        r.symmetric_tangent(at[a], at[b]) += hessian(a, b);
+        r.tangent(at[a], at[b]) += hessian(a, b);
+      }
+    r.friction_u.col(p) = g[p];
+    Eigen::VectorXd v = Z * widen(pf.grad_A, p);
+    if (pf.result.status == FrictionStatus::slip) {
+      // ∇Y_p = Σ_q C⁻¹(p, q) P_q + Σ_q ∂Y_p/∂α_q g_q (K14, K13).
+      Eigen::VectorXd grad_Y = r.point_u * r.point_stiffness.row(p).transpose();
+      for (int q = 0; q < k; ++q) grad_Y += dpoint_forces(p, q) * g[q];
+      v += pf.A * pf.slip_rate * (widen(pf.slope_part, p) - grad_Y);
+    }
+    r.friction_v.col(p) = v;
+    r.tangent.noalias() += r.friction_u.col(p) * v.transpose();
+  }
 }
 
 }  // namespace tsm::contact

@@ -18,6 +18,8 @@ namespace tsm::contact {
 
 struct ContactElementData;
 struct ContactResponse;
+struct MultiPointElementData;
+struct MultiPointResponse;
 using Vector9 = Eigen::Matrix<double, 9, 1>;
 
 /// Where the return map left a point.
@@ -26,7 +28,6 @@ enum class FrictionStatus : std::uint8_t {
   open,        ///< the law would pull (p₀ ≤ 0): Z = 0
   stick,
   slip,
-  off,  ///< friction not formed here: a vertex, or an element of several points (issue 30's next increment)
 };
 
 /// What a point's friction needs beside the element: its μ, the side it presses from, and its
@@ -66,5 +67,11 @@ FrictionResult return_map(const FrictionData& friction, double Y, double slope, 
 /// rank-one pair friction_u friction_vᵀ (F11–F14), and r.friction. μ = 0: nothing (F §8).
 void add_friction(const ContactElementData& data, double w_alpha, const Vector9& grad_w_alpha, bool with_tangent,
                   ContactResponse& r);
+/// The same for the points of a k-point element in the chord frame, each along its chord's
+/// normal (a frictional element's points all are; ContactSet::active_contacts): ∇Y_p couples the
+/// points through C⁻¹ and the law's α-rates `dpoint_forces` (∂Y_p/∂α_q). Into r.friction (per
+/// point), nodal_forces, symmetric_tangent and tangent, and the pairs friction_u friction_vᵀ.
+void add_multi_point_friction(const MultiPointElementData& data, const Eigen::MatrixXd& dpoint_forces,
+                              bool with_tangent, MultiPointResponse& r);
 
 }  // namespace tsm::contact

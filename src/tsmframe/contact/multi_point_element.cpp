@@ -1,5 +1,6 @@
 #include "tsmframe/contact/multi_point_element.hpp"
 
+#include <algorithm>
 #include <utility>
 
 #include <Eigen/SparseCore>
@@ -93,7 +94,12 @@ MultiPointResponse multi_point_response(const MultiPointElementData& data, const
   r.point_stiffness = map.stiffness;
   r.sliding_u = Eigen::MatrixXd::Zero(size, k);
   r.sliding_v = Eigen::MatrixXd::Zero(size, k);
-  if (!with_tangent) return r;
+  const bool frictional = std::any_of(data.points.begin(), data.points.end(),
+                                      [](const ContactPointData& p) { return p.friction.mu != 0.0; });
+  if (!with_tangent) {
+    if (frictional) add_multi_point_friction(data, f.dpoint_forces, false, r);
+    return r;
+  }
 
   const Eigen::MatrixXd JD = J * law_tangent(map, data.k0(0, 0), k_plain);
   r.tangent = JD * J.transpose();  // K14
@@ -115,6 +121,7 @@ MultiPointResponse multi_point_response(const MultiPointElementData& data, const
     const Eigen::SparseMatrix<double> v = r.sliding_v.sparseView();
     r.tangent += r.sliding_u * v.transpose();
   }
+  if (frictional) add_multi_point_friction(data, f.dpoint_forces, true, r);
   return r;
 }
 

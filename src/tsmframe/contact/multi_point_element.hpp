@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "tsmframe/contact/friction.hpp"
 #include "tsmframe/contact/multi_point_law.hpp"
 #include "tsmframe/element/chord.hpp"
 #include "tsmframe/element/force_law.hpp"
@@ -27,6 +28,7 @@ struct ContactPointData {
   /// The normal its force acts along: the chord's (this element) or the bent beam's
   /// (multi_point_deflected_normal.hpp, which keeps a chord point's force along the chord's).
   ContactNormal normal = ContactNormal::chord;
+  FrictionData friction;  ///< Coulomb friction at the point (μ = 0: none; friction.hpp)
 };
 
 /// What does not change while the contacts sit on one element (ContactElementData for k points).
@@ -68,6 +70,9 @@ struct MultiPointResponse {
   Eigen::MatrixXd symmetric_tangent;  ///< J (∂S/∂d) Jᵀ + K_G
   Eigen::MatrixXd sliding_u;  ///< column p: J ∂S/∂α_p — point p's sliding term is sliding_u.col(p) …
   Eigen::MatrixXd sliding_v;  ///< … sliding_v.col(p)ᵀ, with column p ∂α_p/∂x (both zero without the term)
+  /// Friction per point (friction.hpp; empty without any): tangent += Σ_p friction_u.col(p) friction_v.col(p)ᵀ.
+  std::vector<FrictionResult> friction;
+  Eigen::MatrixXd friction_u, friction_v;
 };
 
 /// J (3(2+k) × (3+k)): columns N, M_i, M_j as for the two-node element; Y_p: node i −(1−α_p) n,

@@ -9,7 +9,7 @@
 namespace tsm::io {
 
 /// In FrictionStatus's order.
-inline constexpr std::array<std::string_view, 5> friction_names = {"none", "open", "stick", "slip", "off"};
+inline constexpr std::array<std::string_view, 4> friction_names = {"none", "open", "stick", "slip"};
 
 inline std::string_view friction_name(contact::FrictionStatus status) {
   return friction_names[static_cast<size_t>(status)];

@@ -11,9 +11,11 @@
 
 #include "support/contact_trial.hpp"
 #include "support/end_connections.hpp"
+#include "support/multi_point_trial.hpp"
 #include "tsmframe/contact/contact_response.hpp"
 #include "tsmframe/contact/deflected_normal_element.hpp"
 #include "tsmframe/contact/friction.hpp"
+#include "tsmframe/contact/multi_point_element.hpp"
 
 namespace {
 
@@ -193,6 +195,68 @@ TEST(Friction, ZeroMuLeavesTheElementAsItWas) {
     EXPECT_TRUE(r.tangent == plain.tangent);
     EXPECT_TRUE(r.friction_u.isZero() && r.friction_v.isZero());
   }
+}
+
+// ---- Several points on one element (the k-point element, along the chords' normals) ----
+
+/// A k-point trial with friction at every point, each anchor put at `shares[p]` times its bound
+/// (cycled): the points stick or slip each their own way.
+tsm::test::MultiTrial frictional_points(const tsm::test::MultiSpec& spec, const std::vector<double>& shares) {
+  tsm::test::MultiTrial t = tsm::test::multi_trial(spec);
+  const MultiPointResponse plain = multi_point_response(t.data, t.d, t.previous, false);
+  for (int p = 0; p < t.data.size(); ++p) {
+    const double Y = plain.forces[3 + p], share = shares[static_cast<size_t>(p) % shares.size()];
+    FrictionData& f = t.data.points[p].friction;
+    f.mu = mu;
+    f.side = Y > 0.0 ? -1 : 1;
+    f.arc_start = 0.3;
+    f.anchored = true;
+    const double l0 = t.data.initial.length, c_T = tangential_compliance(t.data.section.EA, l0, plain.alpha[p], t.data.edge, 0.0).value;
+    f.anchor = f.arc_start + l0 * plain.alpha[p] - share * mu * (-f.side * Y) * c_T;
+  }
+  return t;
+}
+
+TEST(Friction, SeveralPointsOnOneElementMatchCentralDifferencesInStickAndInSlip) {
+  double worst = 0.0;
+  for (const tsm::test::MultiSpec& base : tsm::test::bent_and_turned_cases())
+    for (const Ends ends : {Ends{0.0, 0.0}, tsm::test::connections[2], tsm::test::connections[4]})
+      for (const std::vector<double>& shares : {std::vector<double>{0.5, 3.0}, std::vector<double>{-2.5, -0.4, 2.0}}) {
+        tsm::test::MultiSpec spec = base;
+        spec.ends = ends;
+        const tsm::test::MultiTrial t = frictional_points(spec, shares);
+        const MultiPointResponse r = multi_point_response(t.data, t.d, t.previous);
+        for (int p = 0; p < t.data.size(); ++p) {
+          const double share = shares[static_cast<size_t>(p) % shares.size()];
+          ASSERT_EQ(r.friction[p].status, std::abs(share) < 1 ? FrictionStatus::stick : FrictionStatus::slip);
+          if (std::abs(share) > 1)
+            EXPECT_NEAR(std::abs(r.friction[p].Z), mu * std::abs(r.forces[3 + p]), 1e-12 * std::abs(r.forces[3 + p]));
+        }
+        const Eigen::MatrixXd fd = tsm::test::multi_point_finite_difference_tangent(t, multi_point_response, 1e-7);
+        worst = std::max(worst, (r.tangent - fd).norm() / fd.norm());
+        EXPECT_LE((r.tangent - fd).norm(), 1e-6 * fd.norm()) << "k " << t.data.size();
+        const Eigen::MatrixXd split = r.symmetric_tangent + r.sliding_u * r.sliding_v.transpose() +
+                                      r.friction_u * r.friction_v.transpose();
+        EXPECT_LE((split - r.tangent).norm(), 1e-12 * r.tangent.norm());
+      }
+  std::printf("k points' friction tangent against central differences: worst %.2e\n", worst);
+}
+
+TEST(Friction, OnePointInTheKPointFormIsTheThreeNodeElement) {
+  // The k-point element with one frictional point against the three-node one, field by field.
+  const ContactTrial t = frictional(spec_of(0.0, 0.9, 0.2, -0.1, 0.1), ContactNormal::chord, {0.0, 0.0}, 2.0);
+  MultiPointElementData data;
+  data.initial = t.data.initial;
+  data.section = t.data.section;
+  data.k0 = t.data.k0;
+  data.edge = t.data.edge;
+  data.points.push_back({t.data.contact_start, t.data.offset, ContactNormal::chord, t.data.friction});
+  const MultiPointResponse k = multi_point_response(data, t.d, t.previous);
+  const ContactResponse one = contact_response(t.data, t.d, t.previous);
+  EXPECT_EQ(k.friction[0].status, FrictionStatus::slip);
+  EXPECT_NEAR(k.friction[0].Z, one.friction.Z, 1e-14);
+  EXPECT_LE((k.nodal_forces - one.nodal_forces).norm(), 1e-12 * one.nodal_forces.norm());
+  EXPECT_LE((k.tangent - one.tangent).norm(), 1e-10 * one.tangent.norm());
 }
 
 }  // namespace

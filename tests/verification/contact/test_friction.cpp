@@ -85,10 +85,11 @@ TEST(Friction, AColumnTipSticksThenSlipsAtMuTimesItsLoadAndBackAgain) {
     ASSERT_EQ(s.contacts.size(), 1u);
     const tsm::solver::ContactPoint& c = s.contacts[0];
     ASSERT_GE(c.element, 0) << "step " << s.step;
-    // The compression is F by vertical statics (the plane's tilt is below 1e-9); the run's
-    // force balance holds it to its convergence tolerance's round-off.
+    // The compression is F by vertical statics (the plane's tilt is below 1e-9); steps of this
+    // stiff model (the plane 1e8 × as stiff as the column) end on round-off, its force balance
+    // resolved to ~1e-5 of F.
     const double pressed = s.stage == 0 ? s.load_factor * F : F;
-    EXPECT_NEAR(c.force, pressed, 2e-5 * F) << "step " << s.step;
+    EXPECT_NEAR(c.force, pressed, 1e-4 * F) << "step " << s.step;
     const double u = ux(model, s, 11), tip = ux(model, s, 10);
     if (s.stage == 1 && u < 0.9 * u_s) {  // sticking: the tip held, the column's shear below μF
       ++sticking;
