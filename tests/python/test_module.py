@@ -838,9 +838,11 @@ def test_a_result_read_back_from_its_files_equals_the_run(example, tmp_path):
     assert back.results_json == r.results_json and back.steps_csv == r.steps_csv
     column = [int(np.flatnonzero(r.contact_nodes == node)[0]) for node in back.contact_nodes]
     assert sorted(column) == list(range(len(r.contact_nodes)))
-    for name in ("contact_element", "contact_also", "contact_alpha", "contact_force"):
+    contact_columns = ("contact_element", "contact_also", "contact_alpha", "contact_force", "contact_tangential",
+                       "contact_slip", "contact_friction")
+    for name in contact_columns:
         assert np.array_equal(getattr(back, name), getattr(r, name)[:, column]), name
-    skipped = {"contact_nodes", "contact_element", "contact_also", "contact_alpha", "contact_force", "_model", "_model_text"}
+    skipped = {"contact_nodes", *contact_columns, "_model", "_model_text"}
     for name, value in vars(r).items():
         if name in skipped:
             continue
@@ -921,3 +923,16 @@ def test_jupyter_shows_a_model_as_its_drawing_and_a_result_as_its_end():
     assert f"maximum {r.limit_points[0]['located']['load_factor']:.6g} (step {r.limit_points[0]['step']})" in page
     assert page.count('<img src="data:image/png;base64,') == 1
     assert r.notes and all(f"<li>{html.escape(n)}</li>" in page for n in r.notes)
+
+
+def test_friction_arrays_carry_stick_slip_and_the_coulomb_force():
+    # The dragged column (docs/friction.md §7a): sticking in the first drag step, slipping at
+    # μ times the compression (0.2) forward, then back.
+    r = tf.run(os.path.join(SOURCE, "examples", "column-tip-dragged-with-friction.json"))
+    assert r.contact_friction.shape == r.contact_force.shape
+    assert r.contact_friction[2, 0] == "stick" and r.contact_friction[-1, 0] == "slip"
+    slipping = r.contact_friction[:, 0] == "slip"
+    ratio = r.contact_tangential[slipping, 0] / r.contact_force[slipping, 0]
+    assert np.allclose(np.abs(ratio), 0.2, rtol=0, atol=1e-9)
+    assert r.contact_tangential[-1, 0] < 0 and r.contact_slip[-1, 0] == pytest.approx(0.3444574, abs=4e-5)
+    assert np.all(np.diff(r.contact_slip[:, 0]) >= 0)  # accumulated

@@ -170,11 +170,13 @@ void write_step(JsonWriter& w, const Model& model, const solver::StepRecord& ste
 
 void write_results_json(std::ostream& out, const Model& model, const solver::RunResult& result,
                         const ResultsOptions& options) {
-  // Nodes with a support or a prescribed dof; a hinge's rotation, fixed by the reader, is neither.
+  // Nodes with a support or a prescribed dof (any stage's: the run reports their reactions); a
+  // hinge's rotation, fixed by the reader, is neither.
   std::vector<bool> supported(model.node_count(), false);
   const std::vector<char> hinge = hinge_nodes(model);
   for (int dof = 0; dof < model.dof_count(); ++dof)
     if (model.constrained[dof] && !(dof % dofs_per_node == rz && hinge[dof / dofs_per_node])) supported[dof / dofs_per_node] = true;
+  for (const int dof : model.moved_dofs()) supported[dof / dofs_per_node] = true;
 
   JsonWriter w(out);
   w.begin_object();
