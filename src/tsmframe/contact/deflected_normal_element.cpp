@@ -113,6 +113,16 @@ ShapeSlopeTerms shape_slope_terms(const element::SectionStiffness& section, doub
   return t;
 }
 
+ShapeSlopeAt shape_slope_at(const ContactElementData& data, const ContactResponse& r, bool with_gradient) {
+  const LawRates rates = law_rates(r.law, r.deformations.segment<2>(1), r.forces[3]);
+  const Slope w = shape_slope(data, r, r.law, rates);
+  ShapeSlopeAt out{w.value};
+  if (with_gradient)
+    out.gradient = contact_equilibrium_matrix(r.chord, r.alpha) * w.d.transpose() +
+                   w.d_alpha * alpha_gradient(r.chord, r.alpha, r.normal);  // ∇w_α (N13)
+  return out;
+}
+
 DeflectedNormal deflected_normal(const ContactElementData& data, const ContactResponse& r) {
   const ChordFrameLaw& law = r.law;
   const double Y = r.forces[3], N = r.forces[0];

@@ -51,6 +51,14 @@ struct DeflectedNormal {
 /// For a response of deflected_normal_response (or chord_frame_response: the same α, δy_c and S).
 DeflectedNormal deflected_normal(const ContactElementData& data, const ContactResponse& response);
 
+/// The bent shape's slope at the point, w_α (N2), and with `with_gradient` its gradient ∇w_α on
+/// the element's dofs (N13), for a response of either normal (the same α, δy_c and S).
+struct ShapeSlopeAt {
+  double w_alpha = 0.0;
+  Vector9 gradient = Vector9::Zero();
+};
+ShapeSlopeAt shape_slope_at(const ContactElementData& data, const ContactResponse& response, bool with_gradient);
+
 /// The element in the chord frame with the force along the deflected normal (`data.frame` is not
 /// read). d = (u_i, v_i, Θ_i, u_j, v_j, Θ_j, u_c, v_c, Θ_c); Θ_c plays no part. The fields are
 /// chord_frame_response's, with what they mean now (N14, N15):

@@ -11,6 +11,13 @@
 namespace tsm::contact {
 namespace {
 
+/// The bent shape at the point, as the arc length reads it: its slope w_α and ∇w_α (zero where
+/// not formed: an element of several points).
+struct ArcSlope {
+  double w_alpha = 0.0;
+  Vector9 gradient = Vector9::Zero();
+};
+
 /// One point's friction on the translations of i, j and its node (the 9-vector's places): the
 /// return map's result and what the force f += Z A g and its tangent are made of (F3, F11–F13).
 struct PointFriction {
@@ -21,17 +28,23 @@ struct PointFriction {
   /// slip: ∇Z = slip_rate · (Z ∇w' − ∇Y); the Z ∇w' part here (∇Y is the caller's, over its dofs)
   double slip_rate = 0.0;
   Vector9 slope_part = Vector9::Zero();
+  /// stick: ∇Z's part beyond k_s g — the gap's term of the arc length (F5 with §2's offset·w'),
+  /// (l0/c_T) ∇(ρ w_α / l²)
+  Vector9 arc_part = Vector9::Zero();
   bool acts() const { return result.status == FrictionStatus::stick || result.status == FrictionStatus::slip; }
 };
 
 PointFriction point_friction(const FrictionData& f, const element::InitialChord& initial, double EA, double edge,
                              const element::Chord& chord, double alpha, double rho, double Y, double w_alpha,
-                             const Vector9& grad_w_alpha) {
+                             const Vector9& grad_w_alpha, const ArcSlope& arc_slope) {
   PointFriction p;
   const double l0 = initial.length, l = chord.length;
   const TangentialCompliance cT = tangential_compliance(EA, l0, alpha, edge, f.min_compliance);
   const double slope = w_alpha / l;
-  p.result = return_map(f, Y, slope, f.arc_start + l0 * alpha, cT.value);
+  // The arc length of the section whose surface point is under the node: the foot of the bent
+  // shape's normal, α + ρ w_α / l² (§2) — a beam turning about the contact point does not slip.
+  const double ws = arc_slope.w_alpha;
+  p.result = return_map(f, Y, slope, f.arc_start + l0 * (alpha + rho * ws / (l * l)), cT.value);
   if (!p.acts()) return p;
   p.A = l + w_alpha * w_alpha / l;  // F3
   p.g = alpha_gradient(chord, alpha, rho);
@@ -41,6 +54,12 @@ PointFriction point_friction(const FrictionData& f, const element::InitialChord&
   const double Z = p.result.Z;
   if (p.result.status == FrictionStatus::stick) {
     p.stick_stiffness = (l0 - Z * cT.d_alpha) / cT.value;  // F12
+    if (ws != 0.0 || rho != 0.0) {
+      const Eigen::Vector2d n(-chord.sin, chord.cos);
+      const Vector9 grad_rho = spread(-(1.0 - alpha) * n, -alpha * n, n);  // ∇(r·n)
+      p.arc_part = (l0 / cT.value / (l * l)) *
+                   (ws * grad_rho + rho * arc_slope.gradient - (2.0 * rho * ws / l) * grad_l);
+    }
     return p;
   }
   const double direction = Z > 0.0 ? 1.0 : -1.0;
@@ -99,8 +118,14 @@ void add_friction(const ContactElementData& data, double w_alpha, const Vector9&
   const FrictionData& f = data.friction;
   if (f.mu == 0.0) return;
   const double Y = r.forces[3];
+  // Along the chord's normal the force leaves the shape's slope out; the arc length reads it.
+  ArcSlope arc{w_alpha, grad_w_alpha};
+  if (data.normal == ContactNormal::chord) {
+    const ShapeSlopeAt shape = shape_slope_at(data, r, with_tangent);
+    arc = {shape.w_alpha, shape.gradient};
+  }
   const PointFriction p = point_friction(f, data.initial, data.section.EA, data.edge, r.chord, r.alpha, r.normal, Y,
-                                         w_alpha, grad_w_alpha);
+                                         w_alpha, grad_w_alpha, arc);
   r.friction = p.result;
   if (!p.acts()) return;
   const double Z = p.result.Z;
@@ -110,7 +135,7 @@ void add_friction(const ContactElementData& data, double w_alpha, const Vector9&
   r.friction_u = p.g;
   if (p.result.status == FrictionStatus::stick) {  // ∇Z = k_s g: A k_s g gᵀ symmetric
     r.symmetric_tangent.noalias() += (p.A * p.stick_stiffness) * p.g * p.g.transpose();
-    r.friction_v = Z * p.grad_A;
+    r.friction_v = Z * p.grad_A + p.A * p.arc_part;
     return;
   }
   // ∇Y = p_c / c + Y_α g (the chord's point load, the law's α-rate).
@@ -141,8 +166,9 @@ void add_multi_point_friction(const MultiPointElementData& data, const Eigen::Ma
     const FrictionData& f = data.points[p].friction;
     if (f.mu == 0.0) continue;
     // Every point of a frictional element pushes along its chord's normal (w' = 0; active_contacts).
+    // The arc length reads no shape slope here (the k-point shape's is not differentiated yet).
     const PointFriction pf = point_friction(f, data.initial, data.section.EA, data.edge, r.chord, r.alpha[p],
-                                            r.normal[p], r.forces[3 + p], 0.0, Vector9::Zero());
+                                            r.normal[p], r.forces[3 + p], 0.0, Vector9::Zero(), ArcSlope{});
     r.friction[p] = pf.result;
     if (!pf.acts()) continue;
     const double Z = pf.result.Z;
@@ -158,7 +184,7 @@ void add_multi_point_friction(const MultiPointElementData& data, const Eigen::Ma
         r.tangent(at[a], at[b]) += hessian(a, b);
       }
     r.friction_u.col(p) = g[p];
-    Eigen::VectorXd v = Z * widen(pf.grad_A, p);
+    Eigen::VectorXd v = Z * widen(pf.grad_A, p) + pf.A * widen(pf.arc_part, p);
     if (pf.result.status == FrictionStatus::slip) {
       // ∇Y_p = Σ_q C⁻¹(p, q) P_q + Σ_q ∂Y_p/∂α_q g_q (K14, K13).
       Eigen::VectorXd grad_Y = r.point_u * r.point_stiffness.row(p).transpose();
