@@ -1,12 +1,14 @@
 #pragma once
-// Coulomb friction at a one-point contact in the chord frame (docs/friction.md, F1–F14): the
+// Coulomb friction at node-to-beam contacts in the chord frame (docs/friction.md, F1–F14): the
 // tangential law, the return map from the step-start anchor and the consistent tangent, added to
-// the frictionless element's response. Pure and local, like the element itself.
+// the frictionless element's response (one point, or each point of a k-point element). Pure and
+// local, like the elements themselves.
 //
 // The node gives the beam Y_N ν + Z τ at α: τ = e + w' n the bent beam's tangent scaled like
 // ν = n − w' e (F1). The law's Y stays the force's whole share along n (F2), so friction adds one
 // axial point load on the chord, Z a_Z with a_Z = A ∂α/∂x, A = l + w_α²/l (F3). The stick law is
-// Z = (s − s_a)/c_T with s = s_e + l0 α the point's arc length along its member and c_T the
+// Z = (s − s_a)/c_T with s = s_e + l0 (α + ρ w_α/l²) the arc length along its member of the
+// section whose surface point is under the node (§2; k points: s_e + l0 α) and c_T the
 // element's own axial flexibility at α, floored and capped like the normal law (F5, F7);
 // Coulomb's |Z| ≤ μ p_N bounds it (F4, F8–F9).
 

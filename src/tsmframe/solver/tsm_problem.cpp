@@ -519,7 +519,8 @@ Factorisation TsmProblem::factorisation(bool ok, bool symmetric) const {
 
 Factorisation TsmProblem::negative_eigenvalues(State& state, bool evaluated) {
   if (!evaluated) evaluate(state);
-  if (!system_.follower_rank_one().empty()) return {};  // not symmetric: the inertia tells nothing
+  // Not symmetric (a follower load's skew terms, friction's): the inertia tells nothing.
+  if (!system_.follower_rank_one().empty() || !system_.friction_rank_one().empty()) return {};
   analyse_pattern();
   solver_.guard_inertia(true);
   return factorisation(solver_.factorize(system_.tangent_for_factorisation()), true);
