@@ -139,6 +139,25 @@ class Vtk(unittest.TestCase):
         self.assertEqual(points[-1][1], 2.0)  # the contact node, pushed 2 m up
         self.assertEqual(sum(1 for y in cell_data["Y"] if y[0] != 0.0), 2)  # the contact element and vertex
 
+    def test_friction_force_and_status_at_the_contact_point(self):
+        # The dragged column (examples/column-tip-dragged-with-friction.json): its last step slips
+        # back, the friction force on the plane μF = 0.05 along −x (the tip dragged towards −x),
+        # status 2; a frictionless model's files carry no friction arrays.
+        out = os.path.join(self.dir.name, "column")
+        r = run("run", os.path.join(SOURCE, "examples", "column-tip-dragged-with-friction.json"), "--out", out, "--vtk", "-q")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        files = [d.get("file") for d in ET.parse(os.path.join(out, "vtk", "results.pvd")).getroot().iter("DataSet")]
+        _, _, point_data, _ = read_vtu(os.path.join(out, "vtk", files[-1]))
+        friction, status = point_data["friction_force"][-1], point_data["friction_status"][-1]
+        self.assertAlmostEqual(friction[0], -0.05, delta=1e-5)
+        self.assertAlmostEqual(friction[1], 0.0, delta=1e-8)
+        self.assertEqual(status[0], 2)
+        self.assertTrue(all(v == [0.0] for v in point_data["friction_status"][:-1]))
+        plain = os.path.join(self.dir.name, "push")
+        self.assertEqual(run("run", os.path.join(SOURCE, "examples", "contact-push.json"), "--out", plain, "--vtk", "-q").returncode, 0)
+        first = [d.get("file") for d in ET.parse(os.path.join(plain, "vtk", "results.pvd")).getroot().iter("DataSet")][0]
+        self.assertNotIn("friction_force", read_vtu(os.path.join(plain, "vtk", first))[2])
+
     def test_a_vertex_shows_the_resultant_at_its_own_node(self):
         # A pinned beam pushed down 0.5 m on its mid-span node (a vertex: both elements at the node
         # in contact), with an idle contact node listed first: the contact point's arrays belong to

@@ -1,5 +1,6 @@
 #include "tsmframe/io/vtk_writer.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "tsmframe/io/element_curves.hpp"
@@ -47,7 +48,10 @@ void write_vtu(const std::string& path, const Model& model, const solver::StepRe
     int node;
     Eigen::Vector2d position, force;
     double Y;
+    Eigen::Vector2d friction = Eigen::Vector2d::Zero();  ///< the friction force along the touched element's chord
+    int friction_status = 0;                             ///< 1 stick, 2 slip, 0 neither
   };
+  const bool frictional = std::any_of(model.contacts.begin(), model.contacts.end(), [](const ContactSpec& c) { return c.friction > 0.0; });
   std::vector<ContactPoint> contacts;
   std::vector<double> element_Y(model.elements.size(), 0.0);
   for (size_t k = 0; k < step.contacts.size(); ++k) {
@@ -57,6 +61,13 @@ void write_vtu(const std::string& path, const Model& model, const solver::StepRe
     if (c.partner >= 0) element_Y[c.partner] = c.partner_Y;  // a vertex: both elements push
     const int node = model.contacts[k].node;
     contacts.push_back({node, model.nodes[node].position + D.segment<2>(dofs_per_node * node), c.push, c.Y});
+    if (c.friction == contact::FrictionStatus::stick || c.friction == contact::FrictionStatus::slip) {
+      const Element& e = model.elements[c.element];
+      const Eigen::Vector2d chord = (model.nodes[e.end].position + D.segment<2>(dofs_per_node * e.end)) -
+                                    (model.nodes[e.start].position + D.segment<2>(dofs_per_node * e.start));
+      contacts.back().friction = c.tangential * chord.normalized();
+      contacts.back().friction_status = c.friction == contact::FrictionStatus::stick ? 1 : 2;
+    }
   }
   const size_t per = curve_segments + 1, n_points = curves.size() * per + contacts.size();
   const size_t n_cells = curves.size() + contacts.size();
@@ -92,6 +103,14 @@ void write_vtu(const std::string& path, const Model& model, const solver::StepRe
     out << "</DataArray>\n<DataArray type=\"Float64\" Name=\"contact_force\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (size_t k = 0; k < curves.size() * per; ++k) out << "0 0 0\n";
     for (const ContactPoint& c : contacts) out << num(c.force.x()) << ' ' << num(c.force.y()) << " 0\n";
+    if (frictional) {  // only where friction is: a frictionless model's files stay as they were
+      out << "</DataArray>\n<DataArray type=\"Float64\" Name=\"friction_force\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+      for (size_t k = 0; k < curves.size() * per; ++k) out << "0 0 0\n";
+      for (const ContactPoint& c : contacts) out << num(c.friction.x()) << ' ' << num(c.friction.y()) << " 0\n";
+      out << "</DataArray>\n<DataArray type=\"Int32\" Name=\"friction_status\" format=\"ascii\">\n";
+      for (size_t k = 0; k < curves.size() * per; ++k) out << "0\n";
+      for (const ContactPoint& c : contacts) out << c.friction_status << '\n';
+    }
     // The N, V, M diagrams along each element's curve (a contact point's jump between two points).
     for (const auto& [name, value] : {std::pair{"section_N", &element::SectionStation::N},
                                       std::pair{"section_V", &element::SectionStation::V},
