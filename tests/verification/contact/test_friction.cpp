@@ -214,4 +214,30 @@ TEST(Friction, ABlockPulledAlongAFoundationSlipsNodeByNodeAtTheLadderLoads) {
   }
 }
 
+TEST(Friction, UnderArcLengthControlTheDragTracesTheSameStates) {
+  // The drag of (a) under arc-length control, the top's ux moving with λ: every slipping state
+  // is the threshold's shape translated (its slip u − u_s), at μ times the compression (§6: the
+  // constraint measures the increment from the last converged state; history is written only at
+  // convergence).
+  const double u_s = elastica_offset(mu * F);
+  json m = dragged_column();
+  m["stages"].erase(2);
+  m["stages"][1]["control"] = {{"type", "arc-length"}, {"initial_increment", 0.01}, {"max_increment", 0.02},
+                               {"max_steps", 40}, {"until", {{"load_factor", 1.0}}}};
+  tsm::Model model;
+  const tsm::solver::RunResult result = run(m, model);
+  int slipping = 0;
+  for (const tsm::solver::StepRecord& s : result.steps) {
+    if (!s.converged || s.stage != 1) continue;
+    const tsm::solver::ContactPoint& c = s.contacts[0];
+    const double u = ux(model, s, 11);
+    if (u < 1.1 * u_s) continue;
+    ++slipping;
+    EXPECT_EQ(c.friction, FrictionStatus::slip) << "step " << s.step;
+    EXPECT_NEAR(c.tangential / c.force, mu, 1e-9) << "step " << s.step;
+    EXPECT_NEAR(c.slip, u - u_s, 2e-5) << "step " << s.step;
+  }
+  EXPECT_GE(slipping, 20);
+}
+
 }  // namespace
