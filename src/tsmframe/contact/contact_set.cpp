@@ -286,7 +286,6 @@ void ContactSet::record_friction(const ContactEvaluation& e, ContactState& state
   FrictionState& f = state.friction;
   const FrictionResult& r = e.friction;
   f.status = r.status;
-  f.Z = r.Z;
   f.tangential = r.tangential;
   f.trial_anchor = r.trial_anchor;
   if (!f.anchored && f.status == FrictionStatus::stick) {  // the touching iterate: anchored here for the rest of the step

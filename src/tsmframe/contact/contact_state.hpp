@@ -107,7 +107,6 @@ struct FrictionState {
   FrictionStatus step_status = FrictionStatus::none;
   double step_tangential = 0.0;
   double tangential = 0.0;   ///< the friction force along the beam's tangent, signed along e (Z q)
-  double Z = 0.0;            ///< its share along e (F2)
   double trial_anchor = 0.0; ///< where the last evaluation's return map left the anchor
 };
 

@@ -11,13 +11,6 @@
 namespace tsm::contact {
 namespace {
 
-/// The bent shape at the point, as the arc length reads it: its slope w_α and ∇w_α (zero where
-/// not formed: an element of several points).
-struct ArcSlope {
-  double w_alpha = 0.0;
-  Vector9 gradient = Vector9::Zero();
-};
-
 /// One point's friction on the translations of i, j and its node (the 9-vector's places): the
 /// return map's result and what the force f += Z A g and its tangent are made of (F3, F11–F13).
 struct PointFriction {
@@ -36,14 +29,14 @@ struct PointFriction {
 
 PointFriction point_friction(const FrictionData& f, const element::InitialChord& initial, double EA, double edge,
                              const element::Chord& chord, double alpha, double rho, double Y, double w_alpha,
-                             const Vector9& grad_w_alpha, const ArcSlope& arc_slope) {
+                             const Vector9& grad_w_alpha, const ShapeSlopeAt& arc_slope) {
   PointFriction p;
   const double l0 = initial.length, l = chord.length;
   const TangentialCompliance cT = tangential_compliance(EA, l0, alpha, edge, f.min_compliance);
   const double slope = w_alpha / l;
   // The arc length of the section whose surface point is under the node: the foot of the bent
   // shape's normal, α + ρ w_α / l² (§2) — a beam turning about the contact point does not slip.
-  const double ws = arc_slope.w_alpha;
+  const double ws = arc_slope.w_alpha;  // zero where not formed: an element of several points
   p.result = return_map(f, Y, slope, f.arc_start + l0 * (alpha + rho * ws / (l * l)), cT.value);
   if (!p.acts()) return p;
   p.A = l + w_alpha * w_alpha / l;  // F3
@@ -55,8 +48,7 @@ PointFriction point_friction(const FrictionData& f, const element::InitialChord&
   if (p.result.status == FrictionStatus::stick) {
     p.stick_stiffness = (l0 - Z * cT.d_alpha) / cT.value;  // F12
     if (ws != 0.0 || rho != 0.0) {
-      const Eigen::Vector2d n(-chord.sin, chord.cos);
-      const Vector9 grad_rho = spread(-(1.0 - alpha) * n, -alpha * n, n);  // ∇(r·n)
+      const Vector9 grad_rho = contact_equilibrium_matrix(chord, alpha).col(3);  // ∇(r·n): J's Y column
       p.arc_part = (l0 / cT.value / (l * l)) *
                    (ws * grad_rho + rho * arc_slope.gradient - (2.0 * rho * ws / l) * grad_l);
     }
@@ -119,11 +111,8 @@ void add_friction(const ContactElementData& data, double w_alpha, const Vector9&
   if (f.mu == 0.0) return;
   const double Y = r.forces[3];
   // Along the chord's normal the force leaves the shape's slope out; the arc length reads it.
-  ArcSlope arc{w_alpha, grad_w_alpha};
-  if (data.normal == ContactNormal::chord) {
-    const ShapeSlopeAt shape = shape_slope_at(data, r, with_tangent);
-    arc = {shape.w_alpha, shape.gradient};
-  }
+  const ShapeSlopeAt arc = data.normal == ContactNormal::chord ? shape_slope_at(data, r, with_tangent)
+                                                                 : ShapeSlopeAt{w_alpha, grad_w_alpha};
   const PointFriction p = point_friction(f, data.initial, data.section.EA, data.edge, r.chord, r.alpha, r.normal, Y,
                                          w_alpha, grad_w_alpha, arc);
   r.friction = p.result;
@@ -138,12 +127,12 @@ void add_friction(const ContactElementData& data, double w_alpha, const Vector9&
     r.friction_v = Z * p.grad_A + p.A * p.arc_part;
     return;
   }
-  // ∇Y = p_c / c + Y_α g (the chord's point load, the law's α-rate).
+  // ∇Y = p_c / c + Y_α g: the chord's point load p_c (the response's point_u, turned back from the
+  // bent normal's J_ν (0, h, 1)ᵀ = p_c − w_α g), the law's α-rate.
   const PointLoadLaw& law = r.law.connected;
   const double c = law.compliance;
   const double Y_alpha = (law.dh_i * r.deformations[1] + law.dh_j * r.deformations[2] - Y * law.dcompliance) / c;
-  const Vector9 point_chord = contact_equilibrium_matrix(r.chord, r.alpha) * Vector4(0.0, law.h_i, law.h_j, 1.0);
-  const Vector9 grad_Y = point_chord / c + Y_alpha * p.g;
+  const Vector9 grad_Y = (r.point_u + w_alpha * p.g) / c + Y_alpha * p.g;
   r.friction_v = p.A * p.slip_rate * (p.slope_part - grad_Y) + Z * p.grad_A;
 }
 
@@ -168,7 +157,7 @@ void add_multi_point_friction(const MultiPointElementData& data, const Eigen::Ma
     // Every point of a frictional element pushes along its chord's normal (w' = 0; active_contacts).
     // The arc length reads no shape slope here (the k-point shape's is not differentiated yet).
     const PointFriction pf = point_friction(f, data.initial, data.section.EA, data.edge, r.chord, r.alpha[p],
-                                            r.normal[p], r.forces[3 + p], 0.0, Vector9::Zero(), ArcSlope{});
+                                            r.normal[p], r.forces[3 + p], 0.0, Vector9::Zero(), ShapeSlopeAt{});
     r.friction[p] = pf.result;
     if (!pf.acts()) continue;
     const double Z = pf.result.Z;

@@ -58,19 +58,28 @@ Eigen::VectorXd post_pressed_in(const tsm::Model& model) {
   return D;
 }
 
+/// The model `m` (post_on_cantilever's) in a bent, rotated state with the pusher pressed 0.02 into
+/// the beam near α = 0.7 (post_pressed_in), evaluated once and its contacts updated there.
+struct PressedPost {
+  tsm::Model model;
+  tsm::assembly::DofMap dofs;
+  tsm::assembly::GlobalSystem system;
+  tsm::contact::ContactSet tracker;
+  std::vector<tsm::contact::ContactState> states;
+  Eigen::VectorXd D;
+  tsm::assembly::Evaluation e;
+  explicit PressedPost(const nlohmann::json& m)
+      : model(tsm::io::read_model(m)), dofs(model), system(model, dofs), tracker(model),
+        states(tracker.initial_states()), D(post_pressed_in(model)) {
+    system.evaluate(D, std::vector<double>(model.elements.size(), 0.0), true, e);
+    tracker.update(D, e.chord_rotations, e.contacts, states, false, tsm::contact::unloaded_start(model));
+  }
+};
+
 TEST(ContactAssembly, TangentWithActiveContactsMatchesFiniteDifferences) {
   for (const char* element : {"euler-bernoulli", "timoshenko"}) {
-    const tsm::Model model = tsm::io::read_model(post_on_cantilever(element, 0.45));
-    tsm::assembly::DofMap dofs(model);
-    tsm::assembly::GlobalSystem system(model, dofs);
-    tsm::contact::ContactSet tracker(model);
-    std::vector<tsm::contact::ContactState> states = tracker.initial_states();
-    // A bent, rotated state with the pusher pressed 0.02 into the beam near α = 0.7.
-    const Eigen::VectorXd D = post_pressed_in(model);
-    std::vector<double> rotations(model.elements.size(), 0.0);
-    tsm::assembly::Evaluation e;
-    system.evaluate(D, rotations, true, e);
-    tracker.update(D, e.chord_rotations, e.contacts, states, false, tsm::contact::unloaded_start(model));
+    PressedPost post(post_on_cantilever(element, 0.45));
+    auto& [model, dofs, system, tracker, states, D, e] = post;
     ASSERT_TRUE(states[0].active);
     const auto active = tracker.active_contacts(states);
     system.evaluate(D, e.chord_rotations, true, e, active);
@@ -92,16 +101,8 @@ TEST(ContactAssembly, TangentWithFrictionMatchesFiniteDifferencesInStickAndInSli
     for (const double share : {0.25, -0.25, 3.0, -3.0}) {
       nlohmann::json json = post_on_cantilever(element, 0.45);
       json["contacts"][0]["friction"] = 0.3;
-      const tsm::Model model = tsm::io::read_model(json);
-      tsm::assembly::DofMap dofs(model);
-      tsm::assembly::GlobalSystem system(model, dofs);
-      tsm::contact::ContactSet tracker(model);
-      std::vector<tsm::contact::ContactState> states = tracker.initial_states();
-      const Eigen::VectorXd D = post_pressed_in(model);
-      std::vector<double> rotations(model.elements.size(), 0.0);
-      tsm::assembly::Evaluation e;
-      system.evaluate(D, rotations, true, e);
-      tracker.update(D, e.chord_rotations, e.contacts, states, false, tsm::contact::unloaded_start(model));
+      PressedPost post(json);
+      auto& [model, dofs, system, tracker, states, D, e] = post;
       ASSERT_TRUE(states[0].active);
       states[0].entering = false;
       // Where the point is: evaluated once without an anchor (it anchors there), then the anchor moved.
